@@ -1,0 +1,131 @@
+//! Free flight and exact contact times of two discs.
+//!
+//! Between events every disc moves on a straight line (physics.md §1). The contact
+//! time of two discs is the smaller root of |Δr + Δv t| = σ, computed in the
+//! cancellation-free vector form of physics.md §2. The seed's angular form
+//! (seed 000, Eq. 14–17) is kept in [`contact_time_seed`] as a documented reference;
+//! property tests show the two agree.
+
+use glam::DVec2;
+
+/// Position after free flight for a time `dt` (physics.md §1): r + v dt.
+#[inline]
+pub fn advance(r: DVec2, v: DVec2, dt: f64) -> DVec2 {
+    r + v * dt
+}
+
+/// Time from now until two discs touch, in the vector form of physics.md §2.
+///
+/// * `dr` = r_j − r_i, the separation of the centres now (length);
+/// * `dv` = v_j − v_i, the relative velocity (length/time);
+/// * `sigma` = a_i + a_j, the contact distance (length).
+///
+/// With b = Δr·Δv, c = |Δr|² − σ², D = b² − |Δv|² c the pair meets iff b < 0 and
+/// D ≥ 0, after t = c / (−b + √D) (equal to (−b − √D)/|Δv|² without its cancellation).
+///
+/// Robustness rules (physics.md §2):
+/// * receding pairs (b ≥ 0), including zero relative velocity, never meet: `None`;
+/// * a miss (D < 0) never meets: `None`;
+/// * a pair that rounding left touching or overlapping (c ≤ 0) while approaching
+///   collides now: `Some(0.0)` — an event is never scheduled in the past;
+/// * the result is never NaN: any NaN input gives `None`.
+#[inline]
+pub fn contact_time(dr: DVec2, dv: DVec2, sigma: f64) -> Option<f64> {
+    let b = dr.dot(dv);
+    // `!(b < 0)` also rejects NaN.
+    if !(b < 0.0) {
+        return None;
+    }
+    let c = dr.length_squared() - sigma * sigma;
+    if c <= 0.0 {
+        return Some(0.0);
+    }
+    let d = b * b - dv.length_squared() * c;
+    if !(d >= 0.0) {
+        return None;
+    }
+    // c > 0 and −b > 0, so the denominator is positive and t is finite and positive.
+    Some(c / (d.sqrt() - b))
+}
+
+/// The seed's angular contact time (seed 000, Eq. 14–17), kept as a reference.
+///
+/// Disc 1 at `r1` with velocity `v1` and radius `a1`, disc 2 likewise. With
+/// d = |r2 − r1|, γ_xy = atan2 of r2 − r1 (Eq. 16), γ_v = atan2 of v1 − v2 (Eq. 7) the
+/// discs touch after
+/// t = [d cos(γ_xy − γ_v) − √((a1+a2)² − (d sin(γ_xy − γ_v))²)] / |v1 − v2|  (Eq. 17),
+/// defined only when |d sin(γ_xy − γ_v)| ≤ a1 + a2 (Eq. 14) and cos(γ_xy − γ_v) > 0
+/// (the discs approach). `atan2` replaces the printed arctan of a ratio, which loses
+/// the quadrant. The same rules as [`contact_time`] apply: overlapping and
+/// approaching collides now, misses and receding pairs never.
+pub fn contact_time_seed(
+    r1: DVec2,
+    v1: DVec2,
+    a1: f64,
+    r2: DVec2,
+    v2: DVec2,
+    a2: f64,
+) -> Option<f64> {
+    let sep = r2 - r1;
+    let g = v1 - v2;
+    let speed = g.length();
+    if speed == 0.0 || !speed.is_finite() {
+        return None;
+    }
+    let d = sep.length();
+    let gamma_xy = sep.y.atan2(sep.x);
+    let gamma_v = g.y.atan2(g.x);
+    let (s, c) = (gamma_xy - gamma_v).sin_cos();
+    if c <= 0.0 {
+        return None; // receding or moving sideways
+    }
+    let sigma = a1 + a2;
+    let h = d * s;
+    if h.abs() > sigma {
+        return None; // miss (Eq. 14 undefined)
+    }
+    let t = (d * c - (sigma * sigma - h * h).sqrt()) / speed;
+    Some(t.max(0.0))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn head_on_pair_meets_when_gap_closes() {
+        // Centres 3 apart, contact distance 1, closing speed 2: gap 2 closes at t = 1.
+        let t = contact_time(DVec2::new(3.0, 0.0), DVec2::new(-2.0, 0.0), 1.0).unwrap();
+        assert_eq!(t, 1.0);
+    }
+
+    #[test]
+    fn receding_and_still_pairs_never_meet() {
+        assert_eq!(contact_time(DVec2::new(3.0, 0.0), DVec2::new(2.0, 0.0), 1.0), None);
+        assert_eq!(contact_time(DVec2::new(3.0, 0.0), DVec2::ZERO, 1.0), None);
+    }
+
+    #[test]
+    fn overlapping_approaching_pair_collides_now() {
+        let t = contact_time(DVec2::new(0.9, 0.0), DVec2::new(-1.0, 0.0), 1.0);
+        assert_eq!(t, Some(0.0));
+    }
+
+    #[test]
+    fn nan_never_comes_out() {
+        assert_eq!(
+            contact_time(DVec2::new(f64::NAN, 0.0), DVec2::new(-1.0, 0.0), 1.0),
+            None
+        );
+        assert_eq!(
+            contact_time(DVec2::new(2.0, 0.0), DVec2::new(f64::NAN, 0.0), 1.0),
+            None
+        );
+    }
+
+    #[test]
+    fn offset_pair_misses_beyond_contact_distance() {
+        // Impact parameter 1.5 > σ = 1: a miss.
+        assert_eq!(contact_time(DVec2::new(5.0, 1.5), DVec2::new(-1.0, 0.0), 1.0), None);
+    }
+}

@@ -1,0 +1,24 @@
+//! # carom-core
+//!
+//! The pure physics of hard discs in two dimensions, with no allocation and no state:
+//!
+//! * [`kinematics`] — free flight and the exact contact time of two discs
+//!   (physics.md §1–2, seed 000 Eq. 14–17);
+//! * [`collision`] — elastic and inelastic resolution of a pair collision
+//!   (physics.md §3–4, seed 000 Eq. 8–13 and 22–27, seed 004);
+//! * [`boundary`] — rectangular boxes, periodic or walled per axis, and wall collisions;
+//! * [`species`] — what a disc is made of (radius, mass).
+//!
+//! Units are the caller's: lengths, times and masses in any consistent system. The
+//! reference values in physics.md use disc diameter σ = 1, m = 1, kT = 1.
+//! Every quantity is `f64`; vectors are [`glam::DVec2`].
+
+pub mod boundary;
+pub mod collision;
+pub mod kinematics;
+pub mod species;
+
+pub use boundary::{Axis, Boundary, SimBox, WallSide};
+pub use collision::{Resolution, Restitution};
+pub use glam::DVec2;
+pub use species::Species;
