@@ -173,7 +173,13 @@ mod tests {
 
     #[test]
     fn equal_masses_head_on_exchange_velocities() {
-        let (a, b) = elastic(DVec2::new(1.0, 0.0), DVec2::new(-1.0, 0.0), 1.0, 1.0, DVec2::X);
+        let (a, b) = elastic(
+            DVec2::new(1.0, 0.0),
+            DVec2::new(-1.0, 0.0),
+            1.0,
+            1.0,
+            DVec2::X,
+        );
         assert_eq!(a, DVec2::new(-1.0, 0.0));
         assert_eq!(b, DVec2::new(1.0, 0.0));
     }
@@ -181,7 +187,14 @@ mod tests {
     #[test]
     fn perfectly_inelastic_normal_leaves_no_normal_relative_velocity() {
         let n = DVec2::new(0.6, 0.8);
-        let r = resolve(DVec2::new(1.0, 2.0), DVec2::new(-0.5, 0.1), 1.0, 3.0, n, Restitution::Normal(0.0));
+        let r = resolve(
+            DVec2::new(1.0, 2.0),
+            DVec2::new(-0.5, 0.1),
+            1.0,
+            3.0,
+            n,
+            Restitution::Normal(0.0),
+        );
         assert!((r.vi - r.vj).dot(n).abs() < 1e-15);
     }
 

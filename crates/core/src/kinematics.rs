@@ -101,7 +101,10 @@ mod tests {
 
     #[test]
     fn receding_and_still_pairs_never_meet() {
-        assert_eq!(contact_time(DVec2::new(3.0, 0.0), DVec2::new(2.0, 0.0), 1.0), None);
+        assert_eq!(
+            contact_time(DVec2::new(3.0, 0.0), DVec2::new(2.0, 0.0), 1.0),
+            None
+        );
         assert_eq!(contact_time(DVec2::new(3.0, 0.0), DVec2::ZERO, 1.0), None);
     }
 
@@ -126,6 +129,9 @@ mod tests {
     #[test]
     fn offset_pair_misses_beyond_contact_distance() {
         // Impact parameter 1.5 > σ = 1: a miss.
-        assert_eq!(contact_time(DVec2::new(5.0, 1.5), DVec2::new(-1.0, 0.0), 1.0), None);
+        assert_eq!(
+            contact_time(DVec2::new(5.0, 1.5), DVec2::new(-1.0, 0.0), 1.0),
+            None
+        );
     }
 }

@@ -1,0 +1,31 @@
+//! # carom-events
+//!
+//! The exact event-driven engine: discs fly straight between events, a queue of
+//! predicted event times says what happens next, and each collision is resolved in
+//! closed form.
+//!
+//! * [`queue`] — one pending event per disc in a tournament tree keyed by time;
+//! * [`cells`] — the cell grid used for neighbour search (crossings are events);
+//! * [`engine`] — the event loop ([`Engine`]);
+//! * [`init`] — initial states from a seed ([`SystemSpec`]);
+//! * [`invariants`] — the invariant checker used by the tests;
+//! * [`state`], [`event`], [`error`] — the plain data going in and coming out.
+//!
+//! Data flows one way: a [`State`] goes in, [`Event`]s come out; the engine knows
+//! nothing about files.
+
+pub mod cells;
+pub mod engine;
+pub mod error;
+pub mod event;
+pub mod init;
+pub mod invariants;
+pub mod queue;
+pub mod state;
+
+pub use engine::{Engine, EngineParams, Stats};
+pub use error::{EngineError, InitError};
+pub use event::{Event, PairCollision, WallCollision};
+pub use init::{box_size_for, Placement, SystemSpec, Velocities};
+pub use invariants::{InvariantChecker, Violation};
+pub use state::State;

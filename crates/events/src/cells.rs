@@ -1,0 +1,145 @@
+//! Neighbour search: a grid of cells at least one contact distance wide.
+//!
+//! Two discs can touch only if their centres lie in the same or adjacent cells, so a
+//! disc predicts collisions only with the discs of its 3 × 3 block. Crossing a cell
+//! wall is itself an event of the engine, which keeps every disc in the cell that
+//! contains its centre. Each cell holds an intrusive doubly linked list of its discs.
+//!
+//! On a periodic axis the block wraps around; a neighbour reached across the box edge
+//! is seen through its periodic image, shifted by ±L. Boxes narrower than three cells
+//! work too: the same cell is then visited more than once, each time with a different
+//! image shift, which is exactly the set of images a disc can reach.
+
+use carom_core::{DVec2, SimBox};
+
+/// Marker for "no disc" in the linked lists.
+pub const NONE: u32 = u32::MAX;
+
+/// The geometry and membership of the cell grid.
+#[derive(Debug, Clone)]
+pub struct CellGrid {
+    /// Number of cells along x and y.
+    pub n: [u32; 2],
+    /// Cell edge lengths (length); each ≥ the largest contact distance.
+    pub width: DVec2,
+    /// Box edge lengths (length).
+    pub size: DVec2,
+    /// Whether each axis is periodic.
+    pub periodic: [bool; 2],
+    /// First disc of each cell, or [`NONE`].
+    pub head: Vec<u32>,
+    /// Next disc in the same cell, or [`NONE`].
+    pub next: Vec<u32>,
+    /// Previous disc in the same cell, or [`NONE`].
+    pub prev: Vec<u32>,
+    /// Cell coordinates (column, row) of each disc.
+    pub cell: Vec<[u32; 2]>,
+}
+
+impl CellGrid {
+    /// An empty grid for `n_discs` discs in `sim_box`, with cells at least
+    /// `min_width` wide (the largest contact distance, 2 a_max).
+    pub fn new(sim_box: &SimBox, min_width: f64, n_discs: usize) -> Self {
+        let size = sim_box.size;
+        // A hair of margin so that rounding at a cell edge never hides a contact.
+        let w = min_width * (1.0 + 1e-9);
+        let count = |l: f64| ((l / w).floor() as u64).clamp(1, 1 << 15) as u32;
+        let n = [count(size.x), count(size.y)];
+        let width = DVec2::new(size.x / n[0] as f64, size.y / n[1] as f64);
+        CellGrid {
+            n,
+            width,
+            size,
+            periodic: [
+                sim_box.boundary[0].is_periodic(),
+                sim_box.boundary[1].is_periodic(),
+            ],
+            head: vec![NONE; n[0] as usize * n[1] as usize],
+            next: vec![NONE; n_discs],
+            prev: vec![NONE; n_discs],
+            cell: vec![[0, 0]; n_discs],
+        }
+    }
+
+    /// The cell coordinates containing position `r` (clamped into the grid).
+    pub fn coords_of(&self, r: DVec2) -> [u32; 2] {
+        let c = |k: usize, x: f64| -> u32 {
+            let f = (x / self.width[k]).floor();
+            if f < 0.0 {
+                0
+            } else {
+                (f as u64).min(self.n[k] as u64 - 1) as u32
+            }
+        };
+        [c(0, r.x), c(1, r.y)]
+    }
+
+    /// Linear index of cell (column, row).
+    #[inline]
+    pub fn index(&self, c: [u32; 2]) -> usize {
+        c[1] as usize * self.n[0] as usize + c[0] as usize
+    }
+
+    /// Put disc `i` into cell `c` (at the head of its list).
+    #[inline]
+    pub fn insert(&mut self, i: u32, c: [u32; 2]) {
+        let k = self.index(c);
+        let h = self.head[k];
+        self.next[i as usize] = h;
+        self.prev[i as usize] = NONE;
+        if h != NONE {
+            self.prev[h as usize] = i;
+        }
+        self.head[k] = i;
+        self.cell[i as usize] = c;
+    }
+
+    /// Take disc `i` out of its cell.
+    #[inline]
+    pub fn remove(&mut self, i: u32) {
+        let (p, n) = (self.prev[i as usize], self.next[i as usize]);
+        if p != NONE {
+            self.next[p as usize] = n;
+        } else {
+            let k = self.index(self.cell[i as usize]);
+            self.head[k] = n;
+        }
+        if n != NONE {
+            self.prev[n as usize] = p;
+        }
+    }
+
+    /// Time from now until a disc at coordinate `x` (its position now), moving with
+    /// velocity `v`, leaves cell column/row `c` along axis `k`; with the direction of
+    /// the crossing (+1 or −1). `None` when it never does (at rest, or heading into a
+    /// wall, which it hits first).
+    #[inline]
+    pub fn crossing_time(&self, k: usize, c: u32, x: f64, v: f64) -> Option<(f64, i8)> {
+        if v > 0.0 {
+            let last = c + 1 == self.n[k];
+            if last && !self.periodic[k] {
+                return None;
+            }
+            let edge = if last {
+                self.size[k]
+            } else {
+                (c + 1) as f64 * self.width[k]
+            };
+            Some((((edge - x) / v).max(0.0), 1))
+        } else if v < 0.0 {
+            if c == 0 && !self.periodic[k] {
+                return None;
+            }
+            let edge = c as f64 * self.width[k];
+            Some((((edge - x) / v).max(0.0), -1))
+        } else {
+            None
+        }
+    }
+
+    /// Bytes of heap memory used (for the memory report).
+    pub fn heap_bytes(&self) -> usize {
+        (self.head.capacity() + self.next.capacity() + self.prev.capacity()) * 4
+            + self.cell.capacity() * 8
+    }
+}

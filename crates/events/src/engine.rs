@@ -1,0 +1,585 @@
+//! The event loop.
+//!
+//! Each disc stores its position at its own last-update time ("delayed states",
+//! physics.md §1) and owns exactly one pending event: the earliest of its next pair
+//! collision, wall collision and cell crossing, found by scanning the 3 × 3 block of
+//! cells around it. An event moves only the discs it touches.
+//!
+//! A pending pair event remembers the partner's collision counter at prediction
+//! time; every velocity change (and every periodic wrap) bumps a disc's counter, so
+//! a prediction made obsolete by the partner's other collisions is recognised when it
+//! reaches the head of the queue and is simply recomputed. The earliest true event is
+//! always in the queue: of the two discs of any pair, the one updated last scanned the
+//! other with both current trajectories.
+
+use crate::cells::{CellGrid, NONE};
+use crate::error::EngineError;
+use crate::event::{Event, PairCollision, WallCollision};
+use crate::queue::{EventQueue, Time};
+use crate::state::{kinetic_energy, State};
+use carom_core::boundary::{wall_reflect, wall_time};
+use carom_core::collision::resolve;
+use carom_core::kinematics::contact_time;
+use carom_core::{Axis, Boundary, DVec2, Restitution, SimBox, Species, WallSide};
+use ordered_float::NotNan;
+use std::cmp::Reverse;
+use std::collections::BinaryHeap;
+
+/// Parameters of the dynamics.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct EngineParams {
+    /// Collision rule for pairs (physics.md §3–4).
+    pub restitution: Restitution,
+    /// TC model duration t_c (time; physics.md §4): a collision is elastic when either
+    /// disc collided less than t_c ago. 0 disables it.
+    pub tc: f64,
+    /// Collisions allowed at one instant before the engine reports a runaway
+    /// (inelastic collapse) instead of hanging.
+    pub max_events_without_time_advance: u64,
+}
+
+impl Default for EngineParams {
+    fn default() -> Self {
+        EngineParams {
+            restitution: Restitution::Elastic,
+            tc: 0.0,
+            max_events_without_time_advance: 100_000,
+        }
+    }
+}
+
+/// Running totals since the start of the run.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct Stats {
+    /// Pair collisions resolved.
+    pub pair_collisions: u64,
+    /// Wall collisions resolved.
+    pub wall_collisions: u64,
+    /// Cell crossings processed (internal events).
+    pub cell_crossings: u64,
+    /// Predictions found obsolete at the head of the queue and recomputed.
+    pub stale_events: u64,
+    /// Σ r_ij·Δp_i over pair collisions (physics.md §5; length·momentum).
+    pub virial_sum: f64,
+    /// Σ |Δp| given to each wall, indexed [axis][0 = low, 1 = high] (momentum).
+    pub wall_impulse: [[f64; 2]; 2],
+    /// Kinetic energy dissipated in pair and wall collisions (energy).
+    pub energy_lost: f64,
+}
+
+/// Hot per-disc data: position at time `t`, velocity, radius (one 48-byte record).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct Body {
+    pub r: DVec2,
+    pub v: DVec2,
+    pub t: f64,
+    pub radius: f64,
+}
+
+const KIND_NONE: u8 = 0;
+const KIND_PAIR: u8 = 1;
+const KIND_WALL: u8 = 2;
+const KIND_CELL: u8 = 3;
+
+/// The pending event of one disc.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) struct Pending {
+    /// Partner disc of a pair event.
+    pub partner: u32,
+    /// Partner's collision counter when the event was predicted.
+    pub partner_count: u32,
+    /// One of the `KIND_*` constants.
+    pub kind: u8,
+    /// Pair: image shift code (sx+1) + 3 (sy+1). Wall: 2·axis + side. Cell: 2·axis + (dir > 0).
+    pub aux: u8,
+}
+
+impl Pending {
+    const NONE: Pending = Pending {
+        partner: NONE,
+        partner_count: 0,
+        kind: KIND_NONE,
+        aux: 0,
+    };
+}
+
+/// The exact event-driven engine for hard discs.
+#[derive(Debug, Clone)]
+pub struct Engine {
+    sim_box: SimBox,
+    species: Vec<Species>,
+    species_of: Vec<u16>,
+    bodies: Vec<Body>,
+    count: Vec<u32>,
+    pending: Vec<Pending>,
+    last_collision: Vec<f64>,
+    queue: EventQueue,
+    grid: CellGrid,
+    scheduled: BinaryHeap<Reverse<(Time, u64, u64)>>,
+    next_seq: u64,
+    params: EngineParams,
+    now: f64,
+    same_time_collisions: u64,
+    stats: Stats,
+}
+
+#[inline]
+fn neighbour(c: u32, o: i32, n: u32, periodic: bool) -> Option<(u32, i32)> {
+    let v = c as i32 + o;
+    if v < 0 {
+        periodic.then(|| ((v + n as i32) as u32, -1))
+    } else if v >= n as i32 {
+        periodic.then(|| ((v - n as i32) as u32, 1))
+    } else {
+        Some((v as u32, 0))
+    }
+}
+
+#[inline]
+fn time_key(t: f64) -> Time {
+    NotNan::new(t).expect("event times are never NaN: inputs are validated finite")
+}
+
+impl Engine {
+    /// An engine starting from `state` with dynamics `params`.
+    ///
+    /// The state must come from [`crate::SystemSpec::build`] or satisfy the same
+    /// rules (finite values, discs inside the box, no overlap).
+    pub fn new(state: State, params: EngineParams) -> Result<Engine, EngineError> {
+        let n = state.len();
+        let a_max = state.species.iter().map(|s| s.radius).fold(0.0, f64::max);
+        let mut grid = CellGrid::new(&state.sim_box, 2.0 * a_max, n);
+        let bodies: Vec<Body> = (0..n)
+            .map(|i| Body {
+                r: state.sim_box.wrap(state.positions[i]),
+                v: state.velocities[i],
+                t: state.time,
+                radius: state.radius(i),
+            })
+            .collect();
+        for (i, b) in bodies.iter().enumerate() {
+            grid.insert(i as u32, grid.coords_of(b.r));
+        }
+        let mut engine = Engine {
+            sim_box: state.sim_box,
+            species: state.species,
+            species_of: state.species_of,
+            bodies,
+            count: vec![0; n],
+            pending: vec![Pending::NONE; n],
+            last_collision: vec![f64::NEG_INFINITY; n],
+            queue: EventQueue::new(n),
+            grid,
+            scheduled: BinaryHeap::new(),
+            next_seq: 0,
+            params,
+            now: state.time,
+            same_time_collisions: 0,
+            stats: Stats::default(),
+        };
+        for i in 0..n {
+            engine.predict(i);
+        }
+        Ok(engine)
+    }
+
+    /// The current simulation time (time).
+    pub fn now(&self) -> f64 {
+        self.now
+    }
+
+    /// Number of discs N.
+    pub fn len(&self) -> usize {
+        self.bodies.len()
+    }
+
+    /// True when there are no discs.
+    pub fn is_empty(&self) -> bool {
+        self.bodies.is_empty()
+    }
+
+    /// The box.
+    pub fn sim_box(&self) -> &SimBox {
+        &self.sim_box
+    }
+
+    /// The species.
+    pub fn species(&self) -> &[Species] {
+        &self.species
+    }
+
+    /// Species index of each disc.
+    pub fn species_of(&self) -> &[u16] {
+        &self.species_of
+    }
+
+    /// The dynamics parameters.
+    pub fn params(&self) -> &EngineParams {
+        &self.params
+    }
+
+    /// Running totals since the start.
+    pub fn stats(&self) -> &Stats {
+        &self.stats
+    }
+
+    /// Cells per axis of the neighbour grid.
+    pub fn cells(&self) -> [u32; 2] {
+        self.grid.n
+    }
+
+    /// Position of disc `i` at the current time (length), inside the box.
+    pub fn position(&self, i: usize) -> DVec2 {
+        let b = &self.bodies[i];
+        self.sim_box.wrap(b.r + b.v * (self.now - b.t))
+    }
+
+    /// Velocity of disc `i` (length/time).
+    pub fn velocity(&self, i: usize) -> DVec2 {
+        self.bodies[i].v
+    }
+
+    /// Total kinetic energy (energy).
+    pub fn kinetic_energy(&self) -> f64 {
+        let v: Vec<DVec2> = self.bodies.iter().map(|b| b.v).collect();
+        kinetic_energy(&self.species, &self.species_of, &v)
+    }
+
+    /// The exact state of every disc at the current time. Reading it does not
+    /// disturb the trajectory.
+    pub fn state(&self) -> State {
+        State {
+            sim_box: self.sim_box,
+            species: self.species.clone(),
+            species_of: self.species_of.clone(),
+            positions: (0..self.len()).map(|i| self.position(i)).collect(),
+            velocities: self.bodies.iter().map(|b| b.v).collect(),
+            time: self.now,
+        }
+    }
+
+    /// Heap bytes held by the engine (for the memory report).
+    pub fn heap_bytes(&self) -> usize {
+        self.bodies.capacity() * std::mem::size_of::<Body>()
+            + self.count.capacity() * 4
+            + self.pending.capacity() * std::mem::size_of::<Pending>()
+            + self.last_collision.capacity() * 8
+            + self.species_of.capacity() * 2
+            + self.queue.heap_bytes()
+            + self.grid.heap_bytes()
+    }
+
+    /// Ask for an [`Event::Scheduled`] with `tag` at time `time` (≥ now). Events at the
+    /// same time are delivered in the order they were scheduled, before any collision
+    /// at that time.
+    pub fn schedule(&mut self, time: f64, tag: u64) -> Result<(), EngineError> {
+        if !(time >= self.now) || time.is_infinite() {
+            return Err(EngineError::ScheduleInPast {
+                time,
+                now: self.now,
+            });
+        }
+        self.scheduled
+            .push(Reverse((time_key(time), self.next_seq, tag)));
+        self.next_seq += 1;
+        Ok(())
+    }
+
+    /// Process events until the next observable one and return it; `None` when
+    /// nothing will ever happen again (all discs at rest and nothing scheduled).
+    pub fn next_event(&mut self) -> Result<Option<Event>, EngineError> {
+        loop {
+            let (t, who) = self.queue.peek();
+            if let Some(&Reverse((ts, _, tag))) = self.scheduled.peek() {
+                if ts <= t {
+                    self.scheduled.pop();
+                    self.now = ts.into_inner();
+                    return Ok(Some(Event::Scheduled {
+                        time: self.now,
+                        tag,
+                    }));
+                }
+            }
+            let t = t.into_inner();
+            if t == f64::INFINITY {
+                return Ok(None);
+            }
+            debug_assert!(t >= self.now, "event in the past: {t} < {}", self.now);
+            let i = who as usize;
+            let p = self.pending[i];
+            match p.kind {
+                KIND_PAIR => {
+                    let j = p.partner as usize;
+                    if self.count[j] != p.partner_count {
+                        self.now = t;
+                        self.stats.stale_events += 1;
+                        self.predict(i);
+                        continue;
+                    }
+                    self.advance_clock(t)?;
+                    return Ok(Some(Event::Pair(self.collide(i, j, p.aux))));
+                }
+                KIND_WALL => {
+                    self.advance_clock(t)?;
+                    return Ok(Some(Event::Wall(self.hit_wall(i, p.aux))));
+                }
+                KIND_CELL => {
+                    self.now = t;
+                    self.cross(i, p.aux);
+                }
+                _ => unreachable!("a disc with no event has time +∞"),
+            }
+        }
+    }
+
+    /// Run until time `t_end` (≥ now): the engine stops with every disc's state known
+    /// at exactly `t_end`. Returns the number of collisions (pair + wall) processed.
+    pub fn run_until(&mut self, t_end: f64) -> Result<u64, EngineError> {
+        const STOP_TAG: u64 = u64::MAX;
+        self.schedule(t_end, STOP_TAG)?;
+        let mut collisions = 0;
+        while let Some(ev) = self.next_event()? {
+            match ev {
+                Event::Scheduled { tag: STOP_TAG, .. } => break,
+                Event::Scheduled { .. } => {}
+                _ => collisions += 1,
+            }
+        }
+        Ok(collisions)
+    }
+
+    /// Run `n` collisions (pair + wall), skipping scheduled events. Stops early if
+    /// nothing will ever happen again; returns the number processed.
+    pub fn run_collisions(&mut self, n: u64) -> Result<u64, EngineError> {
+        let mut done = 0;
+        while done < n {
+            match self.next_event()? {
+                Some(Event::Scheduled { .. }) => {}
+                Some(_) => done += 1,
+                None => break,
+            }
+        }
+        Ok(done)
+    }
+
+    /// Move the clock to collision time `t`, counting collisions at one instant.
+    #[inline]
+    fn advance_clock(&mut self, t: f64) -> Result<(), EngineError> {
+        if t > self.now {
+            self.now = t;
+            self.same_time_collisions = 0;
+        } else {
+            self.same_time_collisions += 1;
+            if self.same_time_collisions > self.params.max_events_without_time_advance {
+                return Err(EngineError::Stalled {
+                    time: self.now,
+                    events: self.same_time_collisions,
+                    limit: self.params.max_events_without_time_advance,
+                });
+            }
+        }
+        Ok(())
+    }
+
+    /// Bring disc `i`'s stored state to the current time.
+    #[inline]
+    fn sync(&mut self, i: usize) {
+        let now = self.now;
+        let b = &mut self.bodies[i];
+        b.r += b.v * (now - b.t);
+        b.t = now;
+    }
+
+    #[inline]
+    fn mass(&self, i: usize) -> f64 {
+        self.species[self.species_of[i] as usize].mass
+    }
+
+    #[inline]
+    fn shift_of(&self, code: u8) -> DVec2 {
+        let sx = (code % 3) as f64 - 1.0;
+        let sy = (code / 3) as f64 - 1.0;
+        DVec2::new(sx * self.sim_box.size.x, sy * self.sim_box.size.y)
+    }
+
+    fn collide(&mut self, i: usize, j: usize, shift_code: u8) -> PairCollision {
+        self.sync(i);
+        self.sync(j);
+        let now = self.now;
+        let dr = self.bodies[j].r + self.shift_of(shift_code) - self.bodies[i].r;
+        let normal = dr / dr.length();
+        let (vi, vj) = (self.bodies[i].v, self.bodies[j].v);
+        let (mi, mj) = (self.mass(i), self.mass(j));
+        let tc = self.params.tc;
+        let rule = if tc > 0.0
+            && (now - self.last_collision[i] < tc || now - self.last_collision[j] < tc)
+        {
+            Restitution::Elastic
+        } else {
+            self.params.restitution
+        };
+        let res = resolve(vi, vj, mi, mj, normal, rule);
+        // r_ij = r_i − r_j = −dr.
+        let virial = -dr.dot(res.impulse_i);
+        self.bodies[i].v = res.vi;
+        self.bodies[j].v = res.vj;
+        self.count[i] = self.count[i].wrapping_add(1);
+        self.count[j] = self.count[j].wrapping_add(1);
+        self.last_collision[i] = now;
+        self.last_collision[j] = now;
+        self.stats.pair_collisions += 1;
+        self.stats.virial_sum += virial;
+        self.stats.energy_lost += res.energy_lost;
+        self.predict(i);
+        self.predict(j);
+        PairCollision {
+            time: now,
+            i: i as u32,
+            j: j as u32,
+            normal,
+            vi_before: vi,
+            vj_before: vj,
+            vi_after: res.vi,
+            vj_after: res.vj,
+            energy_lost: res.energy_lost,
+            virial,
+        }
+    }
+
+    fn hit_wall(&mut self, i: usize, aux: u8) -> WallCollision {
+        self.sync(i);
+        let k = (aux / 2) as usize;
+        let side = if aux % 2 == 1 {
+            WallSide::High
+        } else {
+            WallSide::Low
+        };
+        let e = match self.sim_box.boundary[k] {
+            Boundary::Walls { restitution } => restitution,
+            Boundary::Periodic => unreachable!("wall event on a periodic axis"),
+        };
+        let m = self.mass(i);
+        let before = self.bodies[i].v;
+        let mut after = before;
+        after[k] = wall_reflect(before[k], e);
+        self.bodies[i].v = after;
+        self.count[i] = self.count[i].wrapping_add(1);
+        let impulse = m * (before[k] - after[k]).abs();
+        let energy_lost = 0.5 * m * (1.0 - e * e) * before[k] * before[k];
+        self.stats.wall_collisions += 1;
+        self.stats.wall_impulse[k][(aux % 2) as usize] += impulse;
+        self.stats.energy_lost += energy_lost;
+        self.predict(i);
+        WallCollision {
+            time: self.now,
+            i: i as u32,
+            axis: if k == 0 { Axis::X } else { Axis::Y },
+            side,
+            v_before: before,
+            v_after: after,
+            impulse,
+            energy_lost,
+        }
+    }
+
+    fn cross(&mut self, i: usize, aux: u8) {
+        let k = (aux / 2) as usize;
+        let up = aux % 2 == 1;
+        let mut c = self.grid.cell[i];
+        let n = self.grid.n[k];
+        self.grid.remove(i as u32);
+        if up {
+            if c[k] + 1 == n {
+                // Leaving through the periodic edge at L: re-enter at 0.
+                c[k] = 0;
+                self.bodies[i].r[k] -= self.sim_box.size[k];
+                self.count[i] = self.count[i].wrapping_add(1);
+            } else {
+                c[k] += 1;
+            }
+        } else if c[k] == 0 {
+            c[k] = n - 1;
+            self.bodies[i].r[k] += self.sim_box.size[k];
+            self.count[i] = self.count[i].wrapping_add(1);
+        } else {
+            c[k] -= 1;
+        }
+        self.grid.insert(i as u32, c);
+        self.stats.cell_crossings += 1;
+        self.predict(i);
+    }
+
+    /// Find disc `i`'s earliest event from the current time and queue it.
+    fn predict(&mut self, i: usize) {
+        let now = self.now;
+        let bi = self.bodies[i];
+        let ri = bi.r + bi.v * (now - bi.t);
+        let mut best = f64::INFINITY;
+        let mut pend = Pending::NONE;
+        let c = self.grid.cell[i];
+        for k in 0..2 {
+            if let Some((dt, dir)) = self.grid.crossing_time(k, c[k], ri[k], bi.v[k]) {
+                if dt < best {
+                    best = dt;
+                    pend = Pending {
+                        partner: NONE,
+                        partner_count: 0,
+                        kind: KIND_CELL,
+                        aux: (2 * k + (dir > 0) as usize) as u8,
+                    };
+                }
+            }
+            if let Boundary::Walls { .. } = self.sim_box.boundary[k] {
+                if let Some((dt, side)) = wall_time(ri[k], bi.v[k], bi.radius, self.sim_box.size[k])
+                {
+                    if dt < best {
+                        best = dt;
+                        pend = Pending {
+                            partner: NONE,
+                            partner_count: 0,
+                            kind: KIND_WALL,
+                            aux: (2 * k + (side == WallSide::High) as usize) as u8,
+                        };
+                    }
+                }
+            }
+        }
+        let [nx, ny] = self.grid.n;
+        let [px, py] = self.grid.periodic;
+        let size = self.sim_box.size;
+        for oy in -1..=1 {
+            let Some((cy, sy)) = neighbour(c[1], oy, ny, py) else {
+                continue;
+            };
+            for ox in -1..=1 {
+                let Some((cx, sx)) = neighbour(c[0], ox, nx, px) else {
+                    continue;
+                };
+                // Seeing j's image at r_j + s L is seeing i at r_i − s L.
+                let ri_img = ri - DVec2::new(sx as f64 * size.x, sy as f64 * size.y);
+                let mut j = self.grid.head[cy as usize * nx as usize + cx as usize];
+                while j != NONE {
+                    let ju = j as usize;
+                    if ju != i {
+                        let bj = &self.bodies[ju];
+                        let dr = bj.r + bj.v * (now - bj.t) - ri_img;
+                        if let Some(dt) = contact_time(dr, bj.v - bi.v, bi.radius + bj.radius) {
+                            if dt < best {
+                                best = dt;
+                                pend = Pending {
+                                    partner: j,
+                                    partner_count: self.count[ju],
+                                    kind: KIND_PAIR,
+                                    aux: ((sx + 1) + 3 * (sy + 1)) as u8,
+                                };
+                            }
+                        }
+                    }
+                    j = self.grid.next[ju];
+                }
+            }
+        }
+        self.pending[i] = pend;
+        self.queue.set(i as u32, time_key(now + best));
+    }
+}

@@ -1,0 +1,80 @@
+//! Errors of the initial-state builder and of the engine.
+
+use thiserror::Error;
+
+/// A request for an initial state that cannot be met. Every variant names the field
+/// that is wrong, what was wrong with it and what is allowed.
+#[derive(Debug, Clone, PartialEq, Error)]
+pub enum InitError {
+    /// A field has a value outside what is allowed.
+    #[error("{field}: {problem} (allowed: {allowed})")]
+    Invalid {
+        /// Dotted path of the offending field, e.g. `species[1].radius`.
+        field: String,
+        /// What was wrong with the value.
+        problem: String,
+        /// What values are allowed.
+        allowed: String,
+    },
+    /// Two discs of an explicit configuration overlap.
+    #[error(
+        "positions: discs {i} and {j} overlap (centre distance {distance} < contact distance {sigma}) \
+         (allowed: centre distance ≥ sum of radii)"
+    )]
+    Overlap {
+        /// First disc index.
+        i: usize,
+        /// Second disc index.
+        j: usize,
+        /// Minimum-image distance of their centres (length).
+        distance: f64,
+        /// Sum of their radii (length).
+        sigma: f64,
+    },
+}
+
+impl InitError {
+    /// Shorthand for [`InitError::Invalid`].
+    pub fn invalid(
+        field: impl Into<String>,
+        problem: impl Into<String>,
+        allowed: impl Into<String>,
+    ) -> Self {
+        InitError::Invalid {
+            field: field.into(),
+            problem: problem.into(),
+            allowed: allowed.into(),
+        }
+    }
+}
+
+/// A failure of the running engine.
+#[derive(Debug, Clone, PartialEq, Error)]
+pub enum EngineError {
+    /// Too many events happened without the clock advancing: an inelastic collapse
+    /// (physics.md §4) or a degenerate configuration.
+    #[error(
+        "runaway: {events} consecutive events at time {time} without time advancing \
+         (limit max_events_without_time_advance = {limit}); this is inelastic collapse — \
+         enable the TC model (tc > 0), raise the restitution, or lower the density"
+    )]
+    Stalled {
+        /// Simulation time at which the clock stopped (time).
+        time: f64,
+        /// Events processed at that time.
+        events: u64,
+        /// The configured limit.
+        limit: u64,
+    },
+    /// A caller asked for an observation before the current time.
+    #[error("scheduled time {time} is before the current simulation time {now} (allowed: ≥ now, finite)")]
+    ScheduleInPast {
+        /// The requested time.
+        time: f64,
+        /// The engine's current time.
+        now: f64,
+    },
+    /// A checkpoint could not be restored.
+    #[error("checkpoint: {0}")]
+    BadCheckpoint(String),
+}

@@ -1,0 +1,605 @@
+//! Initial states: placement of the discs and their velocities, reproducible from a
+//! seed (a `rand_pcg` generator).
+//!
+//! * Lattice placement picks, among square and triangular arrangements of rows and
+//!   columns, the one whose closest pair of sites is farthest apart, and leaves the
+//!   spare sites empty (spread evenly). In a periodic box it reaches packing fraction
+//!   0.72 for every N ≥ 2 and aspect ratio in [1/4, 4].
+//! * Random placement inserts discs one by one at uniformly random non-overlapping
+//!   positions; meant for low density.
+//! * Velocities are Maxwell–Boltzmann at temperature kT (each component Gaussian with
+//!   variance kT/m, physics.md §6), shifted to zero total momentum and scaled so that
+//!   the kinetic temperature 2K/f equals kT exactly; or all of one speed per species.
+
+use crate::cells::{CellGrid, NONE};
+use crate::error::InitError;
+use crate::state::{degrees_of_freedom, packing_fraction, State};
+use carom_core::{Boundary, DVec2, SimBox, Species};
+use rand::{RngExt, SeedableRng};
+use rand_distr::{Distribution, StandardNormal};
+use rand_pcg::Pcg64;
+
+/// How the discs are placed.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Placement {
+    /// On the best-fitting square or triangular lattice (any density up to ~0.72).
+    Lattice,
+    /// Uniformly at random without overlap (low density only).
+    Random,
+    /// At the given centre positions, one per disc (length).
+    Explicit(Vec<DVec2>),
+}
+
+/// How initial velocities are drawn.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Velocities {
+    /// Maxwell–Boltzmann at the requested temperature, zero total momentum.
+    MaxwellBoltzmann,
+    /// Every disc of a species has the same speed, in a random direction, with the
+    /// temperature 2K/f equal to kT (a deliberately non-equilibrium start).
+    EqualSpeed,
+    /// The given velocities, one per disc (length/time).
+    Explicit(Vec<DVec2>),
+}
+
+/// Everything needed to build an initial [`State`].
+#[derive(Debug, Clone, PartialEq)]
+pub struct SystemSpec {
+    /// The species (count, radius, mass); discs are numbered species by species.
+    pub species: Vec<Species>,
+    /// The box.
+    pub sim_box: SimBox,
+    /// Temperature kT (energy) for drawn velocities.
+    pub temperature: f64,
+    /// Seed of the random generator (placement shuffles and velocities).
+    pub seed: u64,
+    /// Placement of the discs.
+    pub placement: Placement,
+    /// Initial velocities.
+    pub velocities: Velocities,
+}
+
+/// Box edge lengths (L_x, L_y) giving packing fraction `eta` with aspect ratio
+/// L_x/L_y = `aspect` for the given species (length).
+pub fn box_size_for(species: &[Species], eta: f64, aspect: f64) -> DVec2 {
+    let covered: f64 = species.iter().map(|s| s.count as f64 * s.disc_area()).sum();
+    let area = covered / eta;
+    let lx = (area * aspect).sqrt();
+    DVec2::new(lx, area / lx)
+}
+
+fn check_finite_positive(field: &str, x: f64) -> Result<(), InitError> {
+    if !x.is_finite() || x <= 0.0 {
+        return Err(InitError::invalid(
+            field,
+            format!("value {x} is not a positive finite number"),
+            "finite numbers > 0",
+        ));
+    }
+    Ok(())
+}
+
+impl SystemSpec {
+    /// Check every field, place the discs and draw velocities.
+    pub fn build(&self) -> Result<State, InitError> {
+        self.validate()?;
+        let n: usize = self.species.iter().map(|s| s.count).sum();
+        let mut species_of = Vec::with_capacity(n);
+        for (k, s) in self.species.iter().enumerate() {
+            species_of.extend(std::iter::repeat_n(k as u16, s.count));
+        }
+        let mut rng = Pcg64::seed_from_u64(self.seed);
+        let positions = match &self.placement {
+            Placement::Lattice => lattice(self, &species_of, &mut rng)?,
+            Placement::Random => random(self, &species_of, &mut rng)?,
+            Placement::Explicit(p) => {
+                check_explicit(self, &species_of, p)?;
+                p.iter().map(|&r| self.sim_box.wrap(r)).collect()
+            }
+        };
+        let velocities = match &self.velocities {
+            Velocities::MaxwellBoltzmann => maxwell_boltzmann(self, &species_of, &mut rng),
+            Velocities::EqualSpeed => equal_speed(self, &species_of, &mut rng),
+            Velocities::Explicit(v) => {
+                if v.len() != n {
+                    return Err(InitError::invalid(
+                        "velocities",
+                        format!("{} velocities given for {n} discs", v.len()),
+                        "exactly one velocity per disc",
+                    ));
+                }
+                if let Some(k) = v.iter().position(|v| !v.is_finite()) {
+                    return Err(InitError::invalid(
+                        format!("velocities[{k}]"),
+                        "velocity is not finite",
+                        "finite numbers",
+                    ));
+                }
+                v.clone()
+            }
+        };
+        Ok(State {
+            sim_box: self.sim_box,
+            species: self.species.clone(),
+            species_of,
+            positions,
+            velocities,
+            time: 0.0,
+        })
+    }
+
+    fn validate(&self) -> Result<(), InitError> {
+        if self.species.is_empty() {
+            return Err(InitError::invalid(
+                "species",
+                "no species given",
+                "at least one species",
+            ));
+        }
+        if self.species.len() > u16::MAX as usize {
+            return Err(InitError::invalid(
+                "species",
+                "too many species",
+                "at most 65535",
+            ));
+        }
+        let mut n = 0usize;
+        for (k, s) in self.species.iter().enumerate() {
+            check_finite_positive(&format!("species[{k}].radius"), s.radius)?;
+            check_finite_positive(&format!("species[{k}].mass"), s.mass)?;
+            n += s.count;
+        }
+        if n == 0 {
+            return Err(InitError::invalid(
+                "species",
+                "zero discs in total",
+                "at least one disc",
+            ));
+        }
+        if n >= u32::MAX as usize {
+            return Err(InitError::invalid(
+                "species",
+                format!("{n} discs"),
+                "fewer than 2^32 − 1 discs",
+            ));
+        }
+        for (k, name) in ["x", "y"].iter().enumerate() {
+            check_finite_positive(&format!("box.size.{name}"), self.sim_box.size[k])?;
+            if let Boundary::Walls { restitution } = self.sim_box.boundary[k] {
+                if !(0.0..=1.0).contains(&restitution) {
+                    return Err(InitError::invalid(
+                        format!("box.boundary.{name}.restitution"),
+                        format!("value {restitution}"),
+                        "0 ≤ restitution ≤ 1",
+                    ));
+                }
+            }
+            let a_max = self.species.iter().map(|s| s.radius).fold(0.0, f64::max);
+            if self.sim_box.size[k] <= 2.0 * a_max {
+                return Err(InitError::invalid(
+                    format!("box.size.{name}"),
+                    format!(
+                        "edge {} is not longer than the largest diameter {}",
+                        self.sim_box.size[k],
+                        2.0 * a_max
+                    ),
+                    "edges longer than the largest disc diameter",
+                ));
+            }
+        }
+        if !self.temperature.is_finite() || self.temperature < 0.0 {
+            return Err(InitError::invalid(
+                "temperature",
+                format!("value {}", self.temperature),
+                "finite kT ≥ 0",
+            ));
+        }
+        let eta = packing_fraction(&self.species, &self.sim_box);
+        if eta >= std::f64::consts::PI / (2.0 * 3f64.sqrt()) {
+            return Err(InitError::invalid(
+                "packing_fraction",
+                format!("{eta:.4} is above hexagonal close packing"),
+                "η < 0.9069 (and ≤ 0.72 for lattice placement at any N)",
+            ));
+        }
+        Ok(())
+    }
+}
+
+/// Sites along one axis: `count` coordinates and their spacing (∞ for one site on a
+/// walled axis, which has no neighbour along it).
+fn axis_sites(len: f64, periodic: bool, a: f64, count: usize) -> (Vec<f64>, f64) {
+    if periodic {
+        let s = len / count as f64;
+        ((0..count).map(|k| (k as f64 + 0.5) * s).collect(), s)
+    } else if count == 1 {
+        (vec![len / 2.0], f64::INFINITY)
+    } else {
+        let s = (len - 2.0 * a) / (count - 1) as f64;
+        ((0..count).map(|k| a + k as f64 * s).collect(), s)
+    }
+}
+
+/// One candidate lattice: `rows` rows of `cols` sites, rows alternately shifted by
+/// half a spacing when `shifted` (triangular), in a frame where rows run along `u`.
+#[derive(Debug, Clone, Copy)]
+struct Lattice {
+    rows: usize,
+    cols: usize,
+    shifted: bool,
+    /// When true, "rows" run along y (the frame is transposed).
+    transposed: bool,
+}
+
+impl Lattice {
+    /// (capacity, closest distance between two sites, including periodic images).
+    fn quality(&self, lu: f64, lv: f64, pu: bool, pv: bool, a: f64) -> (usize, f64) {
+        let su = if pu {
+            lu / self.cols as f64
+        } else if self.cols == 1 {
+            f64::INFINITY
+        } else {
+            (lu - 2.0 * a) / (self.cols - 1) as f64
+        };
+        let sv = if pv {
+            lv / self.rows as f64
+        } else if self.rows == 1 {
+            f64::INFINITY
+        } else {
+            (lv - 2.0 * a) / (self.rows - 1) as f64
+        };
+        if !self.shifted {
+            return (self.rows * self.cols, su.min(sv));
+        }
+        // Shifted rows on a walled u axis hold one site fewer.
+        let short = if pu { self.cols } else { self.cols - 1 };
+        let cap = self.rows.div_ceil(2) * self.cols + (self.rows / 2) * short;
+        let mut d = su.min((0.25 * su * su + sv * sv).sqrt());
+        if self.rows > 1 {
+            // Same-parity rows: two rows apart, or adjacent across a periodic edge
+            // when the row count is odd.
+            let same = if pv && self.rows % 2 == 1 {
+                sv
+            } else {
+                2.0 * sv
+            };
+            d = d.min(same);
+        }
+        (cap, d)
+    }
+
+    fn sites(&self, sim_box: &SimBox, a: f64) -> Vec<DVec2> {
+        let (ku, kv) = if self.transposed { (1, 0) } else { (0, 1) };
+        let (lu, lv) = (sim_box.size[ku], sim_box.size[kv]);
+        let (pu, pv) = (
+            sim_box.boundary[ku].is_periodic(),
+            sim_box.boundary[kv].is_periodic(),
+        );
+        let (us, su) = axis_sites(lu, pu, a, self.cols);
+        let (vs, _) = axis_sites(lv, pv, a, self.rows);
+        let mut out = Vec::new();
+        for (r, &v) in vs.iter().enumerate() {
+            let shift = self.shifted && r % 2 == 1;
+            let cols = if shift && !pu {
+                self.cols - 1
+            } else {
+                self.cols
+            };
+            for &u in us.iter().take(cols) {
+                let u = if shift { u + 0.5 * su } else { u };
+                let u = if pu { u.rem_euclid(lu) } else { u };
+                let mut p = DVec2::ZERO;
+                p[ku] = u;
+                p[kv] = v;
+                out.push(p);
+            }
+        }
+        out
+    }
+}
+
+/// The best lattice for `n` discs of largest radius `a` in `sim_box`: the candidate
+/// whose closest pair of sites is farthest apart. Returns it with that distance.
+fn best_lattice(sim_box: &SimBox, n: usize, a: f64) -> (Lattice, f64) {
+    let mut best: Option<(Lattice, f64, usize)> = None;
+    for transposed in [false, true] {
+        let (ku, kv) = if transposed { (1, 0) } else { (0, 1) };
+        let (lu, lv) = (sim_box.size[ku], sim_box.size[kv]);
+        let (pu, pv) = (
+            sim_box.boundary[ku].is_periodic(),
+            sim_box.boundary[kv].is_periodic(),
+        );
+        for shifted in [false, true] {
+            for rows in 1..=n {
+                // Fewest columns whose capacity holds n discs.
+                let mut lat = Lattice {
+                    rows,
+                    cols: n.div_ceil(rows),
+                    shifted,
+                    transposed,
+                };
+                while lat.quality(lu, lv, pu, pv, a).0 < n {
+                    lat.cols += 1;
+                }
+                let (cap, d) = lat.quality(lu, lv, pu, pv, a);
+                let better = match best {
+                    None => true,
+                    Some((_, bd, bcap)) => d > bd || (d == bd && cap < bcap),
+                };
+                if better {
+                    best = Some((lat, d, cap));
+                }
+            }
+        }
+    }
+    let (lat, d, _) = best.expect("at least one candidate lattice");
+    (lat, d)
+}
+
+/// The largest packing fraction the lattice placement reaches for these species in a
+/// box of this aspect ratio and these boundaries (by bisection on η; for messages).
+fn lattice_limit(spec: &SystemSpec) -> f64 {
+    let n: usize = spec.species.iter().map(|s| s.count).sum();
+    let a = spec.species.iter().map(|s| s.radius).fold(0.0, f64::max);
+    let aspect = spec.sim_box.size.x / spec.sim_box.size.y;
+    let (mut lo, mut hi) = (0.0, 0.9069);
+    for _ in 0..40 {
+        let mid = 0.5 * (lo + hi);
+        let mut b = spec.sim_box;
+        b.size = box_size_for(&spec.species, mid, aspect);
+        if best_lattice(&b, n, a).1 >= 2.0 * a {
+            lo = mid;
+        } else {
+            hi = mid;
+        }
+    }
+    lo
+}
+
+fn lattice(
+    spec: &SystemSpec,
+    species_of: &[u16],
+    rng: &mut Pcg64,
+) -> Result<Vec<DVec2>, InitError> {
+    let n = species_of.len();
+    let a = spec.species.iter().map(|s| s.radius).fold(0.0, f64::max);
+    let (lat, d) = best_lattice(&spec.sim_box, n, a);
+    if d < 2.0 * a {
+        return Err(InitError::invalid(
+            "packing_fraction",
+            format!(
+                "{:.4} is beyond what lattice placement reaches for N = {n} in this box \
+                 (closest sites {d:.6} apart, diameter {})",
+                packing_fraction(&spec.species, &spec.sim_box),
+                2.0 * a
+            ),
+            format!(
+                "η ≤ {:.4} for this N, box shape and boundaries",
+                lattice_limit(spec)
+            ),
+        ));
+    }
+    let sites = lat.sites(&spec.sim_box, a);
+    let m = sites.len();
+    // Spread the n discs evenly over the m ≥ n sites.
+    let mut chosen: Vec<DVec2> = (0..n).map(|k| sites[k * m / n]).collect();
+    // Shuffle which disc sits where, so species mix (Fisher–Yates, seeded).
+    for k in (1..n).rev() {
+        let j = rng.random_range(0..=k);
+        chosen.swap(k, j);
+    }
+    Ok(chosen)
+}
+
+fn random(spec: &SystemSpec, species_of: &[u16], rng: &mut Pcg64) -> Result<Vec<DVec2>, InitError> {
+    let n = species_of.len();
+    let a_max = spec.species.iter().map(|s| s.radius).fold(0.0, f64::max);
+    let mut grid = CellGrid::new(&spec.sim_box, 2.0 * a_max, n);
+    let mut pos: Vec<DVec2> = Vec::with_capacity(n);
+    const ATTEMPTS: usize = 100_000;
+    for (i, &s) in species_of.iter().enumerate() {
+        let a = spec.species[s as usize].radius;
+        let mut placed = false;
+        for _ in 0..ATTEMPTS {
+            let mut r = DVec2::ZERO;
+            for k in 0..2 {
+                let l = spec.sim_box.size[k];
+                r[k] = if spec.sim_box.boundary[k].is_periodic() {
+                    rng.random::<f64>() * l
+                } else {
+                    a + rng.random::<f64>() * (l - 2.0 * a)
+                };
+            }
+            if !overlaps_any(&grid, &spec.sim_box, &pos, species_of, &spec.species, r, a) {
+                let c = grid.coords_of(r);
+                grid.insert(i as u32, c);
+                pos.push(r);
+                placed = true;
+                break;
+            }
+        }
+        if !placed {
+            return Err(InitError::invalid(
+                "placement",
+                format!(
+                    "random placement found no free spot for disc {i} after {ATTEMPTS} tries at η = {:.4}",
+                    packing_fraction(&spec.species, &spec.sim_box)
+                ),
+                "\"random\" at low density (η ≲ 0.4); use \"lattice\" for dense systems",
+            ));
+        }
+    }
+    Ok(pos)
+}
+
+fn overlaps_any(
+    grid: &CellGrid,
+    sim_box: &SimBox,
+    pos: &[DVec2],
+    species_of: &[u16],
+    species: &[Species],
+    r: DVec2,
+    a: f64,
+) -> bool {
+    let c = grid.coords_of(r);
+    for oy in -1i64..=1 {
+        for ox in -1i64..=1 {
+            let mut cc = [0u32; 2];
+            let mut skip = false;
+            for (k, o) in [ox, oy].into_iter().enumerate() {
+                let v = c[k] as i64 + o;
+                let nk = grid.n[k] as i64;
+                if grid.periodic[k] {
+                    cc[k] = v.rem_euclid(nk) as u32;
+                } else if v < 0 || v >= nk {
+                    skip = true;
+                } else {
+                    cc[k] = v as u32;
+                }
+            }
+            if skip {
+                continue;
+            }
+            let mut j = grid.head[grid.index(cc)];
+            while j != NONE {
+                let sigma = a + species[species_of[j as usize] as usize].radius;
+                let d = sim_box.minimum_image(pos[j as usize] - r);
+                if d.length_squared() < sigma * sigma {
+                    return true;
+                }
+                j = grid.next[j as usize];
+            }
+        }
+    }
+    false
+}
+
+fn check_explicit(spec: &SystemSpec, species_of: &[u16], p: &[DVec2]) -> Result<(), InitError> {
+    let n = species_of.len();
+    if p.len() != n {
+        return Err(InitError::invalid(
+            "positions",
+            format!("{} positions given for {n} discs", p.len()),
+            "exactly one position per disc",
+        ));
+    }
+    for (i, r) in p.iter().enumerate() {
+        let a = spec.species[species_of[i] as usize].radius;
+        for (k, name) in ["x", "y"].iter().enumerate() {
+            let l = spec.sim_box.size[k];
+            let ok = r[k].is_finite()
+                && if spec.sim_box.boundary[k].is_periodic() {
+                    (0.0..l).contains(&r[k])
+                } else {
+                    r[k] >= a && r[k] <= l - a
+                };
+            if !ok {
+                return Err(InitError::invalid(
+                    format!("positions[{i}].{name}"),
+                    format!("value {} lies outside the box", r[k]),
+                    if spec.sim_box.boundary[k].is_periodic() {
+                        format!("0 ≤ {name} < {l}")
+                    } else {
+                        format!(
+                            "{a} ≤ {name} ≤ {} (centre at least one radius from the walls)",
+                            l - a
+                        )
+                    },
+                ));
+            }
+        }
+    }
+    // Overlap check through a cell grid.
+    let a_max = spec.species.iter().map(|s| s.radius).fold(0.0, f64::max);
+    let mut grid = CellGrid::new(&spec.sim_box, 2.0 * a_max, n);
+    for (i, &r) in p.iter().enumerate() {
+        let a = spec.species[species_of[i] as usize].radius;
+        if overlaps_any(
+            &grid,
+            &spec.sim_box,
+            &p[..i],
+            species_of,
+            &spec.species,
+            r,
+            a,
+        ) {
+            // Find the partner for the message.
+            for (j, &q) in p[..i].iter().enumerate() {
+                let sigma = a + spec.species[species_of[j] as usize].radius;
+                let d = spec.sim_box.minimum_image(q - r).length();
+                if d < sigma {
+                    return Err(InitError::Overlap {
+                        i: j,
+                        j: i,
+                        distance: d,
+                        sigma,
+                    });
+                }
+            }
+        }
+        grid.insert(i as u32, grid.coords_of(r));
+    }
+    Ok(())
+}
+
+fn maxwell_boltzmann(spec: &SystemSpec, species_of: &[u16], rng: &mut Pcg64) -> Vec<DVec2> {
+    let mut v: Vec<DVec2> = species_of
+        .iter()
+        .map(|&s| {
+            let sd = (spec.temperature / spec.species[s as usize].mass).sqrt();
+            let x: f64 = StandardNormal.sample(rng);
+            let y: f64 = StandardNormal.sample(rng);
+            DVec2::new(x, y) * sd
+        })
+        .collect();
+    zero_momentum(spec, species_of, &mut v);
+    scale_to_temperature(spec, species_of, &mut v);
+    v
+}
+
+fn equal_speed(spec: &SystemSpec, species_of: &[u16], rng: &mut Pcg64) -> Vec<DVec2> {
+    // Discs of a species come in ± pairs so that momentum is zero and speeds equal.
+    let n = species_of.len();
+    let f = degrees_of_freedom(n, &spec.sim_box) as f64;
+    let mut v = vec![DVec2::ZERO; n];
+    let mut k = 0;
+    while k < n {
+        let s = species_of[k] as usize;
+        let speed = (2.0 * spec.temperature * f / (2.0 * n as f64) / spec.species[s].mass).sqrt();
+        let phi = rng.random::<f64>() * std::f64::consts::TAU;
+        let u = DVec2::from_angle(phi) * speed;
+        v[k] = u;
+        if k + 1 < n && species_of[k + 1] as usize == s {
+            v[k + 1] = -u;
+            k += 2;
+        } else {
+            k += 1;
+        }
+    }
+    v
+}
+
+fn zero_momentum(spec: &SystemSpec, species_of: &[u16], v: &mut [DVec2]) {
+    let mut p = DVec2::ZERO;
+    let mut m = 0.0;
+    for (vi, &s) in v.iter().zip(species_of) {
+        let ms = spec.species[s as usize].mass;
+        p += *vi * ms;
+        m += ms;
+    }
+    let vcm = p / m;
+    for vi in v.iter_mut() {
+        *vi -= vcm;
+    }
+}
+
+fn scale_to_temperature(spec: &SystemSpec, species_of: &[u16], v: &mut [DVec2]) {
+    let k = crate::state::kinetic_energy(&spec.species, species_of, v);
+    let f = degrees_of_freedom(v.len(), &spec.sim_box) as f64;
+    if k > 0.0 && f > 0.0 {
+        let scale = (spec.temperature * f / (2.0 * k)).sqrt();
+        for vi in v.iter_mut() {
+            *vi *= scale;
+        }
+    }
+}
