@@ -1,2 +1,12 @@
-//! carom: exact event-driven molecular dynamics of hard discs.
+//! # carom
+//!
+//! Exact event-driven molecular dynamics of hard discs. This crate is the `carom`
+//! command and re-exports the workspace's public API:
+//!
+//! * [`core`] (`carom-core`) — discs, boxes, exact kinematics and collision rules;
+//! * [`events`] (`carom-events`) — the event queue, neighbour search and the event loop;
+//! * [`io`] (`carom-io`) — configuration, MCAP logging and reading.
+
 pub use carom_core as core;
+pub use carom_events as events;
+pub use carom_io as io;

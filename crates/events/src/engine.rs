@@ -106,21 +106,21 @@ impl Pending {
 /// The exact event-driven engine for hard discs.
 #[derive(Debug, Clone)]
 pub struct Engine {
-    sim_box: SimBox,
-    species: Vec<Species>,
-    species_of: Vec<u16>,
-    bodies: Vec<Body>,
-    count: Vec<u32>,
-    pending: Vec<Pending>,
-    last_collision: Vec<f64>,
-    queue: EventQueue,
-    grid: CellGrid,
-    scheduled: BinaryHeap<Reverse<(Time, u64, u64)>>,
-    next_seq: u64,
-    params: EngineParams,
-    now: f64,
-    same_time_collisions: u64,
-    stats: Stats,
+    pub(crate) sim_box: SimBox,
+    pub(crate) species: Vec<Species>,
+    pub(crate) species_of: Vec<u16>,
+    pub(crate) bodies: Vec<Body>,
+    pub(crate) count: Vec<u32>,
+    pub(crate) pending: Vec<Pending>,
+    pub(crate) last_collision: Vec<f64>,
+    pub(crate) queue: EventQueue,
+    pub(crate) grid: CellGrid,
+    pub(crate) scheduled: BinaryHeap<Reverse<(Time, u64, u64)>>,
+    pub(crate) next_seq: u64,
+    pub(crate) params: EngineParams,
+    pub(crate) now: f64,
+    pub(crate) same_time_collisions: u64,
+    pub(crate) stats: Stats,
 }
 
 #[inline]

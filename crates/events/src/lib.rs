@@ -8,6 +8,7 @@
 //! * [`cells`] — the cell grid used for neighbour search (crossings are events);
 //! * [`engine`] — the event loop ([`Engine`]);
 //! * [`init`] — initial states from a seed ([`SystemSpec`]);
+//! * [`checkpoint`] — the engine's complete state, for bit-identical resume;
 //! * [`invariants`] — the invariant checker used by the tests;
 //! * [`state`], [`event`], [`error`] — the plain data going in and coming out.
 //!
@@ -15,6 +16,7 @@
 //! nothing about files.
 
 pub mod cells;
+pub mod checkpoint;
 pub mod engine;
 pub mod error;
 pub mod event;
@@ -23,6 +25,7 @@ pub mod invariants;
 pub mod queue;
 pub mod state;
 
+pub use checkpoint::Checkpoint;
 pub use engine::{Engine, EngineParams, Stats};
 pub use error::{EngineError, InitError};
 pub use event::{Event, PairCollision, WallCollision};

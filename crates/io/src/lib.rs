@@ -1,1 +1,3 @@
-
+//! # carom-io
+//!
+//! Configuration, MCAP logging and reading, and analysis input for carom.

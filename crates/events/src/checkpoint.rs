@@ -1,0 +1,289 @@
+//! The complete internal state of an [`Engine`], from which a run resumes
+//! bit-identically: per-disc delayed states, collision counters, pending events and
+//! their times, the cell lists in their exact order, running totals and the
+//! caller's scheduled events. Plain data: the io crate decides how to store it.
+
+use crate::cells::CellGrid;
+use crate::engine::{Body, Engine, EngineParams, Pending, Stats};
+use crate::error::EngineError;
+use crate::queue::EventQueue;
+use carom_core::{DVec2, SimBox, Species};
+use ordered_float::NotNan;
+use std::cmp::Reverse;
+
+/// Everything an [`Engine`] holds, as plain arrays (one entry per disc unless noted).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Checkpoint {
+    /// The box.
+    pub sim_box: SimBox,
+    /// The species.
+    pub species: Vec<Species>,
+    /// Species index of each disc.
+    pub species_of: Vec<u16>,
+    /// Dynamics parameters.
+    pub params: EngineParams,
+    /// Current simulation time (time).
+    pub now: f64,
+    /// Collisions processed at the current instant (for the runaway guard).
+    pub same_time_collisions: u64,
+    /// Running totals.
+    pub stats: Stats,
+    /// Position of each disc at its own last-update time `times[i]` (length).
+    pub positions: Vec<DVec2>,
+    /// Velocities (length/time).
+    pub velocities: Vec<DVec2>,
+    /// Last-update time of each disc (time).
+    pub times: Vec<f64>,
+    /// Collision counters.
+    pub counts: Vec<u32>,
+    /// Time of each disc's last pair collision (−∞ if none; time).
+    pub last_collision: Vec<f64>,
+    /// Time of each disc's pending event (+∞ if none; time).
+    pub event_times: Vec<f64>,
+    /// Pending event of each disc: [partner, partner counter, kind | aux << 8].
+    pub pending: Vec<[u32; 3]>,
+    /// First disc of each cell (u32::MAX for none), one entry per cell.
+    pub cell_head: Vec<u32>,
+    /// Next disc in the same cell.
+    pub cell_next: Vec<u32>,
+    /// Previous disc in the same cell.
+    pub cell_prev: Vec<u32>,
+    /// Cell (column, row) of each disc.
+    pub cell: Vec<[u32; 2]>,
+    /// Caller-scheduled events still pending: (time, sequence number, tag).
+    pub scheduled: Vec<(f64, u64, u64)>,
+    /// Sequence number the next scheduled event will get.
+    pub next_seq: u64,
+}
+
+impl Engine {
+    /// Copy out the complete state (see [`Checkpoint`]).
+    pub fn checkpoint(&self) -> Checkpoint {
+        let mut scheduled: Vec<(f64, u64, u64)> = self
+            .scheduled
+            .iter()
+            .map(|r| (r.0 .0.into_inner(), r.0 .1, r.0 .2))
+            .collect();
+        scheduled.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
+        let n = self.bodies.len();
+        Checkpoint {
+            sim_box: self.sim_box,
+            species: self.species.clone(),
+            species_of: self.species_of.clone(),
+            params: self.params,
+            now: self.now,
+            same_time_collisions: self.same_time_collisions,
+            stats: self.stats,
+            positions: self.bodies.iter().map(|b| b.r).collect(),
+            velocities: self.bodies.iter().map(|b| b.v).collect(),
+            times: self.bodies.iter().map(|b| b.t).collect(),
+            counts: self.count.clone(),
+            last_collision: self.last_collision.clone(),
+            event_times: (0..n)
+                .map(|i| self.queue.get(i as u32).into_inner())
+                .collect(),
+            pending: self
+                .pending
+                .iter()
+                .map(|p| {
+                    [
+                        p.partner,
+                        p.partner_count,
+                        p.kind as u32 | (p.aux as u32) << 8,
+                    ]
+                })
+                .collect(),
+            cell_head: self.grid.head.clone(),
+            cell_next: self.grid.next.clone(),
+            cell_prev: self.grid.prev.clone(),
+            cell: self.grid.cell.clone(),
+            scheduled,
+            next_seq: self.next_seq,
+        }
+    }
+
+    /// Rebuild an engine from a [`Checkpoint`]; it continues exactly as the engine the
+    /// checkpoint was taken from would have. Inconsistent checkpoints are rejected.
+    pub fn from_checkpoint(cp: Checkpoint) -> Result<Engine, EngineError> {
+        let bad = |m: String| EngineError::BadCheckpoint(m);
+        let n = cp.species_of.len();
+        for (name, len) in [
+            ("positions", cp.positions.len()),
+            ("velocities", cp.velocities.len()),
+            ("times", cp.times.len()),
+            ("counts", cp.counts.len()),
+            ("last_collision", cp.last_collision.len()),
+            ("event_times", cp.event_times.len()),
+            ("pending", cp.pending.len()),
+            ("cell_next", cp.cell_next.len()),
+            ("cell_prev", cp.cell_prev.len()),
+            ("cell", cp.cell.len()),
+        ] {
+            if len != n {
+                return Err(bad(format!("{name} has {len} entries for {n} discs")));
+            }
+        }
+        if let Some(&s) = cp
+            .species_of
+            .iter()
+            .find(|&&s| s as usize >= cp.species.len())
+        {
+            return Err(bad(format!("species index {s} out of range")));
+        }
+        let a_max = cp.species.iter().map(|s| s.radius).fold(0.0, f64::max);
+        let mut grid = CellGrid::new(&cp.sim_box, 2.0 * a_max, n);
+        if cp.cell_head.len() != grid.head.len() {
+            return Err(bad(format!(
+                "{} cells stored, the box needs {}",
+                cp.cell_head.len(),
+                grid.head.len()
+            )));
+        }
+        let in_range = |v: u32| v == u32::MAX || (v as usize) < n;
+        if !cp
+            .cell_head
+            .iter()
+            .chain(&cp.cell_next)
+            .chain(&cp.cell_prev)
+            .all(|&v| in_range(v))
+            || cp
+                .cell
+                .iter()
+                .any(|c| c[0] >= grid.n[0] || c[1] >= grid.n[1])
+        {
+            return Err(bad(
+                "cell lists refer to discs or cells that do not exist".into()
+            ));
+        }
+        grid.head = cp.cell_head;
+        grid.next = cp.cell_next;
+        grid.prev = cp.cell_prev;
+        grid.cell = cp.cell;
+        let mut queue = EventQueue::new(n);
+        let mut pending = Vec::with_capacity(n);
+        for (i, (&t, p)) in cp.event_times.iter().zip(&cp.pending).enumerate() {
+            let t = NotNan::new(t).map_err(|_| bad(format!("event time of disc {i} is NaN")))?;
+            queue.set(i as u32, t);
+            if p[0] != u32::MAX && p[0] as usize >= n {
+                return Err(bad(format!("pending partner of disc {i} out of range")));
+            }
+            pending.push(Pending {
+                partner: p[0],
+                partner_count: p[1],
+                kind: (p[2] & 0xff) as u8,
+                aux: (p[2] >> 8) as u8,
+            });
+        }
+        let bodies = (0..n)
+            .map(|i| Body {
+                r: cp.positions[i],
+                v: cp.velocities[i],
+                t: cp.times[i],
+                radius: cp.species[cp.species_of[i] as usize].radius,
+            })
+            .collect();
+        let scheduled = cp
+            .scheduled
+            .iter()
+            .map(|&(t, seq, tag)| {
+                let t = NotNan::new(t).map_err(|_| bad("a scheduled time is NaN".into()))?;
+                Ok(Reverse((t, seq, tag)))
+            })
+            .collect::<Result<_, EngineError>>()?;
+        Ok(Engine {
+            sim_box: cp.sim_box,
+            species: cp.species,
+            species_of: cp.species_of,
+            bodies,
+            count: cp.counts,
+            pending,
+            last_collision: cp.last_collision,
+            queue,
+            grid,
+            scheduled,
+            next_seq: cp.next_seq,
+            params: cp.params,
+            now: cp.now,
+            same_time_collisions: cp.same_time_collisions,
+            stats: cp.stats,
+        })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use crate::*;
+    use carom_core::{Boundary, DVec2, SimBox, Species};
+
+    fn channel_mixture() -> Engine {
+        let species = vec![
+            Species {
+                count: 150,
+                radius: 0.5,
+                mass: 1.0,
+            },
+            Species {
+                count: 50,
+                radius: 0.7,
+                mass: 4.0,
+            },
+        ];
+        let size = box_size_for(&species, 0.45, 1.5);
+        let sim_box = SimBox {
+            size,
+            boundary: [Boundary::Periodic, Boundary::Walls { restitution: 1.0 }],
+        };
+        let spec = SystemSpec {
+            species,
+            sim_box,
+            temperature: 1.0,
+            seed: 7,
+            placement: Placement::Lattice,
+            velocities: Velocities::MaxwellBoltzmann,
+        };
+        Engine::new(spec.build().unwrap(), EngineParams::default()).unwrap()
+    }
+
+    fn trajectory(e: &mut Engine, n: usize) -> Vec<Event> {
+        (0..n).map(|_| e.next_event().unwrap().unwrap()).collect()
+    }
+
+    #[test]
+    fn resumed_engine_continues_bit_identically() {
+        let mut a = channel_mixture();
+        a.run_collisions(5_000).unwrap();
+        a.schedule(a.now() + 3.0, 1).unwrap();
+        let mut b = Engine::from_checkpoint(a.checkpoint()).unwrap();
+        let ta = trajectory(&mut a, 20_000);
+        let tb = trajectory(&mut b, 20_000);
+        assert!(ta
+            .iter()
+            .any(|e| matches!(e, Event::Scheduled { tag: 1, .. })));
+        assert_eq!(ta, tb);
+        let (sa, sb) = (a.state(), b.state());
+        let bits = |v: &[DVec2]| {
+            v.iter()
+                .flat_map(|p| [p.x.to_bits(), p.y.to_bits()])
+                .collect::<Vec<_>>()
+        };
+        assert_eq!(bits(&sa.positions), bits(&sb.positions));
+        assert_eq!(bits(&sa.velocities), bits(&sb.velocities));
+    }
+
+    #[test]
+    fn inconsistent_checkpoint_is_rejected() {
+        let a = channel_mixture();
+        let mut cp = a.checkpoint();
+        cp.times.pop();
+        assert!(matches!(
+            Engine::from_checkpoint(cp),
+            Err(EngineError::BadCheckpoint(_))
+        ));
+        let mut cp = a.checkpoint();
+        cp.cell_next[3] = 1_000_000;
+        assert!(matches!(
+            Engine::from_checkpoint(cp),
+            Err(EngineError::BadCheckpoint(_))
+        ));
+    }
+}
