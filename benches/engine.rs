@@ -1,0 +1,62 @@
+//! Collisions per second of the bare engine (no logging), issue 2.
+//!
+//! Periodic monodisperse discs (σ = 1, m = 1, kT = 1) on a lattice start with
+//! Maxwell–Boltzmann velocities, equilibrated for 10 collisions per disc before
+//! measuring. Throughput is in collisions (pair + wall) per second.
+//!
+//! Run all: `cargo bench --bench engine`; one case:
+//! `cargo bench --bench engine -- 'eta=0.50/N=10000'`.
+//! The setup also prints the engine's heap bytes per disc for each case.
+
+use carom::core::{SimBox, Species};
+use carom::events::{box_size_for, Engine, EngineParams, Placement, SystemSpec, Velocities};
+use criterion::{criterion_group, criterion_main, Criterion, Throughput};
+use std::time::{Duration, Instant};
+
+fn engine(n: usize, eta: f64) -> Engine {
+    let species = vec![Species { count: n, radius: 0.5, mass: 1.0 }];
+    let size = box_size_for(&species, eta, 1.0);
+    let spec = SystemSpec {
+        species,
+        sim_box: SimBox::periodic(size.x, size.y),
+        temperature: 1.0,
+        seed: 42,
+        placement: Placement::Lattice,
+        velocities: Velocities::MaxwellBoltzmann,
+    };
+    let mut e = Engine::new(spec.build().expect("valid system"), EngineParams::default())
+        .expect("engine starts");
+    e.run_collisions(10 * n as u64).expect("equilibration runs");
+    e
+}
+
+fn bench(c: &mut Criterion) {
+    for eta in [0.5, 0.7] {
+        let mut group = c.benchmark_group(format!("eta={eta:.2}"));
+        for n in [1_000usize, 10_000, 100_000, 1_000_000] {
+            let batch = 100_000u64;
+            group.throughput(Throughput::Elements(batch));
+            group.sample_size(if n >= 100_000 { 10 } else { 20 });
+            group.measurement_time(Duration::from_secs(if n >= 100_000 { 20 } else { 8 }));
+            group.bench_function(format!("N={n}"), |b| {
+                let mut e = engine(n, eta);
+                eprintln!(
+                    "\n[eta={eta:.2} N={n}] cells {:?}, heap bytes per disc: {:.1}",
+                    e.cells(),
+                    e.heap_bytes() as f64 / n as f64
+                );
+                b.iter_custom(|iters| {
+                    let start = Instant::now();
+                    for _ in 0..iters {
+                        e.run_collisions(batch).expect("no runaway in elastic runs");
+                    }
+                    start.elapsed()
+                });
+            });
+        }
+        group.finish();
+    }
+}
+
+criterion_group!(benches, bench);
+criterion_main!(benches);
