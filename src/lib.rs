@@ -7,6 +7,8 @@
 //! * [`events`] (`carom-events`) — the event queue, neighbour search and the event loop;
 //! * [`io`] (`carom-io`) — configuration, MCAP logging and reading.
 
+pub mod analysis;
+
 pub use carom_core as core;
 pub use carom_events as events;
 pub use carom_io as io;
