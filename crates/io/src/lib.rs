@@ -4,7 +4,13 @@
 //! The io crate sees the engine only through plain data (states, events,
 //! checkpoints); it knows nothing about queues or cells.
 
+pub mod cdr;
+pub mod checkpoint_codec;
 pub mod config;
+pub mod log_reader;
+pub mod log_writer;
 pub mod options;
+pub mod run_metadata;
+pub mod schema;
 
 pub use options::{Compression, LogOptions, RunSpec, Stop};

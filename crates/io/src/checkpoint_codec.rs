@@ -1,0 +1,414 @@
+//! The `/checkpoint` message: the engine's complete [`Checkpoint`] plus the run
+//! driver's own state ([`DriverState`]), encoded as CDR with the `ros2msg` schema
+//! [`CHECKPOINT_MSG`]. Every `f64` is stored bit for bit (±∞ included), so an
+//! engine restored from a decoded checkpoint continues bit-identically.
+//!
+//! The engine draws random numbers only while building the initial state; after
+//! that the dynamics are deterministic, so there is no RNG state to store.
+
+use crate::cdr::{CdrError, CdrReader, CdrWriter};
+use carom_core::{Boundary, DVec2, Restitution, SimBox, Species};
+use carom_events::{Checkpoint, EngineParams, Stats};
+
+/// `ros2msg` text of [`crate::schema::SCHEMA_CHECKPOINT`].
+pub const CHECKPOINT_MSG: &str = "\
+# The complete state of a carom run, from which it resumes bit-identically.
+# Per-disc arrays have one entry per disc; units are the run's.
+uint32 format_version             # 1
+# --- run driver ---
+float64 run_start_time            # simulated time at which the run started (time)
+uint64 logged_collisions          # collisions written to /collisions so far
+uint32[4] next_sequence           # next MCAP sequence number of /collisions, /snapshot, /thermo, /checkpoint
+# --- box and species ---
+float64 box_x                     # box edge lengths (length)
+float64 box_y
+uint8 boundary_x                  # 0 = periodic, 1 = hard walls
+uint8 boundary_y
+float64 wall_restitution_x        # wall restitution (1 when periodic)
+float64 wall_restitution_y
+uint64[] species_count
+float64[] species_radius          # (length)
+float64[] species_mass            # (mass)
+uint16[] species                  # per disc: species index
+# --- dynamics ---
+uint8 restitution_kind            # 0 = elastic, 1 = centre-of-mass R, 2 = normal e
+float64 restitution               # R or e (1 when elastic)
+float64 tc                        # TC-model duration (time)
+uint64 max_events_without_time_advance
+# --- clock and running totals ---
+float64 now                       # current time (time)
+uint64 same_time_collisions
+uint64 pair_collisions
+uint64 wall_collisions
+uint64 cell_crossings
+uint64 stale_events
+float64 virial_sum                # sum r_ij . dp_i (length*momentum)
+float64[4] wall_impulse           # momentum given to walls x-low, x-high, y-low, y-high
+float64 energy_lost               # (energy)
+# --- per-disc delayed states ---
+float64[] x                       # position at the disc's own update time t (length)
+float64[] y
+float64[] vx                      # velocity (length/time)
+float64[] vy
+float64[] t                       # last update time (time)
+uint32[] collision_count
+float64[] last_collision          # time of last pair collision (-inf if none)
+float64[] event_time              # time of the pending event (+inf if none)
+uint32[] pending_partner
+uint32[] pending_partner_count
+uint32[] pending_kind             # kind | aux << 8
+# --- neighbour grid ---
+uint32[] cell_head                # first disc per cell (4294967295 = none)
+uint32[] cell_next
+uint32[] cell_prev
+uint32[] cell_column
+uint32[] cell_row
+# --- events scheduled by the caller ---
+float64[] scheduled_time
+uint64[] scheduled_seq
+uint64[] scheduled_tag
+uint64 next_seq
+# --- internal disc order ---
+uint32[] labels                   # per internal slot: the disc's external index (the per-disc arrays above are in internal order)
+uint64 next_reorder               # pair-collision count at which the engine next renumbers its discs
+";
+
+/// Format version written in `format_version`.
+pub const CHECKPOINT_FORMAT_VERSION: u32 = 1;
+
+/// The run driver's state at a checkpoint (what it needs, beyond the engine, to
+/// continue the log exactly as the uninterrupted run would have).
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct DriverState {
+    /// Simulated time at which the run started (time).
+    pub run_start_time: f64,
+    /// Collisions written to `/collisions` so far.
+    pub logged_collisions: u64,
+    /// Next MCAP sequence number of `/collisions`, `/snapshot`, `/thermo`, `/checkpoint`.
+    pub next_sequence: [u32; 4],
+}
+
+/// A decoded `/checkpoint` message.
+#[derive(Debug, Clone, PartialEq)]
+pub struct LogCheckpoint {
+    /// The run driver's state.
+    pub driver: DriverState,
+    /// The engine's complete state.
+    pub engine: Checkpoint,
+}
+
+fn wall_e(b: &Boundary) -> f64 {
+    match *b {
+        Boundary::Periodic => 1.0,
+        Boundary::Walls { restitution } => restitution,
+    }
+}
+
+impl LogCheckpoint {
+    /// Encode as CDR into `w` (which is reset first).
+    pub fn encode(&self, w: &mut CdrWriter) {
+        let c = &self.engine;
+        let d = &self.driver;
+        let n = c.species_of.len();
+        w.reset();
+        w.reserve(512 + n * 124 + c.cell_head.len() * 4 + c.scheduled.len() * 24);
+        w.put(CHECKPOINT_FORMAT_VERSION);
+        w.put(d.run_start_time);
+        w.put(d.logged_collisions);
+        w.array(&d.next_sequence);
+        w.put(c.sim_box.size.x);
+        w.put(c.sim_box.size.y);
+        w.put(crate::schema::boundary_code(&c.sim_box.boundary[0]));
+        w.put(crate::schema::boundary_code(&c.sim_box.boundary[1]));
+        w.put(wall_e(&c.sim_box.boundary[0]));
+        w.put(wall_e(&c.sim_box.boundary[1]));
+        w.seq_iter(c.species.iter().map(|s| s.count as u64));
+        w.seq_iter(c.species.iter().map(|s| s.radius));
+        w.seq_iter(c.species.iter().map(|s| s.mass));
+        w.seq(&c.species_of);
+        let (kind, coef) = match c.params.restitution {
+            Restitution::Elastic => (0u8, 1.0),
+            Restitution::CentreOfMass(r) => (1, r),
+            Restitution::Normal(e) => (2, e),
+        };
+        w.put(kind);
+        w.put(coef);
+        w.put(c.params.tc);
+        w.put(c.params.max_events_without_time_advance);
+        w.put(c.now);
+        w.put(c.same_time_collisions);
+        let s = &c.stats;
+        w.put(s.pair_collisions);
+        w.put(s.wall_collisions);
+        w.put(s.cell_crossings);
+        w.put(s.stale_events);
+        w.put(s.virial_sum);
+        w.array(&[
+            s.wall_impulse[0][0],
+            s.wall_impulse[0][1],
+            s.wall_impulse[1][0],
+            s.wall_impulse[1][1],
+        ]);
+        w.put(s.energy_lost);
+        w.seq_iter(c.positions.iter().map(|p| p.x));
+        w.seq_iter(c.positions.iter().map(|p| p.y));
+        w.seq_iter(c.velocities.iter().map(|p| p.x));
+        w.seq_iter(c.velocities.iter().map(|p| p.y));
+        w.seq(&c.times);
+        w.seq(&c.counts);
+        w.seq(&c.last_collision);
+        w.seq(&c.event_times);
+        w.seq_iter(c.pending.iter().map(|p| p[0]));
+        w.seq_iter(c.pending.iter().map(|p| p[1]));
+        w.seq_iter(c.pending.iter().map(|p| p[2]));
+        w.seq(&c.cell_head);
+        w.seq(&c.cell_next);
+        w.seq(&c.cell_prev);
+        w.seq_iter(c.cell.iter().map(|p| p[0]));
+        w.seq_iter(c.cell.iter().map(|p| p[1]));
+        w.seq_iter(c.scheduled.iter().map(|s| s.0));
+        w.seq_iter(c.scheduled.iter().map(|s| s.1));
+        w.seq_iter(c.scheduled.iter().map(|s| s.2));
+        w.put(c.next_seq);
+        w.seq(&c.labels);
+        w.put(c.next_reorder);
+    }
+
+    /// Decode from CDR. Checks the layout and the lengths of paired arrays; the
+    /// engine's own [`carom_events::Engine::from_checkpoint`] checks the rest.
+    pub fn decode(data: &[u8]) -> Result<Self, CdrError> {
+        let mut r = CdrReader::new(data)?;
+        let version: u32 = r.get("format_version")?;
+        if version != CHECKPOINT_FORMAT_VERSION {
+            return Err(CdrError::Invalid {
+                field: "format_version",
+                problem: format!(
+                    "checkpoint format {version} is not supported (this carom reads {CHECKPOINT_FORMAT_VERSION})"
+                ),
+            });
+        }
+        let driver = DriverState {
+            run_start_time: r.get("run_start_time")?,
+            logged_collisions: r.get("logged_collisions")?,
+            next_sequence: r.fixed("next_sequence")?,
+        };
+        let size = DVec2::new(r.get("box_x")?, r.get("box_y")?);
+        let bcode: [u8; 2] = [r.get("boundary_x")?, r.get("boundary_y")?];
+        let we: [f64; 2] = [r.get("wall_restitution_x")?, r.get("wall_restitution_y")?];
+        let mut boundary = [Boundary::Periodic; 2];
+        for k in 0..2 {
+            boundary[k] = match bcode[k] {
+                0 => Boundary::Periodic,
+                1 => Boundary::Walls { restitution: we[k] },
+                b => {
+                    return Err(CdrError::Invalid {
+                        field: "boundary",
+                        problem: format!("unknown boundary code {b} (allowed: 0, 1)"),
+                    })
+                }
+            };
+        }
+        let counts: Vec<u64> = r.seq("species_count")?;
+        let radii: Vec<f64> = r.seq("species_radius")?;
+        let masses: Vec<f64> = r.seq("species_mass")?;
+        if radii.len() != counts.len() || masses.len() != counts.len() {
+            return Err(CdrError::Invalid {
+                field: "species_radius",
+                problem: "species arrays differ in length".into(),
+            });
+        }
+        let species = counts
+            .iter()
+            .zip(&radii)
+            .zip(&masses)
+            .map(|((&count, &radius), &mass)| Species {
+                count: count as usize,
+                radius,
+                mass,
+            })
+            .collect();
+        let species_of: Vec<u16> = r.seq("species")?;
+        let kind: u8 = r.get("restitution_kind")?;
+        let coef: f64 = r.get("restitution")?;
+        let restitution = match kind {
+            0 => Restitution::Elastic,
+            1 => Restitution::CentreOfMass(coef),
+            2 => Restitution::Normal(coef),
+            k => {
+                return Err(CdrError::Invalid {
+                    field: "restitution_kind",
+                    problem: format!("unknown restitution kind {k} (allowed: 0, 1, 2)"),
+                })
+            }
+        };
+        let params = EngineParams {
+            restitution,
+            tc: r.get("tc")?,
+            max_events_without_time_advance: r.get("max_events_without_time_advance")?,
+        };
+        let now = r.get("now")?;
+        let same_time_collisions = r.get("same_time_collisions")?;
+        let pair_collisions = r.get("pair_collisions")?;
+        let wall_collisions = r.get("wall_collisions")?;
+        let cell_crossings = r.get("cell_crossings")?;
+        let stale_events = r.get("stale_events")?;
+        let virial_sum = r.get("virial_sum")?;
+        let wi: [f64; 4] = r.fixed("wall_impulse")?;
+        let energy_lost = r.get("energy_lost")?;
+        let stats = Stats {
+            pair_collisions,
+            wall_collisions,
+            cell_crossings,
+            stale_events,
+            virial_sum,
+            wall_impulse: [[wi[0], wi[1]], [wi[2], wi[3]]],
+            energy_lost,
+        };
+        let pair = |a: Vec<f64>, b: Vec<f64>, field: &'static str| {
+            if a.len() != b.len() {
+                return Err(CdrError::Invalid {
+                    field,
+                    problem: format!("{} entries for {} discs", b.len(), a.len()),
+                });
+            }
+            Ok(a.iter()
+                .zip(&b)
+                .map(|(&x, &y)| DVec2::new(x, y))
+                .collect::<Vec<_>>())
+        };
+        let x = r.seq("x")?;
+        let y = r.seq("y")?;
+        let positions = pair(x, y, "y")?;
+        let vx = r.seq("vx")?;
+        let vy = r.seq("vy")?;
+        let velocities = pair(vx, vy, "vy")?;
+        let times = r.seq("t")?;
+        let counts = r.seq("collision_count")?;
+        let last_collision = r.seq("last_collision")?;
+        let event_times = r.seq("event_time")?;
+        let p0: Vec<u32> = r.seq("pending_partner")?;
+        let p1: Vec<u32> = r.seq("pending_partner_count")?;
+        let p2: Vec<u32> = r.seq("pending_kind")?;
+        if p1.len() != p0.len() || p2.len() != p0.len() {
+            return Err(CdrError::Invalid {
+                field: "pending_kind",
+                problem: "pending-event arrays differ in length".into(),
+            });
+        }
+        let pending = (0..p0.len()).map(|k| [p0[k], p1[k], p2[k]]).collect();
+        let cell_head = r.seq("cell_head")?;
+        let cell_next = r.seq("cell_next")?;
+        let cell_prev = r.seq("cell_prev")?;
+        let col: Vec<u32> = r.seq("cell_column")?;
+        let row: Vec<u32> = r.seq("cell_row")?;
+        if col.len() != row.len() {
+            return Err(CdrError::Invalid {
+                field: "cell_row",
+                problem: format!("{} entries for {} columns", row.len(), col.len()),
+            });
+        }
+        let cell = col.iter().zip(&row).map(|(&a, &b)| [a, b]).collect();
+        let st: Vec<f64> = r.seq("scheduled_time")?;
+        let ss: Vec<u64> = r.seq("scheduled_seq")?;
+        let sg: Vec<u64> = r.seq("scheduled_tag")?;
+        if ss.len() != st.len() || sg.len() != st.len() {
+            return Err(CdrError::Invalid {
+                field: "scheduled_tag",
+                problem: "scheduled-event arrays differ in length".into(),
+            });
+        }
+        let scheduled = (0..st.len()).map(|k| (st[k], ss[k], sg[k])).collect();
+        let next_seq = r.get("next_seq")?;
+        let labels = r.seq("labels")?;
+        let next_reorder = r.get("next_reorder")?;
+        Ok(LogCheckpoint {
+            driver,
+            engine: Checkpoint {
+                sim_box: SimBox { size, boundary },
+                species,
+                species_of,
+                params,
+                now,
+                same_time_collisions,
+                stats,
+                positions,
+                velocities,
+                times,
+                counts,
+                last_collision,
+                event_times,
+                pending,
+                cell_head,
+                cell_next,
+                cell_prev,
+                cell,
+                scheduled,
+                next_seq,
+                labels,
+                next_reorder,
+            },
+        })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use carom_events::{box_size_for, Engine, Placement, SystemSpec, Velocities};
+
+    #[test]
+    fn checkpoint_round_trips_bit_for_bit() {
+        let species = vec![
+            Species {
+                count: 40,
+                radius: 0.5,
+                mass: 1.0,
+            },
+            Species {
+                count: 10,
+                radius: 0.8,
+                mass: 3.0,
+            },
+        ];
+        let size = box_size_for(&species, 0.4, 1.0);
+        let spec = SystemSpec {
+            species,
+            sim_box: SimBox {
+                size,
+                boundary: [Boundary::Periodic, Boundary::Walls { restitution: 0.9 }],
+            },
+            temperature: 1.0,
+            seed: 3,
+            placement: Placement::Lattice,
+            velocities: Velocities::MaxwellBoltzmann,
+        };
+        let params = EngineParams {
+            restitution: Restitution::Normal(0.95),
+            tc: 1e-4,
+            max_events_without_time_advance: 1000,
+        };
+        let mut e = Engine::new(spec.build().unwrap(), params).unwrap();
+        e.run_collisions(500).unwrap();
+        e.schedule(e.now() + 1.0, 42).unwrap();
+        let lc = LogCheckpoint {
+            driver: DriverState {
+                run_start_time: 0.0,
+                logged_collisions: 250,
+                next_sequence: [1, 2, 3, 4],
+            },
+            engine: e.checkpoint(),
+        };
+        let mut w = CdrWriter::new();
+        lc.encode(&mut w);
+        let back = LogCheckpoint::decode(w.bytes()).unwrap();
+        // PartialEq on f64 would accept -0.0 == 0.0; compare the encodings too.
+        assert_eq!(back, lc);
+        let mut w2 = CdrWriter::new();
+        back.encode(&mut w2);
+        assert_eq!(w.bytes(), w2.bytes());
+        // Truncations are clean errors.
+        for cut in [0, 3, 4, 10, 100, w.bytes().len() - 1] {
+            assert!(LogCheckpoint::decode(&w.bytes()[..cut]).is_err());
+        }
+    }
+}

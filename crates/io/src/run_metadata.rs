@@ -1,0 +1,408 @@
+//! The two MCAP metadata records of a carom log: `carom.run` (written first: what
+//! was run) and `carom.summary` (written last: how it ended). MCAP metadata are maps
+//! of strings to strings; this module is their typed form.
+
+use crate::options::{Compression, LogOptions, Stop};
+use crate::schema::LOG_FORMAT_VERSION;
+use serde_json::{json, Value};
+use std::collections::BTreeMap;
+use std::time::{SystemTime, UNIX_EPOCH};
+use thiserror::Error;
+
+/// A metadata record that is missing a key or holds a bad value.
+#[derive(Debug, Clone, PartialEq, Eq, Error)]
+#[error("metadata `{record}`: key `{key}`: {problem}")]
+pub struct MetadataError {
+    /// Record name (`carom.run` or `carom.summary`).
+    pub record: &'static str,
+    /// The key.
+    pub key: &'static str,
+    /// What was wrong.
+    pub problem: String,
+}
+
+/// The `carom.run` record: what was run.
+#[derive(Debug, Clone, PartialEq)]
+pub struct RunMetadata {
+    /// `log_format`: layout version of the log (see [`LOG_FORMAT_VERSION`]).
+    pub log_format: String,
+    /// `carom_version`: version of the carom that wrote the log.
+    pub carom_version: String,
+    /// `config`: the user's configuration, verbatim JSON text.
+    pub config: String,
+    /// `seed`: seed of the initial state.
+    pub seed: u64,
+    /// `start_time`: wall-clock start of the writing process, RFC 3339 UTC.
+    pub start_time: String,
+    /// `n_discs`: number of discs N.
+    pub n_discs: u64,
+    /// `stop`: when the run ends, JSON `{"time": t}` or `{"collisions": n}`.
+    pub stop: Stop,
+    /// `log_options`: what is logged, JSON (see [`log_options_to_json`]).
+    pub log: LogOptions,
+    /// `resumed_from`: for a resumed log, the file it was resumed from.
+    pub resumed_from: Option<String>,
+    /// `resumed_at`: for a resumed log, the simulated time of the checkpoint it
+    /// continued from (time).
+    pub resumed_at: Option<f64>,
+}
+
+fn get<'a>(
+    m: &'a BTreeMap<String, String>,
+    record: &'static str,
+    key: &'static str,
+) -> Result<&'a str, MetadataError> {
+    m.get(key).map(String::as_str).ok_or(MetadataError {
+        record,
+        key,
+        problem: "missing".into(),
+    })
+}
+
+fn parse<T: std::str::FromStr>(
+    m: &BTreeMap<String, String>,
+    record: &'static str,
+    key: &'static str,
+) -> Result<T, MetadataError> {
+    let s = get(m, record, key)?;
+    s.parse().map_err(|_| MetadataError {
+        record,
+        key,
+        problem: format!("cannot parse {s:?}"),
+    })
+}
+
+/// `stop` as JSON.
+pub fn stop_to_json(s: &Stop) -> Value {
+    match *s {
+        Stop::Time(t) => json!({ "time": t }),
+        Stop::Collisions(n) => json!({ "collisions": n }),
+    }
+}
+
+/// `stop` from JSON.
+pub fn stop_from_json(v: &Value) -> Option<Stop> {
+    if let Some(t) = v.get("time").and_then(Value::as_f64) {
+        return Some(Stop::Time(t));
+    }
+    v.get("collisions")
+        .and_then(Value::as_u64)
+        .map(Stop::Collisions)
+}
+
+fn compression_name(c: Compression) -> &'static str {
+    match c {
+        Compression::Zstd => "zstd",
+        Compression::Lz4 => "lz4",
+        Compression::None => "none",
+    }
+}
+
+/// Log options as JSON: `{"collisions", "collision_every", "snapshot_interval",
+/// "thermo_interval", "checkpoint_interval", "compression", "flush_seconds"}`
+/// (intervals `null` when off).
+pub fn log_options_to_json(o: &LogOptions) -> Value {
+    json!({
+        "collisions": o.collisions,
+        "collision_every": o.collision_every,
+        "snapshot_interval": o.snapshot_interval,
+        "thermo_interval": o.thermo_interval,
+        "checkpoint_interval": o.checkpoint_interval,
+        "compression": compression_name(o.compression),
+        "flush_seconds": o.flush_seconds,
+    })
+}
+
+/// Log options from JSON; missing keys take their defaults.
+pub fn log_options_from_json(v: &Value) -> Option<LogOptions> {
+    let d = LogOptions::default();
+    let interval = |k: &str, def: Option<f64>| match v.get(k) {
+        None => Some(def),
+        Some(Value::Null) => Some(None),
+        Some(x) => x.as_f64().map(Some),
+    };
+    Some(LogOptions {
+        collisions: v
+            .get("collisions")
+            .map_or(Some(d.collisions), Value::as_bool)?,
+        collision_every: v
+            .get("collision_every")
+            .map_or(Some(d.collision_every), Value::as_u64)?,
+        snapshot_interval: interval("snapshot_interval", d.snapshot_interval)?,
+        thermo_interval: interval("thermo_interval", d.thermo_interval)?,
+        checkpoint_interval: interval("checkpoint_interval", d.checkpoint_interval)?,
+        compression: match v.get("compression").and_then(Value::as_str) {
+            None => d.compression,
+            Some("zstd") => Compression::Zstd,
+            Some("lz4") => Compression::Lz4,
+            Some("none") => Compression::None,
+            Some(_) => return None,
+        },
+        flush_seconds: v
+            .get("flush_seconds")
+            .map_or(Some(d.flush_seconds), Value::as_f64)?,
+    })
+}
+
+impl RunMetadata {
+    /// The record as an MCAP metadata map.
+    pub fn to_map(&self) -> BTreeMap<String, String> {
+        let mut m = BTreeMap::new();
+        m.insert("log_format".into(), self.log_format.clone());
+        m.insert("carom_version".into(), self.carom_version.clone());
+        m.insert("config".into(), self.config.clone());
+        m.insert("seed".into(), self.seed.to_string());
+        m.insert("start_time".into(), self.start_time.clone());
+        m.insert("n_discs".into(), self.n_discs.to_string());
+        m.insert("stop".into(), stop_to_json(&self.stop).to_string());
+        m.insert(
+            "log_options".into(),
+            log_options_to_json(&self.log).to_string(),
+        );
+        if let Some(r) = &self.resumed_from {
+            m.insert("resumed_from".into(), r.clone());
+        }
+        if let Some(t) = self.resumed_at {
+            m.insert("resumed_at".into(), json!(t).to_string());
+        }
+        m
+    }
+
+    /// Parse the record; a log of another major format version is rejected.
+    pub fn from_map(m: &BTreeMap<String, String>) -> Result<Self, MetadataError> {
+        const R: &str = "carom.run";
+        let log_format = get(m, R, "log_format")?.to_string();
+        if log_format.split('.').next() != LOG_FORMAT_VERSION.split('.').next() {
+            return Err(MetadataError {
+                record: R,
+                key: "log_format",
+                problem: format!(
+                    "log format {log_format} is not supported (this carom reads {LOG_FORMAT_VERSION})"
+                ),
+            });
+        }
+        let json_of = |key: &'static str| -> Result<Value, MetadataError> {
+            serde_json::from_str(get(m, R, key)?).map_err(|e| MetadataError {
+                record: R,
+                key,
+                problem: format!("not JSON: {e}"),
+            })
+        };
+        let stop = stop_from_json(&json_of("stop")?).ok_or(MetadataError {
+            record: R,
+            key: "stop",
+            problem: "expected {\"time\": t} or {\"collisions\": n}".into(),
+        })?;
+        let log = log_options_from_json(&json_of("log_options")?).ok_or(MetadataError {
+            record: R,
+            key: "log_options",
+            problem: "a field has the wrong type".into(),
+        })?;
+        Ok(RunMetadata {
+            log_format,
+            carom_version: get(m, R, "carom_version")?.to_string(),
+            config: get(m, R, "config")?.to_string(),
+            seed: parse(m, R, "seed")?,
+            start_time: get(m, R, "start_time")?.to_string(),
+            n_discs: parse(m, R, "n_discs")?,
+            stop,
+            log,
+            resumed_from: m.get("resumed_from").cloned(),
+            resumed_at: match m.get("resumed_at") {
+                Some(_) => Some(parse(m, R, "resumed_at")?),
+                None => None,
+            },
+        })
+    }
+}
+
+/// Why a run ended (`stop_reason` in `carom.summary`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum StopReason {
+    /// The stop time was reached (`time`).
+    Time,
+    /// The collision budget was reached (`collisions`).
+    Collisions,
+    /// The caller's stop flag was raised, e.g. Ctrl-C (`interrupted`).
+    Interrupted,
+    /// Nothing could ever happen again: all discs at rest (`exhausted`).
+    Exhausted,
+    /// The engine failed (`error`); `error` in the summary says how.
+    Error,
+}
+
+impl StopReason {
+    /// The name stored in the summary.
+    pub fn as_str(&self) -> &'static str {
+        match self {
+            StopReason::Time => "time",
+            StopReason::Collisions => "collisions",
+            StopReason::Interrupted => "interrupted",
+            StopReason::Exhausted => "exhausted",
+            StopReason::Error => "error",
+        }
+    }
+
+    fn parse(s: &str) -> Option<Self> {
+        Some(match s {
+            "time" => StopReason::Time,
+            "collisions" => StopReason::Collisions,
+            "interrupted" => StopReason::Interrupted,
+            "exhausted" => StopReason::Exhausted,
+            "error" => StopReason::Error,
+            _ => return None,
+        })
+    }
+}
+
+/// The `carom.summary` record: how the run ended. Totals count the whole run,
+/// including the part before a resume; wall-clock figures count this process only.
+#[derive(Debug, Clone, PartialEq)]
+pub struct SummaryMetadata {
+    /// `end_time`: wall-clock end, RFC 3339 UTC.
+    pub end_time: String,
+    /// `stop_reason`.
+    pub stop_reason: StopReason,
+    /// `error`: the engine's error message when `stop_reason` is `error`.
+    pub error: Option<String>,
+    /// `sim_time`: simulated time at the end (time).
+    pub sim_time: f64,
+    /// `pair_collisions`.
+    pub pair_collisions: u64,
+    /// `wall_collisions`.
+    pub wall_collisions: u64,
+    /// `logged_collisions`: collisions in `/collisions`.
+    pub logged_collisions: u64,
+    /// `kinetic_energy` at the end (energy).
+    pub kinetic_energy: f64,
+    /// `energy_lost` over the run (energy).
+    pub energy_lost: f64,
+    /// `virial_sum` over the run (length·momentum).
+    pub virial_sum: f64,
+    /// `wall_seconds`: wall-clock duration of this process's part (s).
+    pub wall_seconds: f64,
+    /// `collisions_per_second`: collisions of this part per wall-clock second.
+    pub collisions_per_second: f64,
+}
+
+impl SummaryMetadata {
+    /// The record as an MCAP metadata map (floats in shortest round-trip form).
+    pub fn to_map(&self) -> BTreeMap<String, String> {
+        let mut m = BTreeMap::new();
+        let f = |x: f64| json!(x).to_string();
+        m.insert("end_time".into(), self.end_time.clone());
+        m.insert("stop_reason".into(), self.stop_reason.as_str().into());
+        if let Some(e) = &self.error {
+            m.insert("error".into(), e.clone());
+        }
+        m.insert("sim_time".into(), f(self.sim_time));
+        m.insert("pair_collisions".into(), self.pair_collisions.to_string());
+        m.insert("wall_collisions".into(), self.wall_collisions.to_string());
+        m.insert(
+            "logged_collisions".into(),
+            self.logged_collisions.to_string(),
+        );
+        m.insert("kinetic_energy".into(), f(self.kinetic_energy));
+        m.insert("energy_lost".into(), f(self.energy_lost));
+        m.insert("virial_sum".into(), f(self.virial_sum));
+        m.insert("wall_seconds".into(), f(self.wall_seconds));
+        m.insert(
+            "collisions_per_second".into(),
+            f(self.collisions_per_second),
+        );
+        m
+    }
+
+    /// Parse the record.
+    pub fn from_map(m: &BTreeMap<String, String>) -> Result<Self, MetadataError> {
+        const R: &str = "carom.summary";
+        let reason = get(m, R, "stop_reason")?;
+        Ok(SummaryMetadata {
+            end_time: get(m, R, "end_time")?.to_string(),
+            stop_reason: StopReason::parse(reason).ok_or(MetadataError {
+                record: R,
+                key: "stop_reason",
+                problem: format!("unknown reason {reason:?}"),
+            })?,
+            error: m.get("error").cloned(),
+            sim_time: parse(m, R, "sim_time")?,
+            pair_collisions: parse(m, R, "pair_collisions")?,
+            wall_collisions: parse(m, R, "wall_collisions")?,
+            logged_collisions: parse(m, R, "logged_collisions")?,
+            kinetic_energy: parse(m, R, "kinetic_energy")?,
+            energy_lost: parse(m, R, "energy_lost")?,
+            virial_sum: parse(m, R, "virial_sum")?,
+            wall_seconds: parse(m, R, "wall_seconds")?,
+            collisions_per_second: parse(m, R, "collisions_per_second")?,
+        })
+    }
+}
+
+/// The current wall-clock time as RFC 3339 UTC with millisecond precision, e.g.
+/// `2024-05-01T12:34:56.789Z`.
+pub fn now_rfc3339() -> String {
+    let d = SystemTime::now()
+        .duration_since(UNIX_EPOCH)
+        .unwrap_or_default();
+    rfc3339(d.as_secs(), d.subsec_millis())
+}
+
+/// Seconds since the Unix epoch as RFC 3339 UTC.
+pub fn rfc3339(secs: u64, millis: u32) -> String {
+    let days = (secs / 86_400) as i64;
+    let rem = secs % 86_400;
+    // Howard Hinnant's civil_from_days.
+    let z = days + 719_468;
+    let era = z.div_euclid(146_097);
+    let doe = z - era * 146_097;
+    let yoe = (doe - doe / 1460 + doe / 36_524 - doe / 146_096) / 365;
+    let doy = doe - (365 * yoe + yoe / 4 - yoe / 100);
+    let mp = (5 * doy + 2) / 153;
+    let day = doy - (153 * mp + 2) / 5 + 1;
+    let month = if mp < 10 { mp + 3 } else { mp - 9 };
+    let year = yoe + era * 400 + i64::from(month <= 2);
+    format!(
+        "{year:04}-{month:02}-{day:02}T{:02}:{:02}:{:02}.{millis:03}Z",
+        rem / 3600,
+        rem % 3600 / 60,
+        rem % 60
+    )
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn rfc3339_known_dates() {
+        assert_eq!(rfc3339(0, 0), "1970-01-01T00:00:00.000Z");
+        assert_eq!(rfc3339(951_782_400, 5), "2000-02-29T00:00:00.005Z");
+        assert_eq!(rfc3339(1_700_000_000, 0), "2023-11-14T22:13:20.000Z");
+    }
+
+    #[test]
+    fn run_metadata_round_trips() {
+        let m = RunMetadata {
+            log_format: LOG_FORMAT_VERSION.into(),
+            carom_version: "0.1.0".into(),
+            config: "{\"a\": 1}".into(),
+            seed: 42,
+            start_time: now_rfc3339(),
+            n_discs: 100,
+            stop: Stop::Time(12.5),
+            log: LogOptions {
+                snapshot_interval: None,
+                compression: Compression::Lz4,
+                ..LogOptions::default()
+            },
+            resumed_from: Some("a.mcap".into()),
+            resumed_at: Some(0.1),
+        };
+        assert_eq!(RunMetadata::from_map(&m.to_map()).unwrap(), m);
+        let mut bad = m.to_map();
+        bad.insert("log_format".into(), "2".into());
+        assert_eq!(RunMetadata::from_map(&bad).unwrap_err().key, "log_format");
+        bad.remove("log_format");
+        assert_eq!(RunMetadata::from_map(&bad).unwrap_err().problem, "missing");
+    }
+}
