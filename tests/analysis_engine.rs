@@ -1,0 +1,213 @@
+//! The analysis of `carom analyze` fed straight from the engine (no log file):
+//! equation of state, Enskog check, Maxwell–Boltzmann, wall pressure and the
+//! energy budget of a cooling granular gas, against physics.md §5–§8.
+
+use carom::analysis::report::{AnalysisOptions, Analyzer, Report, RunDescription};
+use carom::core::{Restitution, SimBox, Species};
+use carom::events::{box_size_for, Engine, EngineParams, Event, Placement, SystemSpec, Velocities};
+
+/// Run the engine from `spec` until `t_end`, with a snapshot (and thermo record)
+/// every `dt`, feeding every event to an analyzer.
+fn analyse(
+    spec: SystemSpec,
+    params: EngineParams,
+    t_end: f64,
+    dt: f64,
+    opts: AnalysisOptions,
+) -> Report {
+    let state = spec.build().unwrap();
+    let run = RunDescription {
+        species: spec.species.clone(),
+        sim_box: spec.sim_box,
+        restitution: params.restitution,
+        collision_stride: 1,
+        t_start: 0.0,
+        t_end,
+    };
+    let mut a = Analyzer::new(run, opts).unwrap();
+    let mut engine = Engine::new(state, params).unwrap();
+    let steps = (t_end / dt).round() as u64;
+    for k in 0..=steps {
+        engine.schedule(k as f64 * dt, k).unwrap();
+    }
+    let mut lost = 0.0;
+    while let Some(ev) = engine.next_event().unwrap() {
+        match ev {
+            Event::Pair(p) => {
+                lost += p.energy_lost;
+                a.pair(p.time, p.virial, p.energy_lost);
+            }
+            Event::Wall(w) => {
+                lost += w.energy_lost;
+                a.wall(w.time, w.impulse, w.energy_lost);
+            }
+            Event::Scheduled { time, tag } => {
+                let s = engine.state();
+                let vx: Vec<f64> = s.velocities.iter().map(|v| v.x).collect();
+                let vy: Vec<f64> = s.velocities.iter().map(|v| v.y).collect();
+                a.thermo(time, s.kinetic_energy(), Some(lost));
+                a.snapshot(time, &s.species_of, &vx, &vy);
+                if tag == steps {
+                    break;
+                }
+            }
+        }
+    }
+    a.finish().unwrap()
+}
+
+fn fluid(n: usize, eta: f64, seed: u64, velocities: Velocities) -> SystemSpec {
+    let species = vec![Species {
+        count: n,
+        radius: 0.5,
+        mass: 1.0,
+    }];
+    let size = box_size_for(&species, eta, 1.0);
+    SystemSpec {
+        species,
+        sim_box: SimBox::periodic(size.x, size.y),
+        temperature: 1.0,
+        seed,
+        placement: Placement::Lattice,
+        velocities,
+    }
+}
+
+#[test]
+fn equation_of_state_at_eta_0_3_and_enskog_check() {
+    let opts = AnalysisOptions {
+        equilibrate: Some(20.0),
+        every: Some(4.0),
+        ..Default::default()
+    };
+    let r = analyse(
+        fluid(1024, 0.3, 7, Velocities::MaxwellBoltzmann),
+        EngineParams::default(),
+        220.0,
+        2.0,
+        opts,
+    );
+    let p = r.pressure.as_ref().unwrap();
+    // physics.md §7: Z(0.3) = 2.0633 ± 0.0020.
+    let tol = 3.0 * (p.z_std_error.powi(2) + 0.0020f64.powi(2)).sqrt();
+    assert!(
+        (p.z - 2.0633).abs() < tol,
+        "Z = {} ± {}",
+        p.z,
+        p.z_std_error
+    );
+    assert!(p.z_std_error > 1e-4 && p.z_std_error < 0.02, "{p:?}");
+    // Ideal-gas temperature is exact (velocities scaled to kT = 1, NVE).
+    assert!((r.temperature.kt - 1.0).abs() < 1e-9);
+    assert_eq!(r.temperature.dof, 2 * 1024 - 2);
+    // Enskog: Z − 1 = (√π/4) ω τ0, within 4 standard errors.
+    let e = r.enskog.as_ref().unwrap();
+    assert!(e.difference.abs() < 4.0 * e.difference_std_error, "{e:?}");
+    assert!(e.difference_std_error < 0.02);
+    // Velocities are Maxwell–Boltzmann.
+    let mb = &r.maxwell_boltzmann[0];
+    assert!(mb.passed, "{:?} {:?}", mb.chi_square, mb.ks);
+    assert!(mb.snapshots >= 40 && mb.snapshots <= 51, "{}", mb.snapshots);
+    assert!(r.inelastic.is_none());
+}
+
+#[test]
+fn equal_speed_start_fails_maxwell_boltzmann_from_the_first_snapshot() {
+    let opts = AnalysisOptions {
+        equilibrate: Some(0.0),
+        every: Some(1e9),
+        ..Default::default()
+    };
+    let r = analyse(
+        fluid(1024, 0.3, 8, Velocities::EqualSpeed),
+        EngineParams::default(),
+        10.0,
+        1.0,
+        opts,
+    );
+    let mb = &r.maxwell_boltzmann[0];
+    assert_eq!(mb.snapshots, 1);
+    assert!(!mb.passed);
+    assert!(mb.ks.p_value < 1e-10 && mb.chi_square.p_value < 1e-10);
+    // Later snapshots, after a few collision times, relax to MB.
+    let opts = AnalysisOptions {
+        equilibrate: Some(5.0),
+        every: Some(1.0),
+        ..Default::default()
+    };
+    let r = analyse(
+        fluid(1024, 0.3, 8, Velocities::EqualSpeed),
+        EngineParams::default(),
+        10.0,
+        1.0,
+        opts,
+    );
+    assert!(
+        r.maxwell_boltzmann[0].passed,
+        "{:?}",
+        r.maxwell_boltzmann[0].ks
+    );
+}
+
+#[test]
+fn wall_pressure_of_a_dilute_gas_uses_the_reachable_area() {
+    // 40 discs of diameter 1 in a 30 × 30 walled box: η = 0.035, so
+    // Z = 1 + 2η g(σ) ≈ 1.07; the reachable area is 6.6 % smaller than the box,
+    // which an estimator using the full box would miss.
+    let species = vec![Species {
+        count: 40,
+        radius: 0.5,
+        mass: 1.0,
+    }];
+    let spec = SystemSpec {
+        species: species.clone(),
+        sim_box: SimBox::walled(30.0, 30.0, 1.0),
+        temperature: 1.0,
+        seed: 3,
+        placement: Placement::Random,
+        velocities: Velocities::MaxwellBoltzmann,
+    };
+    let r = analyse(
+        spec,
+        EngineParams::default(),
+        20_000.0,
+        50.0,
+        AnalysisOptions::default(),
+    );
+    let p = r.pressure.as_ref().unwrap();
+    assert_eq!(r.temperature.dof, 80);
+    let eta: f64 = 40.0 * std::f64::consts::PI * 0.25 / 900.0;
+    let g = (1.0 - 7.0 * eta / 16.0) / (1.0 - eta).powi(2); // Henderson
+    let z_theory = 1.0 + 2.0 * eta * g;
+    assert!(
+        (p.z - z_theory).abs() < 4.0 * p.z_std_error + 0.01,
+        "Z = {} ± {} vs {z_theory}",
+        p.z,
+        p.z_std_error
+    );
+    assert!(p.z_std_error < 0.02, "{p:?}");
+    assert!((p.area - 29.0 * 29.0).abs() < 1e-9);
+    assert!(r.enskog.is_none());
+}
+
+#[test]
+fn cooling_granular_gas_closes_its_energy_budget() {
+    let spec = fluid(1024, 0.1, 9, Velocities::MaxwellBoltzmann);
+    let params = EngineParams {
+        restitution: Restitution::Normal(0.9),
+        tc: 1e-6,
+        ..Default::default()
+    };
+    let r = analyse(spec, params, 40.0, 1.0, AnalysisOptions::default());
+    assert!(!r.elastic);
+    let inel = r.inelastic.as_ref().unwrap();
+    let e = inel.energy.as_ref().unwrap();
+    assert!(e.final_ < 0.5 * e.initial, "{e:?}");
+    assert!(e.relative_residual.abs() < 1e-9, "{e:?}");
+    // Haff's law holds in the homogeneous cooling state (no clusters yet in a
+    // small dilute box): within 10 %.
+    let h = inel.haff.as_ref().unwrap();
+    assert!((h.ratio - 1.0).abs() < 0.1, "{h:?}");
+    assert_eq!(inel.temperature_vs_time.len(), 41);
+    assert!(r.enskog.is_none());
+}
