@@ -8,6 +8,7 @@
 //! * [`io`] (`carom-io`) — configuration, MCAP logging and reading.
 
 pub mod analysis;
+pub mod run;
 
 pub use carom_core as core;
 pub use carom_events as events;

@@ -101,11 +101,11 @@ pub const THERMO_JSON_SCHEMA: &str = r#"{
     "energy_lost": {"type": "number", "description": "kinetic energy dissipated since the start of the run (energy)"},
     "virial_sum": {"type": "number", "description": "sum over pair collisions of r_ij . dp_i since the start of the run (length*momentum)"},
     "wall_impulse": {"type": "number", "description": "momentum given to all walls since the start of the run (momentum)"},
-    "pressure": {"type": "number", "description": "running pressure estimate P (energy/length^2); periodic: (K + W)/A with W = virial_sum/(2 t); walls: wall impulse per unit time per accessible wall length"},
-    "z": {"type": "number", "description": "running compressibility factor beta P A / N = 1 + W/(N kT) for a periodic box; with walls beta P A_acc / N with the area reachable by centres"},
-    "collision_rate": {"type": "number", "description": "pair collisions per disc per unit time over the run so far, 2 N_pair / (N t) (1/time)"}
+    "pressure": {"type": "number", "description": "running pressure estimate P (energy/length^2) over the run so far (t = time - run start); periodic box: P A = N kT + W with W = virial_sum/(2 t); walls: wall impulse per unit time per unit accessible wall length, averaged over the walled axes; absent while t = 0 or kT = 0"},
+    "z": {"type": "number", "description": "running compressibility factor beta P A / N (periodic: 1 + W/(N kT)); with walls A is the area reachable by disc centres, (L_x - 2a)(L_y - 2a) on walled axes with a the largest radius; absent like pressure"},
+    "collision_rate": {"type": "number", "description": "pair collisions per disc per unit time over the run so far, 2 N_pair / (N t) (1/time); absent while t = 0"}
   },
-  "required": ["time", "kinetic_energy", "temperature", "collisions", "pressure", "z"]
+  "required": ["time", "kinetic_energy", "temperature", "collisions", "pair_collisions", "wall_collisions", "energy_lost", "virial_sum", "wall_impulse"]
 }"#;
 
 /// Encoding of the JSON Schema `carom.Thermo`.
@@ -686,12 +686,24 @@ pub struct Thermo {
     pub virial_sum: f64,
     /// Momentum given to all walls since the start (momentum).
     pub wall_impulse: f64,
-    /// Running pressure estimate P (energy/length²), see [`THERMO_JSON_SCHEMA`].
-    pub pressure: f64,
-    /// Running compressibility factor βPA/N (dimensionless).
-    pub z: f64,
-    /// Pair collisions per disc per unit time, 2 N_pair/(N t) (1/time).
-    pub collision_rate: f64,
+    /// Running pressure estimate P (energy/length²), see [`THERMO_JSON_SCHEMA`];
+    /// absent (`None`) while no simulated time has passed or kT = 0.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub pressure: Option<f64>,
+    /// Running compressibility factor βPA/N (dimensionless); absent like `pressure`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub z: Option<f64>,
+    /// Pair collisions per disc per unit time, 2 N_pair/(N t) (1/time); absent
+    /// while no simulated time has passed.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub collision_rate: Option<f64>,
+}
+
+impl Thermo {
+    /// Decode a `/thermo` message (JSON).
+    pub fn decode(data: &[u8]) -> Result<Thermo, serde_json::Error> {
+        serde_json::from_slice(data)
+    }
 }
 
 #[cfg(test)]

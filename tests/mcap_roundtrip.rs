@@ -1,0 +1,294 @@
+//! A run's MCAP log holds exactly what the engine did: every collision (bit for
+//! bit, pair and wall), snapshots at the requested exact times, thermo records,
+//! checkpoints, and the metadata records; the same under every compression, with
+//! every k-th collision, with a collision budget, and when stopped by the flag.
+
+mod mcap_common;
+
+use carom::events::{Engine, EngineParams, Event};
+use carom::io::log_reader::{scan, LogEnd, LogEvent, LogMessage, LogReader};
+use carom::io::run_metadata::StopReason;
+use carom::io::schema::{CollisionRecord, KIND_WALL};
+use carom::io::{Compression, LogOptions, Stop};
+use carom::run::{run, Control, Progress};
+use mcap_common::*;
+use std::sync::atomic::{AtomicBool, Ordering};
+
+fn log_opts(compression: Compression) -> LogOptions {
+    LogOptions {
+        collisions: true,
+        collision_every: 1,
+        snapshot_interval: Some(1.0),
+        thermo_interval: Some(0.5),
+        checkpoint_interval: Some(2.0),
+        compression,
+        flush_seconds: 1.0,
+    }
+}
+
+fn read_collisions(path: &std::path::Path) -> Vec<CollisionRecord> {
+    let mut r = LogReader::open(path).unwrap();
+    let v: Vec<_> = r.collisions().collect::<Result<_, _>>().unwrap();
+    assert_eq!(*r.end(), LogEnd::Complete);
+    v
+}
+
+fn matches_event(rec: &CollisionRecord, ev: &Event) -> bool {
+    match ev {
+        Event::Pair(p) => rec.as_pair() == Some(*p) && rec.time.to_bits() == p.time.to_bits(),
+        Event::Wall(w) => rec.as_wall() == Some(*w) && rec.time.to_bits() == w.time.to_bits(),
+        Event::Scheduled { .. } => false,
+    }
+}
+
+#[test]
+fn log_holds_exactly_what_the_engine_did() {
+    let system = system(300, 0.45, true, true, 11);
+    let t_end = 5.0;
+    let out = tmp("roundtrip.mcap");
+    let summary = run(
+        &spec(
+            system.clone(),
+            Stop::Time(t_end),
+            log_opts(Compression::Zstd),
+        ),
+        &out,
+        Control::default(),
+    )
+    .unwrap();
+    assert_eq!(summary.stop_reason, StopReason::Time);
+    assert_eq!(summary.sim_time, t_end);
+
+    // Collisions: identical to a bare engine's, in order, pair and wall.
+    let (events, mut bare) = reference_collisions(&system, EngineParams::default(), t_end);
+    let logged = read_collisions(&out);
+    assert!(events.len() > 2_000, "only {} collisions", events.len());
+    assert_eq!(logged.len(), events.len());
+    let walls = logged.iter().filter(|c| c.kind == KIND_WALL).count();
+    assert!(walls > 50, "only {walls} wall collisions");
+    for (k, (rec, ev)) in logged.iter().zip(&events).enumerate() {
+        assert_eq!(rec.ordinal, k as u64);
+        assert!(matches_event(rec, ev), "collision {k}: {rec:?} vs {ev:?}");
+    }
+    assert_eq!(
+        summary.pair_collisions + summary.wall_collisions,
+        events.len() as u64
+    );
+    assert_eq!(summary.logged_collisions, events.len() as u64);
+
+    // Snapshots at exactly t = 0, 1, …, 5, equal to the bare engine's states.
+    let mut r = LogReader::open(&out).unwrap();
+    assert_eq!(r.run().seed, 11);
+    assert_eq!(r.run().n_discs, 300);
+    assert_eq!(r.run().stop, Stop::Time(t_end));
+    assert!(r.run().config.contains("\"test\": true"));
+    let snaps: Vec<_> = r
+        .snapshots()
+        .map(|m| match m.unwrap() {
+            LogMessage::Snapshot(s) => s,
+            other => panic!("{other:?}"),
+        })
+        .collect();
+    assert_eq!(
+        snaps.iter().map(|s| s.time).collect::<Vec<_>>(),
+        [0.0, 1.0, 2.0, 3.0, 4.0, 5.0]
+    );
+    let mut replay = Engine::new(system.build().unwrap(), EngineParams::default()).unwrap();
+    for s in &snaps {
+        replay.run_until(s.time).unwrap();
+        let st = replay.state();
+        assert_eq!(bits(&s.positions), bits(&st.positions), "t = {}", s.time);
+        assert_eq!(bits(&s.velocities), bits(&st.velocities));
+        assert_eq!(s.species, st.species_of);
+        assert_eq!(s.species_mass, [1.0, 3.0]);
+        assert_eq!(s.boundary, [0, 1]);
+    }
+    let summary_rec = r.summary().unwrap().expect("summary record");
+    assert_eq!(summary_rec.stop_reason, StopReason::Time);
+    assert_eq!(summary_rec.sim_time, t_end);
+
+    // Thermo every 0.5 and checkpoints at 0, 2, 4 and the end.
+    let mut r = LogReader::open(&out).unwrap();
+    let thermo: Vec<_> = r
+        .thermo()
+        .map(|m| match m.unwrap() {
+            LogMessage::Thermo(t) => t,
+            other => panic!("{other:?}"),
+        })
+        .collect();
+    assert_eq!(thermo.len(), 11);
+    for (k, t) in thermo.iter().enumerate() {
+        assert_eq!(t.time, 0.5 * k as f64);
+        // Observations come before any collision at the same instant.
+        let done = events.iter().filter(|e| e.time() < t.time).count() as u64;
+        assert_eq!(t.collisions, done, "thermo at {}", t.time);
+        assert!((t.temperature - 1.0).abs() < 1e-9, "elastic: kT stays 1");
+    }
+    assert!(thermo[0].z.is_none() && thermo[0].pressure.is_none());
+    let z = thermo.last().unwrap().z.unwrap();
+    assert!(z > 1.5 && z < 6.0, "walls: Z = {z}");
+    let mut r = LogReader::open(&out).unwrap();
+    let cps: Vec<_> = r
+        .checkpoints()
+        .map(|m| match m.unwrap() {
+            LogMessage::Checkpoint(c) => c,
+            other => panic!("{other:?}"),
+        })
+        .collect();
+    assert_eq!(
+        cps.iter().map(|c| c.engine.now).collect::<Vec<_>>(),
+        [0.0, 2.0, 4.0, 5.0]
+    );
+    bare.run_until(t_end).unwrap();
+    let last = Engine::from_checkpoint(cps[3].engine.clone()).unwrap();
+    assert_eq!(bits(&last.state().positions), bits(&bare.state().positions));
+    assert_eq!(
+        bits(&last.state().velocities),
+        bits(&bare.state().velocities)
+    );
+
+    // events(): everything interleaved in time order.
+    let mut r = LogReader::open(&out).unwrap();
+    let mut t_prev = f64::NEG_INFINITY;
+    let (mut nc, mut ns) = (0, 0);
+    for e in r.events() {
+        let e = e.unwrap();
+        assert!(e.time() >= t_prev, "{} after {t_prev}", e.time());
+        t_prev = e.time();
+        match e {
+            LogEvent::Collision(_) => nc += 1,
+            LogEvent::Snapshot(_) => ns += 1,
+            _ => {}
+        }
+    }
+    assert_eq!((nc, ns), (events.len(), 6));
+
+    // scan(): counts and span without decoding.
+    let info = scan(&out).unwrap();
+    assert_eq!(info.end, LogEnd::Complete);
+    assert_eq!(info.messages[1..], [6, 11, 4]);
+    assert_eq!(info.logged_collisions, events.len() as u64);
+    assert_eq!(info.last_checkpoint_time, Some(5.0));
+    assert_eq!(info.channels, [true; 4]);
+    assert!(info.summary.is_some());
+    std::fs::remove_file(&out).unwrap();
+}
+
+#[test]
+fn compressions_and_every_kth_collision() {
+    let system = system(200, 0.5, false, false, 5);
+    let (events, _) = reference_collisions(&system, EngineParams::default(), 3.0);
+    let mut first: Option<Vec<CollisionRecord>> = None;
+    for c in [Compression::Zstd, Compression::Lz4, Compression::None] {
+        let out = tmp("compression.mcap");
+        run(
+            &spec(system.clone(), Stop::Time(3.0), log_opts(c)),
+            &out,
+            Control::default(),
+        )
+        .unwrap();
+        let recs = read_collisions(&out);
+        assert_eq!(recs.len(), events.len());
+        match &first {
+            None => first = Some(recs),
+            Some(f) => assert_eq!(f, &recs, "{c:?}"),
+        }
+        std::fs::remove_file(&out).unwrap();
+    }
+    let out = tmp("every3.mcap");
+    let opts = LogOptions {
+        collision_every: 3,
+        ..log_opts(Compression::Zstd)
+    };
+    run(
+        &spec(system.clone(), Stop::Time(3.0), opts),
+        &out,
+        Control::default(),
+    )
+    .unwrap();
+    let recs = read_collisions(&out);
+    assert_eq!(recs.len(), events.len().div_ceil(3));
+    for r in &recs {
+        assert_eq!(r.ordinal % 3, 0);
+        assert!(matches_event(r, &events[r.ordinal as usize]));
+    }
+    // Collisions off: the channel exists but is empty.
+    let opts = LogOptions {
+        collisions: false,
+        ..log_opts(Compression::Zstd)
+    };
+    run(
+        &spec(system.clone(), Stop::Time(3.0), opts),
+        &out,
+        Control::default(),
+    )
+    .unwrap();
+    assert!(read_collisions(&out).is_empty());
+    std::fs::remove_file(&out).unwrap();
+}
+
+#[test]
+fn collision_budget_and_stop_flag() {
+    let system = system(200, 0.5, false, false, 9);
+    let out = tmp("budget.mcap");
+    let s = run(
+        &spec(
+            system.clone(),
+            Stop::Collisions(12_345),
+            log_opts(Compression::Zstd),
+        ),
+        &out,
+        Control::default(),
+    )
+    .unwrap();
+    assert_eq!(s.stop_reason, StopReason::Collisions);
+    assert_eq!(s.pair_collisions + s.wall_collisions, 12_345);
+    assert_eq!(read_collisions(&out).len(), 12_345);
+
+    // The stop flag, raised from the progress callback, ends the run cleanly.
+    let stop = AtomicBool::new(false);
+    let mut calls = 0;
+    let mut cb = |p: &Progress| {
+        calls += 1;
+        if p.collisions > 50_000 {
+            stop.store(true, Ordering::Relaxed);
+        }
+    };
+    let control = Control {
+        stop: Some(&stop),
+        progress: Some(&mut cb),
+        progress_interval: std::time::Duration::ZERO,
+    };
+    let s = run(
+        &spec(system, Stop::Time(1e9), log_opts(Compression::Zstd)),
+        &out,
+        control,
+    )
+    .unwrap();
+    assert!(calls > 0);
+    assert_eq!(s.stop_reason, StopReason::Interrupted);
+    let mut r = LogReader::open(&out).unwrap();
+    let n = r.collisions().count() as u64;
+    assert_eq!(n, s.pair_collisions + s.wall_collisions);
+    assert_eq!(*r.end(), LogEnd::Complete);
+    let sm = r.summary().unwrap().unwrap();
+    assert_eq!(sm.stop_reason, StopReason::Interrupted);
+    std::fs::remove_file(&out).unwrap();
+}
+
+#[test]
+fn bad_options_name_the_field() {
+    let system = system(50, 0.3, false, false, 1);
+    let out = tmp("bad.mcap");
+    let opts = LogOptions {
+        snapshot_interval: Some(0.0),
+        ..LogOptions::default()
+    };
+    let e = run(
+        &spec(system, Stop::Time(1.0), opts),
+        &out,
+        Control::default(),
+    )
+    .unwrap_err();
+    assert!(e.to_string().contains("log.snapshot_interval"), "{e}");
+}
