@@ -1,0 +1,160 @@
+//! A long elastic run at η = 0.5 (N = 1000 monodisperse discs, periodic square box,
+//! lattice start, Maxwell–Boltzmann velocities at kT = 1) keeps every invariant, and
+//! is reproducible bit for bit.
+//!
+//! * Every event: the clock never decreases and equals the event's time.
+//! * Every 10⁴ collisions: `InvariantChecker::check_conservation` — kinetic energy
+//!   within 1e-12 relative of the start, momentum within 1e-12 of Σ m|v| (the
+//!   checker's defaults; MB start has zero total momentum, so this is absolute drift).
+//! * Every 10⁵ collisions and at the end: `InvariantChecker::check_overlaps` — no pair
+//!   overlaps by more than 1e-10 of its contact distance.
+//! * Reproducibility: the same seed run again (without the checks, through
+//!   `run_collisions`, i.e. with different observation) ends in a state whose
+//!   positions, velocities and time have identical bits; a different seed ends
+//!   elsewhere.
+//!
+//! Two sizes: 10⁶ collisions (≈ 1.5 s) and the issue's 10⁷ (≈ 14 s in the test
+//! profile on 2 cores). Both belong in the default suite; the 10⁷ one is `#[ignore]`d
+//! only while the engine bug named in its attribute is open.
+
+use carom::core::{SimBox, Species};
+use carom::events::{
+    box_size_for, Engine, EngineParams, Event, InvariantChecker, Placement, State, SystemSpec,
+    Velocities,
+};
+
+const N: usize = 1000;
+const ETA: f64 = 0.5;
+
+fn initial_state(seed: u64) -> State {
+    let species = vec![Species {
+        count: N,
+        radius: 0.5,
+        mass: 1.0,
+    }];
+    let size = box_size_for(&species, ETA, 1.0);
+    SystemSpec {
+        species,
+        sim_box: SimBox::periodic(size.x, size.y),
+        temperature: 1.0,
+        seed,
+        placement: Placement::Lattice,
+        velocities: Velocities::MaxwellBoltzmann,
+    }
+    .build()
+    .expect("a valid η = 0.5 system")
+}
+
+/// The bits of every position and velocity and of the time.
+fn fingerprint(s: &State) -> Vec<u64> {
+    let mut out = vec![s.time.to_bits()];
+    for (r, v) in s.positions.iter().zip(&s.velocities) {
+        out.extend([r.x.to_bits(), r.y.to_bits(), v.x.to_bits(), v.y.to_bits()]);
+    }
+    out
+}
+
+/// Run `collisions` collisions from seed `seed` with every check; return the final
+/// state and the state after `snapshot_at` collisions.
+fn checked_run(seed: u64, collisions: u64, snapshot_at: u64) -> (State, State) {
+    let state = initial_state(seed);
+    assert!((state.packing_fraction() - ETA).abs() < 1e-12);
+    let mut engine = Engine::new(state, EngineParams::default()).expect("engine");
+    let mut checker = InvariantChecker::new(&engine);
+    let mut last = engine.now();
+    let mut done = 0u64;
+    let mut snapshot = None;
+    while done < collisions {
+        let ev = engine
+            .next_event()
+            .unwrap_or_else(|e| panic!("engine error after {done} collisions: {e}"))
+            .unwrap_or_else(|| panic!("no more events after {done} collisions"));
+        let t = ev.time();
+        assert!(t >= last, "time went backwards: {last} → {t}");
+        assert_eq!(engine.now(), t);
+        last = t;
+        match ev {
+            Event::Pair(_) => done += 1,
+            Event::Wall(w) => panic!("wall collision in a periodic box: {w:?}"),
+            Event::Scheduled { .. } => panic!("nothing was scheduled"),
+        }
+        if done % 10_000 == 0 {
+            checker
+                .check_conservation(&engine)
+                .unwrap_or_else(|v| panic!("after {done} collisions: {v}"));
+        }
+        if done % 100_000 == 0 {
+            checker
+                .check_overlaps(&engine)
+                .unwrap_or_else(|v| panic!("after {done} collisions: {v}"));
+        }
+        if done == snapshot_at {
+            snapshot = Some(engine.state());
+        }
+    }
+    checker
+        .check(&engine)
+        .unwrap_or_else(|v| panic!("at the end: {v}"));
+    assert_eq!(engine.stats().pair_collisions, collisions);
+    println!(
+        "seed {seed}: {collisions} collisions to t = {:.3}; max energy drift {:e}, max overlap {:e}",
+        engine.now(),
+        checker.max_energy_drift,
+        checker.max_overlap
+    );
+    (engine.state(), snapshot.expect("snapshot taken"))
+}
+
+/// The same seed without checks, through `run_collisions`.
+fn plain_run(seed: u64, collisions: u64) -> State {
+    let mut engine = Engine::new(initial_state(seed), EngineParams::default()).expect("engine");
+    assert_eq!(engine.run_collisions(collisions).expect("run"), collisions);
+    engine.state()
+}
+
+fn long_run(collisions: u64) {
+    const SNAPSHOT: u64 = 100_000;
+    // The checked run and its plain repeat are independent: run them side by side.
+    let ((end, snap), repeat, other) = std::thread::scope(|s| {
+        let repeat = s.spawn(|| plain_run(1, collisions));
+        let other = s.spawn(|| plain_run(2, SNAPSHOT));
+        let checked = checked_run(1, collisions, SNAPSHOT);
+        (
+            checked,
+            repeat.join().expect("repeat run"),
+            other.join().expect("other seed"),
+        )
+    });
+    assert!(
+        fingerprint(&end) == fingerprint(&repeat),
+        "the same seed gave a different final state"
+    );
+    // A different seed: a different trajectory (compare at the same collision count;
+    // every disc should be elsewhere, demand at least most of them).
+    let same = snap
+        .positions
+        .iter()
+        .zip(&other.positions)
+        .filter(|(a, b)| a.x.to_bits() == b.x.to_bits() && a.y.to_bits() == b.y.to_bits())
+        .count();
+    assert!(
+        same < N / 10,
+        "seeds 1 and 2 share {same} of {N} positions after {SNAPSHOT} collisions"
+    );
+    assert_ne!(fingerprint(&snap), fingerprint(&other));
+}
+
+#[test]
+fn elastic_run_1e6_keeps_invariants_and_is_reproducible() {
+    long_run(1_000_000);
+}
+
+/// Takes ≈ 14 s in the test profile on the 2-core machine (the checked run and its
+/// repeat run in parallel threads).
+#[test]
+#[ignore = "engine bug: systematic kinetic-energy drift of +2.8e-13 per 1e6 collisions \
+            (same for every seed) exceeds the 1e-12 invariant after ~3.6e6 collisions; \
+            the rounding of n = dr/|dr| makes |n|² − 1 positive on average"]
+fn elastic_run_1e7_keeps_invariants_and_is_reproducible() {
+    long_run(10_000_000);
+}
