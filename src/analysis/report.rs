@@ -131,6 +131,8 @@ struct TimeBin {
     wall_impulse: f64,
     pairs: u64,
     walls: u64,
+    /// Pair collisions from [`Analyzer::increment`] (already scaled, fractional).
+    pairs_weighted: f64,
 }
 
 /// Accumulates a run's events and produces a [`Report`].
@@ -148,6 +150,7 @@ pub struct Analyzer {
     lost_from_collisions: f64,
     pair_total: u64,
     wall_total: u64,
+    pairs_from_increments: u64,
     speeds: Vec<Vec<f64>>,
     vx: Vec<Vec<f64>>,
     vy: Vec<Vec<f64>>,
@@ -187,6 +190,7 @@ impl Analyzer {
             lost_from_collisions: 0.0,
             pair_total: 0,
             wall_total: 0,
+            pairs_from_increments: 0,
             speeds: vec![Vec::new(); ns],
             vx: vec![Vec::new(); ns],
             vy: vec![Vec::new(); ns],
@@ -231,6 +235,32 @@ impl Analyzer {
         if let Some(b) = self.bin(t) {
             b.wall_impulse += s * impulse;
             b.walls += 1;
+        }
+    }
+
+    /// Running totals between two times, for logs without collisions: the virial
+    /// sum (length·momentum), wall impulse (momentum) and pair collisions counted
+    /// in [t0, t1] (e.g. differences of consecutive `/thermo` records), spread
+    /// over the time bins in proportion to their overlap.
+    pub fn increment(&mut self, t0: f64, t1: f64, virial: f64, wall_impulse: f64, pairs: u64) {
+        if !(t1 > t0) {
+            return;
+        }
+        self.pairs_from_increments += pairs;
+        let (lo, hi) = (t0.max(self.t_eq), t1.min(self.run.t_end));
+        if hi <= lo {
+            return;
+        }
+        let first = ((lo - self.t_eq) / self.bin_width) as usize;
+        let last = (((hi - self.t_eq) / self.bin_width) as usize).min(self.bins.len() - 1);
+        for k in first..=last {
+            let b0 = self.t_eq + k as f64 * self.bin_width;
+            let overlap = (hi.min(b0 + self.bin_width) - lo.max(b0)).max(0.0);
+            let w = overlap / (t1 - t0);
+            let bin = &mut self.bins[k];
+            bin.virial += w * virial;
+            bin.wall_impulse += w * wall_impulse;
+            bin.pairs_weighted += w * pairs as f64;
         }
     }
 
@@ -337,6 +367,7 @@ impl Analyzer {
             dof: f,
             conserved_momentum_components: run.sim_box.conserved_momentum_components(),
             convention: "kT = 2K/f, f = 2N − (number of periodic axes) (physics.md §5)",
+            series: subsample(&self.kt_series, MAX_SERIES),
         };
 
         // ---- Maxwell–Boltzmann per species
@@ -408,7 +439,7 @@ impl Analyzer {
                 1.0 + b.virial / (2.0 * dt) / (nf * kt)
             };
             z_bins.push(z);
-            omega_bins.push(2.0 * stride * b.pairs as f64 / (nf * dt));
+            omega_bins.push(2.0 * (stride * b.pairs as f64 + b.pairs_weighted) / (nf * dt));
             kt_bins.push(kt);
         }
         let pressure = if z_bins.iter().all(|z| z.is_finite()) {
@@ -521,7 +552,6 @@ impl Analyzer {
     }
 
     fn inelastic_report(&self) -> InelasticReport {
-        let series: Vec<[f64; 2]> = self.kt_series.iter().map(|&(t, kt)| [t, kt]).collect();
         let first = self.energy_series.first().copied();
         let last = self.energy_series.last().copied();
         let (e0, e1) = (first.map(|e| e.1), last.map(|e| e.1));
@@ -553,7 +583,6 @@ impl Analyzer {
             _ => None,
         };
         InelasticReport {
-            temperature_vs_time: series,
             energy: budget,
             haff,
         }
@@ -571,7 +600,8 @@ impl Analyzer {
             .windows(2)
             .map(|w| 0.5 * (w[1].0 - w[0].0) * (w[0].1.max(0.0).sqrt() + w[1].1.max(0.0).sqrt()))
             .sum();
-        let pairs = self.pair_total as f64 * self.run.collision_stride as f64;
+        let pairs = self.pair_total as f64 * self.run.collision_stride as f64
+            + self.pairs_from_increments as f64;
         if integral <= 0.0 || pairs == 0.0 {
             return None;
         }
@@ -623,6 +653,21 @@ fn blocked(x: &[f64]) -> Result<Blocked, StatsError> {
         block_len: e.block_len,
         converged: false,
     })
+}
+
+/// Most points in a time series of the report.
+const MAX_SERIES: usize = 2000;
+
+/// At most `max` points of `s`, evenly spaced in index, always keeping the last.
+fn subsample(s: &[(f64, f64)], max: usize) -> Vec<[f64; 2]> {
+    let step = s.len().div_ceil(max).max(1);
+    let mut out: Vec<[f64; 2]> = s.iter().step_by(step).map(|&(t, v)| [t, v]).collect();
+    if let Some(&(t, v)) = s.last() {
+        if out.last().is_some_and(|p| p[0] != t) {
+            out.push([t, v]);
+        }
+    }
+    out
 }
 
 /// Averages of `x` over `parts` consecutive groups, with their mid times.
@@ -719,6 +764,9 @@ pub struct TemperatureReport {
     pub conserved_momentum_components: usize,
     /// The convention in words.
     pub convention: &'static str,
+    /// [time, kT] from the thermo records and snapshots of the whole log (at most
+    /// 2000 points, evenly subsampled).
+    pub series: Vec<[f64; 2]>,
 }
 
 /// A histogram with the theoretical density at the bin centres.
@@ -880,11 +928,10 @@ pub struct EnskogReport {
     pub relation: &'static str,
 }
 
-/// Inelastic runs: cooling and energy budget (physics.md §8).
+/// Inelastic runs: energy budget and Haff's law (physics.md §8); the temperature
+/// against time is [`TemperatureReport::series`].
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct InelasticReport {
-    /// [time, kT] from every thermo record and snapshot.
-    pub temperature_vs_time: Vec<[f64; 2]>,
     /// Energy at the first and last record against the energy dissipated between.
     pub energy: Option<EnergyBudget>,
     /// Haff's law check (normal restitution only).

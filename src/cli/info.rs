@@ -1,0 +1,152 @@
+//! `carom info`: what a log holds, from a scan that does not decode collisions.
+
+use std::process::ExitCode;
+
+use carom::io::log_reader::{scan, LogEnd, LogInfo};
+use carom::io::log_writer::TOPICS;
+use carom::io::Stop;
+use std::fmt::Write;
+
+use serde_json::{json, Value};
+
+use super::{CliError, InfoArgs};
+
+fn stop_json(s: &Stop) -> Value {
+    match s {
+        Stop::Time(t) => json!({ "time": t }),
+        Stop::Collisions(n) => json!({ "collisions": n }),
+    }
+}
+
+fn end_text(e: &LogEnd) -> (bool, String) {
+    match e {
+        LogEnd::Complete => (true, "complete".into()),
+        LogEnd::Truncated { detail } => (false, format!("cut off ({detail})")),
+        LogEnd::Reading | LogEnd::Failed => (false, "unreadable end".into()),
+    }
+}
+
+/// The scan as one JSON object: `file`, `bytes`, `complete`, `end`, `run`
+/// (version, start time, seed, N, stop, resumed_from/at, config), `channels`
+/// (topic → defined, messages, time span), `logged_collisions`,
+/// `last_checkpoint_time`, `summary` (null for a cut-off log).
+pub fn info_json(path: &str, i: &LogInfo) -> Value {
+    let (complete, end) = end_text(&i.end);
+    let config: Value =
+        serde_json::from_str(&i.run.config).unwrap_or(Value::String(i.run.config.clone()));
+    let channels: serde_json::Map<String, Value> = TOPICS
+        .iter()
+        .enumerate()
+        .map(|(k, t)| {
+            (
+                t.to_string(),
+                json!({
+                    "defined": i.channels[k],
+                    "messages": i.messages[k],
+                    "time_span": i.time_span[k].map(|(a, b)| [a, b]),
+                }),
+            )
+        })
+        .collect();
+    let summary = i.summary.as_ref().map(|s| {
+        json!({
+            "stop_reason": s.stop_reason.as_str(),
+            "error": s.error,
+            "end_time": s.end_time,
+            "sim_time": s.sim_time,
+            "pair_collisions": s.pair_collisions,
+            "wall_collisions": s.wall_collisions,
+            "logged_collisions": s.logged_collisions,
+            "kinetic_energy": s.kinetic_energy,
+            "energy_lost": s.energy_lost,
+            "wall_seconds": s.wall_seconds,
+            "collisions_per_second": s.collisions_per_second,
+        })
+    });
+    json!({
+        "file": path,
+        "bytes": i.file_bytes,
+        "complete": complete,
+        "end": end,
+        "run": {
+            "log_format": i.run.log_format,
+            "carom_version": i.run.carom_version,
+            "start_time": i.run.start_time,
+            "seed": i.run.seed,
+            "n_discs": i.run.n_discs,
+            "stop": stop_json(&i.run.stop),
+            "resumed_from": i.run.resumed_from,
+            "resumed_at": i.run.resumed_at,
+            "config": config,
+        },
+        "channels": channels,
+        "logged_collisions": i.logged_collisions,
+        "last_checkpoint_time": i.last_checkpoint_time,
+        "summary": summary,
+    })
+}
+
+/// `carom info`.
+pub fn info(args: InfoArgs) -> Result<ExitCode, CliError> {
+    let i = scan(&args.file)?;
+    let path = args.file.display().to_string();
+    if args.json {
+        super::emit(&format!("{}\n", info_json(&path, &i)))?;
+        return Ok(ExitCode::SUCCESS);
+    }
+    let mut s = String::new();
+    let (_, end) = end_text(&i.end);
+    let _ = writeln!(s, "{path}: {:.2} MB, {end}", i.file_bytes as f64 / 1e6);
+    let _ = writeln!(
+        s,
+        "  written by carom {} (log format {}), started {}",
+        i.run.carom_version, i.run.log_format, i.run.start_time
+    );
+    let _ = writeln!(
+        s,
+        "  N = {}, seed {}, stop at {}",
+        i.run.n_discs,
+        i.run.seed,
+        stop_json(&i.run.stop)
+    );
+    if let (Some(f), Some(t)) = (&i.run.resumed_from, i.run.resumed_at) {
+        let _ = writeln!(s, "  resumed from {f} at t = {t}");
+    }
+    let _ = writeln!(s, "  channels:");
+    for (k, t) in TOPICS.iter().enumerate() {
+        let span = match i.time_span[k] {
+            Some((a, b)) => format!("t ∈ [{a}, {b}]"),
+            None => "no messages".into(),
+        };
+        let _ = writeln!(
+            s,
+            "    {t:<12} {:>10} messages  {span}{}",
+            i.messages[k],
+            if i.channels[k] { "" } else { "  (not defined)" }
+        );
+    }
+    let _ = writeln!(s, "  logged collisions: {}", i.logged_collisions);
+    if let Some(t) = i.last_checkpoint_time {
+        let _ = writeln!(s, "  last checkpoint at t = {t}");
+    }
+    let _ = match &i.summary {
+        Some(sm) => writeln!(s,
+            "  summary: stopped ({}{}) at t = {}, {} pair + {} wall collisions, {:.3e} collisions/s, E = {}, dissipated {}",
+            sm.stop_reason.as_str(),
+            sm.error.as_deref().map(|e| format!(": {e}")).unwrap_or_default(),
+            sm.sim_time,
+            sm.pair_collisions,
+            sm.wall_collisions,
+            sm.collisions_per_second,
+            sm.kinetic_energy,
+            sm.energy_lost
+        ),
+        None => writeln!(s, "  summary: none (the run did not finish; `carom resume` continues it)"),
+    };
+    let _ = writeln!(s, "  configuration:");
+    for line in i.run.config.lines() {
+        let _ = writeln!(s, "    {line}");
+    }
+    super::emit(&s)?;
+    Ok(ExitCode::SUCCESS)
+}

@@ -1,0 +1,200 @@
+//! The `carom` command line: `run`, `resume`, `analyze` and `info`.
+//!
+//! Exit status: 0 on success; 1 when a run or a read fails; 2 for a bad command
+//! line or configuration (the message names the field); 130 when a run was
+//! interrupted with Ctrl-C (its log is finished and readable).
+
+mod analyze;
+mod info;
+mod plot;
+mod run;
+
+use std::path::PathBuf;
+use std::process::ExitCode;
+
+use carom::io::config::ConfigError;
+use clap::{Args, Parser, Subcommand};
+use thiserror::Error;
+
+/// Exact event-driven molecular dynamics of hard discs.
+#[derive(Debug, Parser)]
+#[command(name = "carom", version, about, long_about = None)]
+struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Debug, Subcommand)]
+enum Command {
+    /// Run a simulation and write its MCAP log.
+    ///
+    /// Without CONFIG runs the built-in default: 10⁴ discs at packing fraction 0.5
+    /// for 100 time units (a few seconds), logged to ./carom.mcap.
+    Run(RunArgs),
+    /// Continue a log from its last checkpoint (a killed run, or a finished one with
+    /// a later stop).
+    Resume(ResumeArgs),
+    /// Analyse a log: temperature, Maxwell–Boltzmann tests, pressure and Z with
+    /// standard errors, collision rate and the Enskog check, cooling.
+    Analyze(AnalyzeArgs),
+    /// Describe a log: configuration, channels, message counts, time span, and
+    /// whether it is complete.
+    Info(InfoArgs),
+}
+
+/// Arguments of `carom run`.
+#[derive(Debug, Args)]
+pub struct RunArgs {
+    /// JSON configuration (see data/config.schema.json); omitted: the built-in
+    /// default.
+    pub config: Option<PathBuf>,
+    /// Log file to write; default: CONFIG's name with .mcap in the current
+    /// directory, or carom.mcap.
+    #[arg(short, long, value_name = "FILE")]
+    pub out: Option<PathBuf>,
+    /// Override a configuration field by its dotted path, e.g.
+    /// --set species.0.count=500 --set collision.coefficient=0.9 (repeatable;
+    /// the value is JSON if it parses, else a string).
+    #[arg(long = "set", value_name = "KEY=VALUE")]
+    pub set: Vec<String>,
+    /// Overwrite the log file if it exists.
+    #[arg(short, long)]
+    pub force: bool,
+    /// Instead of a new run, continue this log (same as `carom resume FILE`).
+    #[arg(long, value_name = "FILE", conflicts_with_all = ["config", "set"])]
+    pub resume: Option<PathBuf>,
+    /// Print the resolved configuration and exit without running.
+    #[arg(long)]
+    pub dry_run: bool,
+    /// No progress display.
+    #[arg(short, long)]
+    pub quiet: bool,
+}
+
+/// Arguments of `carom resume`.
+#[derive(Debug, Args)]
+pub struct ResumeArgs {
+    /// The log to continue.
+    pub file: PathBuf,
+    /// Where to write the continued log; default: replace FILE (safely: the new log
+    /// is written beside it and renamed over it when finished).
+    #[arg(short, long, value_name = "FILE")]
+    pub out: Option<PathBuf>,
+    /// Run until this simulated time instead of the log's own stop.
+    #[arg(long, value_name = "T", conflicts_with = "collisions")]
+    pub until: Option<f64>,
+    /// Run until this many collisions in total instead of the log's own stop.
+    #[arg(long, value_name = "N")]
+    pub collisions: Option<u64>,
+    /// No progress display.
+    #[arg(short, long)]
+    pub quiet: bool,
+}
+
+/// Arguments of `carom analyze`.
+#[derive(Debug, Args)]
+pub struct AnalyzeArgs {
+    /// The log to analyse.
+    pub file: PathBuf,
+    /// Print one JSON object (field names documented in
+    /// carom::analysis::report::Report) instead of text.
+    #[arg(long)]
+    pub json: bool,
+    /// Write figures (PNG and SVG) into this directory.
+    #[arg(long, value_name = "DIR")]
+    pub plot: Option<PathBuf>,
+    /// Ignore everything before this simulated time; default: the first 10 % of
+    /// the log.
+    #[arg(long, value_name = "T")]
+    pub equilibrate: Option<f64>,
+    /// Use snapshots at least this far apart (simulated time) for the velocity
+    /// distribution; default: every snapshot after --equilibrate.
+    #[arg(long, value_name = "DT")]
+    pub every: Option<f64>,
+    /// Bins of the speed histograms.
+    #[arg(long, value_name = "N", default_value_t = 40)]
+    pub bins: usize,
+}
+
+/// Arguments of `carom info`.
+#[derive(Debug, Args)]
+pub struct InfoArgs {
+    /// The log to describe.
+    pub file: PathBuf,
+    /// Print one JSON object instead of text.
+    #[arg(long)]
+    pub json: bool,
+}
+
+/// Why a command failed.
+#[derive(Debug, Error)]
+pub enum CliError {
+    /// The configuration or a `--set` is wrong (exit status 2).
+    #[error("configuration: {0}")]
+    Config(#[from] ConfigError),
+    /// A command-line value is wrong (exit status 2).
+    #[error("{0}")]
+    Usage(String),
+    /// A run failed.
+    #[error("{0}")]
+    Run(#[from] carom::run::RunError),
+    /// A log could not be read.
+    #[error("{0}")]
+    Read(#[from] carom::io::log_reader::ReadError),
+    /// A statistic could not be computed.
+    #[error("analysis: {0}")]
+    Stats(#[from] carom::analysis::stats::StatsError),
+    /// Writing output failed.
+    #[error("{context}: {source}")]
+    Io {
+        /// What was being written.
+        context: String,
+        /// The operating system's error.
+        source: std::io::Error,
+    },
+    /// Drawing a figure failed.
+    #[error("plot: {0}")]
+    Plot(String),
+}
+
+impl CliError {
+    fn exit_code(&self) -> u8 {
+        match self {
+            CliError::Config(_) | CliError::Usage(_) => 2,
+            _ => 1,
+        }
+    }
+}
+
+/// Write `text` to standard output; a closed pipe (`carom info x | head`) is not
+/// an error.
+pub(crate) fn emit(text: &str) -> Result<(), CliError> {
+    use std::io::Write;
+    let mut out = std::io::stdout().lock();
+    match out.write_all(text.as_bytes()).and_then(|()| out.flush()) {
+        Err(e) if e.kind() != std::io::ErrorKind::BrokenPipe => Err(CliError::Io {
+            context: "cannot write to standard output".into(),
+            source: e,
+        }),
+        _ => Ok(()),
+    }
+}
+
+/// Parse the command line, run the command, report errors; the process's exit
+/// status.
+pub fn main() -> ExitCode {
+    let cli = Cli::parse();
+    let result = match cli.command {
+        Command::Run(a) => run::run(a),
+        Command::Resume(a) => run::resume(a),
+        Command::Analyze(a) => analyze::analyze(a),
+        Command::Info(a) => info::info(a),
+    };
+    match result {
+        Ok(code) => code,
+        Err(e) => {
+            eprintln!("error: {e}");
+            ExitCode::from(e.exit_code())
+        }
+    }
+}

@@ -1,0 +1,299 @@
+//! `carom analyze --plot DIR`: figures of a [`Report`] as PNG and SVG (plotters;
+//! text in DejaVu Sans, embedded, so no system fonts are needed).
+//!
+//! Files: `speed_species{k}` (speed histogram with the MB pdf),
+//! `components_species{k}` (v_x and v_y histograms with the Gaussian),
+//! `temperature` (kT against time), `pressure` (Z against time with the mean and
+//! one standard error).
+
+use std::path::Path;
+use std::sync::Once;
+
+use carom::analysis::report::{HistogramReport, Report, SpeciesMb};
+use plotters::coord::Shift;
+use plotters::prelude::*;
+
+use super::CliError;
+
+const SIZE: (u32, u32) = (900, 600);
+
+fn register_font() {
+    static ONCE: Once = Once::new();
+    ONCE.call_once(|| {
+        // The bytes are a valid font shipped by the `dejavu` crate.
+        let _ = plotters::style::register_font(
+            "sans-serif",
+            FontStyle::Normal,
+            dejavu::sans::regular(),
+        );
+    });
+}
+
+type DrawResult<DB> = Result<(), DrawingAreaErrorKind<<DB as DrawingBackend>::ErrorType>>;
+
+fn plot_err<E: std::fmt::Display>(name: &str, e: E) -> CliError {
+    CliError::Plot(format!("{name}: {e}"))
+}
+
+/// Draw one figure with `draw` into `dir/name.png` and `dir/name.svg`.
+macro_rules! both {
+    ($dir:expr, $name:expr, $draw:expr) => {{
+        let png = $dir.join(format!("{}.png", $name));
+        {
+            let root = BitMapBackend::new(&png, SIZE).into_drawing_area();
+            root.fill(&WHITE).map_err(|e| plot_err($name, e))?;
+            $draw(&root).map_err(|e| plot_err($name, e))?;
+            root.present().map_err(|e| plot_err($name, e))?;
+        }
+        let svg = $dir.join(format!("{}.svg", $name));
+        {
+            let root = SVGBackend::new(&svg, SIZE).into_drawing_area();
+            root.fill(&WHITE).map_err(|e| plot_err($name, e))?;
+            $draw(&root).map_err(|e| plot_err($name, e))?;
+            root.present().map_err(|e| plot_err($name, e))?;
+        }
+    }};
+}
+
+/// Write every figure of `report` into `dir` (created if needed). Returns the
+/// number of figures (each as PNG and SVG).
+pub fn write_all(report: &Report, dir: &Path) -> Result<usize, CliError> {
+    std::fs::create_dir_all(dir).map_err(|source| CliError::Io {
+        context: format!("cannot create {}", dir.display()),
+        source,
+    })?;
+    register_font();
+    let mut n = 0;
+    for m in &report.maxwell_boltzmann {
+        let name = format!("speed_species{}", m.species);
+        both!(dir, &name, |root| draw_speed(root, m));
+        let name = format!("components_species{}", m.species);
+        both!(dir, &name, |root| draw_components(root, m));
+        n += 2;
+    }
+    if report.temperature.series.len() >= 2 {
+        both!(dir, "temperature", |root| draw_temperature(root, report));
+        n += 1;
+    }
+    if report
+        .pressure
+        .as_ref()
+        .is_some_and(|p| p.series.len() >= 2)
+    {
+        both!(dir, "pressure", |root| draw_pressure(root, report));
+        n += 1;
+    }
+    Ok(n)
+}
+
+fn range(values: impl Iterator<Item = f64>) -> (f64, f64) {
+    let (lo, hi) = values
+        .filter(|v| v.is_finite())
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), v| {
+            (a.min(v), b.max(v))
+        });
+    if !(hi > lo) {
+        let c = if lo.is_finite() { lo } else { 0.0 };
+        return (c - 1.0, c + 1.0);
+    }
+    let pad = 0.05 * (hi - lo);
+    (lo - pad, hi + pad)
+}
+
+fn histogram_series<DB: DrawingBackend>(
+    chart: &mut ChartContext<
+        '_,
+        DB,
+        Cartesian2d<plotters::coord::types::RangedCoordf64, plotters::coord::types::RangedCoordf64>,
+    >,
+    h: &HistogramReport,
+    colour: RGBColor,
+    label: &str,
+) -> DrawResult<DB> {
+    let bars =
+        h.edges.windows(2).zip(&h.density).map(move |(e, &d)| {
+            Rectangle::new([(e[0], 0.0), (e[1], d)], colour.mix(0.35).filled())
+        });
+    chart.draw_series(bars)?.label(label).legend(move |(x, y)| {
+        Rectangle::new([(x, y - 5), (x + 15, y + 5)], colour.mix(0.35).filled())
+    });
+    Ok(())
+}
+
+fn theory_line<DB: DrawingBackend>(
+    chart: &mut ChartContext<
+        '_,
+        DB,
+        Cartesian2d<plotters::coord::types::RangedCoordf64, plotters::coord::types::RangedCoordf64>,
+    >,
+    h: &HistogramReport,
+    label: &str,
+) -> DrawResult<DB> {
+    let centres = h.edges.windows(2).map(|e| 0.5 * (e[0] + e[1]));
+    chart
+        .draw_series(LineSeries::new(
+            centres.zip(h.theory.iter().copied()),
+            BLACK.stroke_width(2),
+        ))?
+        .label(label)
+        .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 15, y)], BLACK.stroke_width(2)));
+    Ok(())
+}
+
+fn draw_speed<DB: DrawingBackend>(root: &DrawingArea<DB, Shift>, m: &SpeciesMb) -> DrawResult<DB> {
+    let h = &m.speed_histogram;
+    let x_max = *h.edges.last().unwrap_or(&1.0);
+    let y_max = h
+        .density
+        .iter()
+        .chain(&h.theory)
+        .copied()
+        .fold(0.0, f64::max)
+        * 1.1;
+    let mut chart = ChartBuilder::on(root)
+        .caption(
+            format!(
+                "species {} (m = {}): speeds, χ² p = {:.3}, KS p = {:.3}",
+                m.species, m.mass, m.chi_square.p_value, m.ks.p_value
+            ),
+            ("sans-serif", 22),
+        )
+        .margin(15)
+        .x_label_area_size(45)
+        .y_label_area_size(60)
+        .build_cartesian_2d(0.0..x_max, 0.0..y_max.max(1e-12))?;
+    chart
+        .configure_mesh()
+        .x_desc("speed v")
+        .y_desc("probability density")
+        .draw()?;
+    histogram_series(&mut chart, h, BLUE, &format!("{} speeds", m.samples))?;
+    theory_line(
+        &mut chart,
+        h,
+        &format!("Maxwell–Boltzmann, kT = {:.4}", m.kt),
+    )?;
+    chart
+        .configure_series_labels()
+        .background_style(WHITE.mix(0.8))
+        .border_style(BLACK)
+        .draw()?;
+    Ok(())
+}
+
+fn draw_components<DB: DrawingBackend>(
+    root: &DrawingArea<DB, Shift>,
+    m: &SpeciesMb,
+) -> DrawResult<DB> {
+    let (hx, hy) = (&m.vx_histogram, &m.vy_histogram);
+    let x_lo = *hx.edges.first().unwrap_or(&-1.0);
+    let x_hi = *hx.edges.last().unwrap_or(&1.0);
+    let y_max = hx
+        .density
+        .iter()
+        .chain(&hy.density)
+        .chain(&hx.theory)
+        .copied()
+        .fold(0.0, f64::max)
+        * 1.1;
+    let mut chart = ChartBuilder::on(root)
+        .caption(
+            format!(
+                "species {}: velocity components, KS p(vx) = {:.3}, p(vy) = {:.3}",
+                m.species, m.ks_vx.p_value, m.ks_vy.p_value
+            ),
+            ("sans-serif", 22),
+        )
+        .margin(15)
+        .x_label_area_size(45)
+        .y_label_area_size(60)
+        .build_cartesian_2d(x_lo..x_hi, 0.0..y_max.max(1e-12))?;
+    chart
+        .configure_mesh()
+        .x_desc("velocity component")
+        .y_desc("probability density")
+        .draw()?;
+    histogram_series(&mut chart, hx, BLUE, "vx")?;
+    histogram_series(&mut chart, hy, RED, "vy")?;
+    theory_line(
+        &mut chart,
+        hx,
+        &format!("Gaussian, variance kT/m = {:.4}", m.kt / m.mass),
+    )?;
+    chart
+        .configure_series_labels()
+        .background_style(WHITE.mix(0.8))
+        .border_style(BLACK)
+        .draw()?;
+    Ok(())
+}
+
+fn draw_temperature<DB: DrawingBackend>(
+    root: &DrawingArea<DB, Shift>,
+    r: &Report,
+) -> DrawResult<DB> {
+    let s = &r.temperature.series;
+    let (x0, x1) = range(s.iter().map(|p| p[0]));
+    let (y0, y1) = range(s.iter().map(|p| p[1]).chain([0.0]));
+    let mut chart = ChartBuilder::on(root)
+        .caption("temperature kT = 2K/f against time", ("sans-serif", 22))
+        .margin(15)
+        .x_label_area_size(45)
+        .y_label_area_size(70)
+        .build_cartesian_2d(x0..x1, y0..y1)?;
+    chart.configure_mesh().x_desc("time").y_desc("kT").draw()?;
+    chart.draw_series(LineSeries::new(
+        s.iter().map(|p| (p[0], p[1])),
+        BLUE.stroke_width(2),
+    ))?;
+    if let Some(h) = r.inelastic.as_ref().and_then(|i| i.haff.as_ref()) {
+        let (t0, kt0) = (s[0][0], s[0][1]);
+        let haff = s
+            .iter()
+            .map(|p| (p[0], kt0 / (1.0 + (p[0] - t0) / h.t0).powi(2)));
+        chart
+            .draw_series(LineSeries::new(haff, BLACK.stroke_width(1)))?
+            .label("Haff's law")
+            .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 15, y)], BLACK));
+        chart
+            .configure_series_labels()
+            .background_style(WHITE.mix(0.8))
+            .border_style(BLACK)
+            .draw()?;
+    }
+    Ok(())
+}
+
+fn draw_pressure<DB: DrawingBackend>(root: &DrawingArea<DB, Shift>, r: &Report) -> DrawResult<DB> {
+    let p = r.pressure.as_ref().expect("checked by the caller");
+    let s = &p.series;
+    let (x0, x1) = range(s.iter().map(|q| q[0]));
+    let (y0, y1) = range(s.iter().map(|q| q[1]));
+    let mut chart = ChartBuilder::on(root)
+        .caption(
+            format!("Z = βPA/N = {:.4} ± {:.4}", p.z, p.z_std_error),
+            ("sans-serif", 22),
+        )
+        .margin(15)
+        .x_label_area_size(45)
+        .y_label_area_size(70)
+        .build_cartesian_2d(x0..x1, y0..y1)?;
+    chart.configure_mesh().x_desc("time").y_desc("Z").draw()?;
+    chart.draw_series(std::iter::once(Rectangle::new(
+        [(x0, p.z - p.z_std_error), (x1, p.z + p.z_std_error)],
+        GREEN.mix(0.3).filled(),
+    )))?;
+    chart.draw_series(LineSeries::new(
+        [(x0, p.z), (x1, p.z)],
+        GREEN.stroke_width(2),
+    ))?;
+    chart.draw_series(LineSeries::new(
+        s.iter().map(|q| (q[0], q[1])),
+        BLUE.stroke_width(1),
+    ))?;
+    chart.draw_series(
+        s.iter()
+            .map(|q| Circle::new((q[0], q[1]), 3, BLUE.filled())),
+    )?;
+    Ok(())
+}

@@ -1,0 +1,221 @@
+//! `carom run` and `carom resume`: progress on a terminal (indicatif) or plain
+//! periodic lines otherwise, and Ctrl-C as a clean stop.
+
+use std::io::IsTerminal;
+use std::path::{Path, PathBuf};
+use std::process::ExitCode;
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::time::{Duration, Instant};
+
+use carom::io::config::{self, ConfigError};
+use carom::io::run_metadata::StopReason;
+use carom::io::Stop;
+use carom::run::{Control, Progress, ResumeOptions, RunError, RunSummary};
+use indicatif::{ProgressBar, ProgressStyle};
+
+use super::{CliError, ResumeArgs, RunArgs};
+
+/// Raised by Ctrl-C; the run stops at its next event and finishes the log.
+static STOP: AtomicBool = AtomicBool::new(false);
+
+/// Install the Ctrl-C handler: the first press asks the run to stop cleanly, a
+/// second one exits at once.
+fn install_ctrlc() {
+    let r = ctrlc::set_handler(|| {
+        if STOP.swap(true, Ordering::SeqCst) {
+            eprintln!("\ninterrupted again: exiting without finishing the log");
+            std::process::exit(130);
+        }
+        eprintln!(
+            "\ninterrupt: stopping at the next event and finishing the log (Ctrl-C again to abort)"
+        );
+    });
+    if let Err(e) = r {
+        eprintln!("warning: cannot handle Ctrl-C ({e}); an interrupt will cut the log short");
+    }
+}
+
+/// Progress display: an indicatif bar on a terminal, a plain line every
+/// `PLAIN_EVERY` otherwise, nothing with `--quiet`.
+struct Display {
+    bar: Option<ProgressBar>,
+    plain: bool,
+    last_plain: Option<Instant>,
+}
+
+const PLAIN_EVERY: Duration = Duration::from_secs(5);
+
+fn stop_text(s: &Stop) -> String {
+    match s {
+        Stop::Time(t) => format!("t = {t}"),
+        Stop::Collisions(n) => format!("{n} collisions"),
+    }
+}
+
+impl Display {
+    fn new(quiet: bool) -> Self {
+        if quiet {
+            return Display {
+                bar: None,
+                plain: false,
+                last_plain: None,
+            };
+        }
+        if std::io::stderr().is_terminal() {
+            let bar = ProgressBar::new(1000);
+            bar.set_style(
+                ProgressStyle::with_template(
+                    "{spinner} [{elapsed_precise}] {bar:30} {percent:>3}% {msg} (ETA {eta})",
+                )
+                .expect("valid template"),
+            );
+            Display {
+                bar: Some(bar),
+                plain: false,
+                last_plain: None,
+            }
+        } else {
+            Display {
+                bar: None,
+                plain: true,
+                last_plain: None,
+            }
+        }
+    }
+
+    fn update(&mut self, p: &Progress) {
+        let msg = format!(
+            "t = {:.4} / {}, {} collisions, {:.3e} coll/s",
+            p.sim_time,
+            stop_text(&p.stop),
+            p.collisions,
+            p.collisions_per_second
+        );
+        if let Some(bar) = &self.bar {
+            bar.set_position((p.fraction.clamp(0.0, 1.0) * 1000.0) as u64);
+            bar.set_message(msg);
+        } else if self.plain {
+            let due = self.last_plain.is_none_or(|t| t.elapsed() >= PLAIN_EVERY);
+            if due || p.fraction >= 1.0 {
+                eprintln!(
+                    "[{:7.1} s] {:5.1}% {msg}",
+                    p.wall_seconds,
+                    100.0 * p.fraction.clamp(0.0, 1.0)
+                );
+                self.last_plain = Some(Instant::now());
+            }
+        }
+    }
+
+    fn finish(&self) {
+        if let Some(bar) = &self.bar {
+            bar.finish_and_clear();
+        }
+    }
+}
+
+fn default_out(config: Option<&Path>) -> PathBuf {
+    match config.and_then(|c| c.file_stem()) {
+        Some(stem) => {
+            let mut name = stem.to_os_string();
+            name.push(".mcap");
+            PathBuf::from(name)
+        }
+        None => PathBuf::from("carom.mcap"),
+    }
+}
+
+/// Map a run error whose cause is the configuration to a [`ConfigError`] naming
+/// the configuration's field.
+fn run_error(e: RunError) -> CliError {
+    match e {
+        RunError::Init(init) => CliError::Config(ConfigError::from_init(init)),
+        other => CliError::Run(other),
+    }
+}
+
+fn report(summary: &RunSummary) -> ExitCode {
+    eprintln!(
+        "{}: stopped ({}) at t = {}, {} pair + {} wall collisions ({} logged), \
+         {:.3e} collisions/s over {:.1} s, {:.1} MB",
+        summary.log.display(),
+        summary.stop_reason.as_str(),
+        summary.sim_time,
+        summary.pair_collisions,
+        summary.wall_collisions,
+        summary.logged_collisions,
+        summary.collisions_per_second,
+        summary.wall_seconds,
+        summary.file_bytes as f64 / 1e6
+    );
+    match summary.stop_reason {
+        StopReason::Interrupted => {
+            eprintln!(
+                "interrupted: the log is finished; continue with `carom resume {}`",
+                summary.log.display()
+            );
+            ExitCode::from(130)
+        }
+        StopReason::Error => ExitCode::FAILURE,
+        _ => ExitCode::SUCCESS,
+    }
+}
+
+/// `carom run`.
+pub fn run(args: RunArgs) -> Result<ExitCode, CliError> {
+    if let Some(file) = args.resume {
+        return resume(ResumeArgs {
+            file,
+            out: args.out,
+            until: None,
+            collisions: None,
+            quiet: args.quiet,
+        });
+    }
+    let spec = config::load(args.config.as_deref(), &args.set)?;
+    if args.dry_run {
+        super::emit(&format!("{}\n", spec.config_json))?;
+        return Ok(ExitCode::SUCCESS);
+    }
+    let out = args
+        .out
+        .unwrap_or_else(|| default_out(args.config.as_deref()));
+    if out.exists() && !args.force {
+        return Err(CliError::Usage(format!(
+            "{} exists; use --force to overwrite it or --out to choose another file",
+            out.display()
+        )));
+    }
+    install_ctrlc();
+    let mut display = Display::new(args.quiet);
+    let mut progress = |p: &Progress| display.update(p);
+    let summary = carom::run::run(&spec, &out, Control::new(&STOP, &mut progress));
+    display.finish();
+    Ok(report(&summary.map_err(run_error)?))
+}
+
+/// `carom resume`.
+pub fn resume(args: ResumeArgs) -> Result<ExitCode, CliError> {
+    let stop = match (args.until, args.collisions) {
+        (Some(t), None) => {
+            if !t.is_finite() {
+                return Err(CliError::Usage(format!("--until {t}: not a finite time")));
+            }
+            Some(Stop::Time(t))
+        }
+        (None, Some(n)) => Some(Stop::Collisions(n)),
+        _ => None,
+    };
+    let out = args.out.unwrap_or_else(|| args.file.clone());
+    install_ctrlc();
+    let mut display = Display::new(args.quiet);
+    let mut progress = |p: &Progress| display.update(p);
+    let summary = carom::run::resume(
+        &args.file,
+        &out,
+        &ResumeOptions { stop },
+        Control::new(&STOP, &mut progress),
+    );
+    display.finish();
+    Ok(report(&summary.map_err(run_error)?))
+}
