@@ -48,6 +48,36 @@ pub fn contact_time(dr: DVec2, dv: DVec2, sigma: f64) -> Option<f64> {
     Some(c / (d.sqrt() - b))
 }
 
+/// [`contact_time`] restricted to contacts earlier than `limit` (time from now):
+/// returns the same value as `contact_time(dr, dv, sigma)` when that is `Some(t)`
+/// with t < `limit`, and `None` otherwise.
+///
+/// Used by the event loop to skip the square root for pairs that cannot beat the
+/// best event found so far: since √D ≤ −b, t = c/(−b + √D) ≥ c/(−2b), so a pair
+/// with c ≥ limit·(−2b) (checked with a margin of a few ulps) meets no earlier
+/// than `limit`.
+#[inline]
+pub fn contact_time_before(dr: DVec2, dv: DVec2, sigma: f64, limit: f64) -> Option<f64> {
+    let b = dr.dot(dv);
+    if !(b < 0.0) {
+        return None;
+    }
+    let c = dr.length_squared() - sigma * sigma;
+    if c <= 0.0 {
+        return (0.0 < limit).then_some(0.0);
+    }
+    // Lower bound on t, with a relative margin far above rounding.
+    if c > limit * (-2.0 * b) * (1.0 + 1e-12) {
+        return None;
+    }
+    let d = b * b - dv.length_squared() * c;
+    if !(d >= 0.0) {
+        return None;
+    }
+    let t = c / (d.sqrt() - b);
+    (t < limit).then_some(t)
+}
+
 /// The seed's angular contact time (seed 000, Eq. 14–17), kept as a reference.
 ///
 /// Disc 1 at `r1` with velocity `v1` and radius `a1`, disc 2 likewise. With
@@ -123,6 +153,43 @@ mod tests {
         assert_eq!(
             contact_time(DVec2::new(2.0, 0.0), DVec2::new(f64::NAN, 0.0), 1.0),
             None
+        );
+    }
+
+    #[test]
+    fn limited_contact_time_is_the_filtered_contact_time() {
+        // A deterministic sweep over geometries and limits, including limits equal
+        // to the contact time and pairs just inside and outside the pruning bound.
+        let mut k = 0u64;
+        let mut next = || {
+            k = k
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            (k >> 11) as f64 / (1u64 << 53) as f64
+        };
+        for _ in 0..200_000 {
+            let dr = DVec2::new(4.0 * next() - 2.0, 4.0 * next() - 2.0);
+            let dv = DVec2::new(4.0 * next() - 2.0, 4.0 * next() - 2.0);
+            let full = contact_time(dr, dv, 1.0);
+            let limit = match (full, next() < 0.2) {
+                (Some(t), true) => t,
+                _ => 3.0 * next(),
+            };
+            let expect = full.filter(|&t| t < limit);
+            assert_eq!(
+                contact_time_before(dr, dv, 1.0, limit),
+                expect,
+                "{dr} {dv} {limit}"
+            );
+        }
+        assert_eq!(
+            contact_time_before(
+                DVec2::new(3.0, 0.0),
+                DVec2::new(-2.0, 0.0),
+                1.0,
+                f64::INFINITY
+            ),
+            Some(1.0)
         );
     }
 

@@ -42,6 +42,7 @@ pub struct Checkpoint {
     pub event_times: Vec<f64>,
     /// Pending event of each disc: [partner, partner counter, kind | aux << 8].
     pub pending: Vec<[u32; 3]>,
+
     /// First disc of each cell (u32::MAX for none), one entry per cell.
     pub cell_head: Vec<u32>,
     /// Next disc in the same cell.
@@ -54,6 +55,28 @@ pub struct Checkpoint {
     pub scheduled: Vec<(f64, u64, u64)>,
     /// Sequence number the next scheduled event will get.
     pub next_seq: u64,
+    /// External (user) index of each internal slot: the per-disc arrays above are in
+    /// the engine's internal (space-filling-curve) order.
+    pub labels: Vec<u32>,
+    /// Pair-collision count at which the engine next renumbers its discs.
+    pub next_reorder: u64,
+}
+
+fn encode(p: &Pending) -> [u32; 3] {
+    [
+        p.partner,
+        p.partner_count,
+        p.kind as u32 | (p.aux as u32) << 8,
+    ]
+}
+
+fn decode(p: &[u32; 3]) -> Pending {
+    Pending {
+        partner: p[0],
+        partner_count: p[1],
+        kind: (p[2] & 0xff) as u8,
+        aux: (p[2] >> 8) as u8,
+    }
 }
 
 impl Engine {
@@ -82,23 +105,15 @@ impl Engine {
             event_times: (0..n)
                 .map(|i| self.queue.get(i as u32).into_inner())
                 .collect(),
-            pending: self
-                .pending
-                .iter()
-                .map(|p| {
-                    [
-                        p.partner,
-                        p.partner_count,
-                        p.kind as u32 | (p.aux as u32) << 8,
-                    ]
-                })
-                .collect(),
+            pending: self.pending.iter().map(encode).collect(),
             cell_head: self.grid.head.clone(),
             cell_next: self.grid.next.clone(),
             cell_prev: self.grid.prev.clone(),
             cell: self.grid.cell.clone(),
             scheduled,
             next_seq: self.next_seq,
+            labels: self.label.clone(),
+            next_reorder: self.next_reorder,
         }
     }
 
@@ -118,6 +133,7 @@ impl Engine {
             ("cell_next", cp.cell_next.len()),
             ("cell_prev", cp.cell_prev.len()),
             ("cell", cp.cell.len()),
+            ("labels", cp.labels.len()),
         ] {
             if len != n {
                 return Err(bad(format!("{name} has {len} entries for {n} discs")));
@@ -129,6 +145,19 @@ impl Engine {
             .find(|&&s| s as usize >= cp.species.len())
         {
             return Err(bad(format!("species index {s} out of range")));
+        }
+        let mut index_of = vec![u32::MAX; n];
+        for (k, &l) in cp.labels.iter().enumerate() {
+            if l as usize >= n || index_of[l as usize] != u32::MAX {
+                return Err(bad(
+                    "labels are not a permutation of the disc indices".into()
+                ));
+            }
+            index_of[l as usize] = k as u32;
+        }
+        let mut external_species_of = vec![0u16; n];
+        for (k, &l) in cp.labels.iter().enumerate() {
+            external_species_of[l as usize] = cp.species_of[k];
         }
         let a_max = cp.species.iter().map(|s| s.radius).fold(0.0, f64::max);
         let mut grid = CellGrid::new(&cp.sim_box, 2.0 * a_max, n);
@@ -167,13 +196,10 @@ impl Engine {
             if p[0] != u32::MAX && p[0] as usize >= n {
                 return Err(bad(format!("pending partner of disc {i} out of range")));
             }
-            pending.push(Pending {
-                partner: p[0],
-                partner_count: p[1],
-                kind: (p[2] & 0xff) as u8,
-                aux: (p[2] >> 8) as u8,
-            });
+            pending.push(decode(p));
         }
+
+        queue.retune(cp.now);
         let bodies = (0..n)
             .map(|i| Body {
                 r: cp.positions[i],
@@ -206,6 +232,10 @@ impl Engine {
             now: cp.now,
             same_time_collisions: cp.same_time_collisions,
             stats: cp.stats,
+            label: cp.labels,
+            index_of,
+            external_species_of,
+            next_reorder: cp.next_reorder,
         })
     }
 }
@@ -251,7 +281,10 @@ mod tests {
     #[test]
     fn resumed_engine_continues_bit_identically() {
         let mut a = channel_mixture();
-        a.run_collisions(5_000).unwrap();
+        // Stop 5 000 collisions short of a renumbering (every 65 536 pair collisions
+        // here), so that the compared stretch crosses one.
+        a.run_collisions(60_000).unwrap();
+        let before = a.stats().pair_collisions;
         a.schedule(a.now() + 3.0, 1).unwrap();
         let mut b = Engine::from_checkpoint(a.checkpoint()).unwrap();
         let ta = trajectory(&mut a, 20_000);
@@ -260,6 +293,7 @@ mod tests {
             .iter()
             .any(|e| matches!(e, Event::Scheduled { tag: 1, .. })));
         assert_eq!(ta, tb);
+        assert!(before < 65_536 && a.stats().pair_collisions > 65_536);
         let (sa, sb) = (a.state(), b.state());
         let bits = |v: &[DVec2]| {
             v.iter()

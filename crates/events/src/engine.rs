@@ -19,7 +19,7 @@ use crate::queue::{EventQueue, Time};
 use crate::state::{kinetic_energy, State};
 use carom_core::boundary::{wall_reflect, wall_time};
 use carom_core::collision::resolve;
-use carom_core::kinematics::contact_time;
+use carom_core::kinematics::contact_time_before;
 use carom_core::{Axis, Boundary, DVec2, Restitution, SimBox, Species, WallSide};
 use ordered_float::NotNan;
 use std::cmp::Reverse;
@@ -121,6 +121,33 @@ pub struct Engine {
     pub(crate) now: f64,
     pub(crate) same_time_collisions: u64,
     pub(crate) stats: Stats,
+    /// External (user) index of each internal slot.
+    pub(crate) label: Vec<u32>,
+    /// Internal slot of each external index.
+    pub(crate) index_of: Vec<u32>,
+    /// Species of each disc in external order.
+    pub(crate) external_species_of: Vec<u16>,
+    /// Pair-collision count at which discs are next renumbered along the Z curve.
+    pub(crate) next_reorder: u64,
+}
+
+/// Pair collisions between two renumberings of the discs along the Z curve.
+fn reorder_interval(n: usize) -> u64 {
+    (16 * n as u64).max(1 << 16)
+}
+
+/// Interleave the bits of a cell's column and row (Z-order / Morton key).
+fn morton(c: [u32; 2]) -> u64 {
+    fn spread(x: u32) -> u64 {
+        let mut x = x as u64;
+        x = (x | (x << 16)) & 0x0000_ffff_0000_ffff;
+        x = (x | (x << 8)) & 0x00ff_00ff_00ff_00ff;
+        x = (x | (x << 4)) & 0x0f0f_0f0f_0f0f_0f0f;
+        x = (x | (x << 2)) & 0x3333_3333_3333_3333;
+        x = (x | (x << 1)) & 0x5555_5555_5555_5555;
+        x
+    }
+    spread(c[0]) | (spread(c[1]) << 1)
 }
 
 #[inline]
@@ -163,7 +190,11 @@ impl Engine {
         let mut engine = Engine {
             sim_box: state.sim_box,
             species: state.species,
+            external_species_of: state.species_of.clone(),
             species_of: state.species_of,
+            label: (0..n as u32).collect(),
+            index_of: (0..n as u32).collect(),
+            next_reorder: reorder_interval(n),
             bodies,
             count: vec![0; n],
             pending: vec![Pending::NONE; n],
@@ -177,9 +208,11 @@ impl Engine {
             same_time_collisions: 0,
             stats: Stats::default(),
         };
+        engine.reorder();
         for i in 0..n {
             engine.predict(i);
         }
+        engine.queue.retune(engine.now);
         Ok(engine)
     }
 
@@ -210,7 +243,7 @@ impl Engine {
 
     /// Species index of each disc.
     pub fn species_of(&self) -> &[u16] {
-        &self.species_of
+        &self.external_species_of
     }
 
     /// The dynamics parameters.
@@ -230,13 +263,13 @@ impl Engine {
 
     /// Position of disc `i` at the current time (length), inside the box.
     pub fn position(&self, i: usize) -> DVec2 {
-        let b = &self.bodies[i];
+        let b = &self.bodies[self.index_of[i] as usize];
         self.sim_box.wrap(b.r + b.v * (self.now - b.t))
     }
 
     /// Velocity of disc `i` (length/time).
     pub fn velocity(&self, i: usize) -> DVec2 {
-        self.bodies[i].v
+        self.bodies[self.index_of[i] as usize].v
     }
 
     /// Total kinetic energy (energy).
@@ -251,9 +284,9 @@ impl Engine {
         State {
             sim_box: self.sim_box,
             species: self.species.clone(),
-            species_of: self.species_of.clone(),
+            species_of: self.external_species_of.clone(),
             positions: (0..self.len()).map(|i| self.position(i)).collect(),
-            velocities: self.bodies.iter().map(|b| b.v).collect(),
+            velocities: (0..self.len()).map(|i| self.velocity(i)).collect(),
             time: self.now,
         }
     }
@@ -265,6 +298,8 @@ impl Engine {
             + self.pending.capacity() * std::mem::size_of::<Pending>()
             + self.last_collision.capacity() * 8
             + self.species_of.capacity() * 2
+            + self.external_species_of.capacity() * 2
+            + (self.label.capacity() + self.index_of.capacity()) * 4
             + self.queue.heap_bytes()
             + self.grid.heap_bytes()
     }
@@ -289,6 +324,10 @@ impl Engine {
     /// nothing will ever happen again (all discs at rest and nothing scheduled).
     pub fn next_event(&mut self) -> Result<Option<Event>, EngineError> {
         loop {
+            if self.stats.pair_collisions >= self.next_reorder {
+                self.reorder();
+                self.next_reorder += reorder_interval(self.len());
+            }
             let (t, who) = self.queue.peek();
             if let Some(&Reverse((ts, _, tag))) = self.scheduled.peek() {
                 if ts <= t {
@@ -381,6 +420,58 @@ impl Engine {
         Ok(())
     }
 
+    /// Renumber the discs along the Z (Morton) curve of their cells, so that discs
+    /// close in space are close in memory and in the queue. Only the internal order
+    /// changes: events and states keep the user's numbering, and no arithmetic on
+    /// the trajectory depends on the order (ties are broken by internal index, which
+    /// this renumbering makes a deterministic function of the history).
+    pub(crate) fn reorder(&mut self) {
+        let n = self.len();
+        let mut keys: Vec<(u64, u32)> = (0..n)
+            .map(|i| (morton(self.grid.cell[i]), i as u32))
+            .collect();
+        keys.sort_unstable();
+        let perm: Vec<usize> = keys.iter().map(|k| k.1 as usize).collect();
+        let mut inv = vec![0u32; n];
+        for (k, &old) in perm.iter().enumerate() {
+            inv[old] = k as u32;
+        }
+        fn permute<T: Copy>(v: &[T], perm: &[usize]) -> Vec<T> {
+            perm.iter().map(|&o| v[o]).collect()
+        }
+        self.bodies = permute(&self.bodies, &perm);
+        self.count = permute(&self.count, &perm);
+        self.last_collision = permute(&self.last_collision, &perm);
+        self.species_of = permute(&self.species_of, &perm);
+        self.label = permute(&self.label, &perm);
+        let cells = permute(&self.grid.cell, &perm);
+        let remap = |v: &[Pending]| -> Vec<Pending> {
+            perm.iter()
+                .map(|&o| {
+                    let mut p = v[o];
+                    if p.partner != NONE {
+                        p.partner = inv[p.partner as usize];
+                    }
+                    p
+                })
+                .collect()
+        };
+        self.pending = remap(&self.pending);
+        let mut queue = EventQueue::new(n);
+        for (k, &o) in perm.iter().enumerate() {
+            queue.set(k as u32, self.queue.get(o as u32));
+        }
+        queue.retune(self.now);
+        self.queue = queue;
+        for (k, &l) in self.label.iter().enumerate() {
+            self.index_of[l as usize] = k as u32;
+        }
+        self.grid.head.fill(NONE);
+        for k in (0..n).rev() {
+            self.grid.insert(k as u32, cells[k]);
+        }
+    }
+
     /// Bring disc `i`'s stored state to the current time.
     #[inline]
     fn sync(&mut self, i: usize) {
@@ -434,8 +525,8 @@ impl Engine {
         self.predict(j);
         PairCollision {
             time: now,
-            i: i as u32,
-            j: j as u32,
+            i: self.label[i],
+            j: self.label[j],
             normal,
             vi_before: vi,
             vj_before: vj,
@@ -472,7 +563,7 @@ impl Engine {
         self.predict(i);
         WallCollision {
             time: self.now,
-            i: i as u32,
+            i: self.label[i],
             axis: if k == 0 { Axis::X } else { Axis::Y },
             side,
             v_before: before,
@@ -488,37 +579,108 @@ impl Engine {
         let mut c = self.grid.cell[i];
         let n = self.grid.n[k];
         self.grid.remove(i as u32);
+        let mut wrapped = true;
         if up {
             if c[k] + 1 == n {
                 // Leaving through the periodic edge at L: re-enter at 0.
                 c[k] = 0;
                 self.bodies[i].r[k] -= self.sim_box.size[k];
-                self.count[i] = self.count[i].wrapping_add(1);
             } else {
                 c[k] += 1;
+                wrapped = false;
             }
         } else if c[k] == 0 {
             c[k] = n - 1;
             self.bodies[i].r[k] += self.sim_box.size[k];
-            self.count[i] = self.count[i].wrapping_add(1);
         } else {
             c[k] -= 1;
+            wrapped = false;
         }
         self.grid.insert(i as u32, c);
         self.stats.cell_crossings += 1;
+        if wrapped {
+            // The position moved by one box length: partners' image shifts change.
+            self.count[i] = self.count[i].wrapping_add(1);
+        }
         self.predict(i);
     }
 
-    /// Find disc `i`'s earliest event from the current time and queue it.
+    /// Find disc `i`'s earliest event from the current time and queue it: its next
+    /// cell crossing or wall collision, or its earliest pair collision with a disc
+    /// of its 3 × 3 block of cells.
     fn predict(&mut self, i: usize) {
         let now = self.now;
         let bi = self.bodies[i];
         let ri = bi.r + bi.v * (now - bi.t);
+        let (mut best, mut pend) = self.boundary_event(i, ri, bi.v, bi.radius);
+
+        // Pairs in the 3 × 3 block of cells around i.
+        let grid = &self.grid;
+        let (bodies, head, next) = (&self.bodies[..], &grid.head[..], &grid.next[..]);
+        let c = grid.cell[i];
+        let [nx, ny] = grid.n;
+        let size = self.sim_box.size;
+        // The (up to) three columns: index, image shift along x, shift sign + 1.
+        let mut col_list = [(0usize, 0.0f64, 0i32); 3];
+        let mut ncols = 0;
+        for ox in [-1, 0, 1] {
+            if let Some((cx, sx)) = neighbour(c[0], ox, nx, grid.periodic[0]) {
+                col_list[ncols] = (cx as usize, sx as f64 * size.x, sx + 1);
+                ncols += 1;
+            }
+        }
+        let mut partner = NONE;
+        let mut code = 0i32;
+        for oy in [-1, 0, 1] {
+            let Some((cy, sy)) = neighbour(c[1], oy, ny, grid.periodic[1]) else {
+                continue;
+            };
+            let row = cy as usize * nx as usize;
+            let shift_y = sy as f64 * size.y;
+            for &(cx, shift_x, cxs) in &col_list[..ncols] {
+                let mut j = head[row + cx];
+                if j == NONE {
+                    continue;
+                }
+                // Seeing j's image at r_j + s L is seeing i at r_i − s L.
+                let ri_img = DVec2::new(ri.x - shift_x, ri.y - shift_y);
+                while j != NONE {
+                    let ju = j as usize;
+                    let bj = &bodies[ju];
+                    if ju != i {
+                        let dr = bj.r + bj.v * (now - bj.t) - ri_img;
+                        let sigma = bi.radius + bj.radius;
+                        if let Some(dt) = contact_time_before(dr, bj.v - bi.v, sigma, best) {
+                            best = dt;
+                            partner = j;
+                            code = cxs + 3 * (sy + 1);
+                        }
+                    }
+                    j = next[ju];
+                }
+            }
+        }
+        if partner != NONE {
+            pend = Pending {
+                partner,
+                partner_count: self.count[partner as usize],
+                kind: KIND_PAIR,
+                aux: code as u8,
+            };
+        }
+        self.pending[i] = pend;
+        self.queue.set(i as u32, time_key(now + best));
+    }
+
+    /// Disc `i`'s earliest cell crossing or wall collision from now: (time from now,
+    /// event). `ri` is its position now.
+    #[inline]
+    fn boundary_event(&self, i: usize, ri: DVec2, v: DVec2, radius: f64) -> (f64, Pending) {
         let mut best = f64::INFINITY;
         let mut pend = Pending::NONE;
         let c = self.grid.cell[i];
         for k in 0..2 {
-            if let Some((dt, dir)) = self.grid.crossing_time(k, c[k], ri[k], bi.v[k]) {
+            if let Some((dt, dir)) = self.grid.crossing_time(k, c[k], ri[k], v[k]) {
                 if dt < best {
                     best = dt;
                     pend = Pending {
@@ -530,8 +692,7 @@ impl Engine {
                 }
             }
             if let Boundary::Walls { .. } = self.sim_box.boundary[k] {
-                if let Some((dt, side)) = wall_time(ri[k], bi.v[k], bi.radius, self.sim_box.size[k])
-                {
+                if let Some((dt, side)) = wall_time(ri[k], v[k], radius, self.sim_box.size[k]) {
                     if dt < best {
                         best = dt;
                         pend = Pending {
@@ -544,42 +705,6 @@ impl Engine {
                 }
             }
         }
-        let [nx, ny] = self.grid.n;
-        let [px, py] = self.grid.periodic;
-        let size = self.sim_box.size;
-        for oy in -1..=1 {
-            let Some((cy, sy)) = neighbour(c[1], oy, ny, py) else {
-                continue;
-            };
-            for ox in -1..=1 {
-                let Some((cx, sx)) = neighbour(c[0], ox, nx, px) else {
-                    continue;
-                };
-                // Seeing j's image at r_j + s L is seeing i at r_i − s L.
-                let ri_img = ri - DVec2::new(sx as f64 * size.x, sy as f64 * size.y);
-                let mut j = self.grid.head[cy as usize * nx as usize + cx as usize];
-                while j != NONE {
-                    let ju = j as usize;
-                    if ju != i {
-                        let bj = &self.bodies[ju];
-                        let dr = bj.r + bj.v * (now - bj.t) - ri_img;
-                        if let Some(dt) = contact_time(dr, bj.v - bi.v, bi.radius + bj.radius) {
-                            if dt < best {
-                                best = dt;
-                                pend = Pending {
-                                    partner: j,
-                                    partner_count: self.count[ju],
-                                    kind: KIND_PAIR,
-                                    aux: ((sx + 1) + 3 * (sy + 1)) as u8,
-                                };
-                            }
-                        }
-                    }
-                    j = self.grid.next[ju];
-                }
-            }
-        }
-        self.pending[i] = pend;
-        self.queue.set(i as u32, time_key(now + best));
+        (best, pend)
     }
 }

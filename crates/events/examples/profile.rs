@@ -1,0 +1,45 @@
+//! Profiling driver: `cargo run --release -p carom-events --example profile -- N ETA COLLISIONS`.
+//! Equilibrates 5 collisions per disc, then runs COLLISIONS more and prints event
+//! counts per collision (for use under `valgrind --tool=cachegrind` or `perf`).
+use carom_core::{SimBox, Species};
+use carom_events::{box_size_for, Engine, EngineParams, Placement, SystemSpec, Velocities};
+
+fn main() {
+    let arg = |k: usize, d: f64| {
+        std::env::args()
+            .nth(k)
+            .and_then(|s| s.parse().ok())
+            .unwrap_or(d)
+    };
+    let n = arg(1, 10_000.0) as usize;
+    let eta = arg(2, 0.5);
+    let count = arg(3, 1e6) as u64;
+    let species = vec![Species {
+        count: n,
+        radius: 0.5,
+        mass: 1.0,
+    }];
+    let size = box_size_for(&species, eta, 1.0);
+    let spec = SystemSpec {
+        species,
+        sim_box: SimBox::periodic(size.x, size.y),
+        temperature: 1.0,
+        seed: 42,
+        placement: Placement::Lattice,
+        velocities: Velocities::MaxwellBoltzmann,
+    };
+    let mut e = Engine::new(spec.build().unwrap(), EngineParams::default()).unwrap();
+    e.run_collisions(5 * n as u64).unwrap();
+    let s0 = *e.stats();
+    let t = std::time::Instant::now();
+    e.run_collisions(count).unwrap();
+    let dt = t.elapsed().as_secs_f64();
+    let s = e.stats();
+    let c = (s.pair_collisions - s0.pair_collisions) as f64;
+    println!(
+        "N={n} eta={eta} {:.3e} coll/s; per collision: crossings {:.3}, stale {:.3}",
+        c / dt,
+        (s.cell_crossings - s0.cell_crossings) as f64 / c,
+        (s.stale_events - s0.stale_events) as f64 / c
+    );
+}
