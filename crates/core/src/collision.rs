@@ -1,8 +1,15 @@
 //! Resolution of a pair collision: elastic and the two inelastic models.
 //!
-//! Conventions (physics.md §3): disc i and disc j touch with unit normal
-//! n = (r_j − r_i)/σ_ij pointing from i to j; g = v_i − v_j; u = g·n > 0 when the
-//! pair approaches. Masses in the user's mass unit, velocities in length/time.
+//! Conventions (physics.md §3): disc i and disc j touch with normal n along
+//! r_j − r_i, pointing from i to j; g = v_i − v_j; u = g·n̂ > 0 when the pair
+//! approaches. Masses in the user's mass unit, velocities in length/time.
+//!
+//! `n` need not have unit length: every formula uses u n̂ = (g·n) n/|n|² (the form of
+//! seed 004, which divides by d² instead of normalising). Kinetic energy is then
+//! conserved algebraically whatever the rounding of |n|, whereas normalising first
+//! leaves |n̂|² − 1 biased by rounding, and an elastic collision changes the energy
+//! by exactly u²(|n̂|² − 1) μ-weighted: a systematic drift over 10⁷ collisions.
+//! The engine therefore passes the contact vector r_j − r_i itself.
 
 use glam::DVec2;
 
@@ -53,7 +60,7 @@ pub struct Resolution {
 /// Elastic collision of unequal masses in vector form (physics.md §3, seed 004):
 /// v_i' = v_i − (2 m_j/(m_i+m_j)) u n,  v_j' = v_j + (2 m_i/(m_i+m_j)) u n.
 ///
-/// `n` is the unit normal from i to j at contact. Returns (v_i', v_j').
+/// `n` is the line of centres from i to j at contact (any length). Returns (v_i', v_j').
 #[inline]
 pub fn elastic(vi: DVec2, vj: DVec2, mi: f64, mj: f64, n: DVec2) -> (DVec2, DVec2) {
     normal_restitution(vi, vj, mi, mj, n, 1.0)
@@ -61,7 +68,8 @@ pub fn elastic(vi: DVec2, vj: DVec2, mi: f64, mj: f64, n: DVec2) -> (DVec2, DVec
 
 /// Normal restitution (physics.md §4b):
 /// v_i' = v_i − (1+e) (m_j/(m_i+m_j)) u n,  v_j' = v_j + (1+e) (m_i/(m_i+m_j)) u n.
-/// With e = 1 this is exactly [`elastic`]. Returns (v_i', v_j').
+/// With e = 1 this is exactly [`elastic`]. `n` is the line of centres from i to j
+/// (any length; u n is evaluated as (g·n) n/|n|²). Returns (v_i', v_j').
 #[inline]
 pub fn normal_restitution(
     vi: DVec2,
@@ -71,14 +79,13 @@ pub fn normal_restitution(
     n: DVec2,
     e: f64,
 ) -> (DVec2, DVec2) {
-    let u = (vi - vj).dot(n);
-    let k = (1.0 + e) * u / (mi + mj);
+    let k = (1.0 + e) * (vi - vj).dot(n) / (n.length_squared() * (mi + mj));
     (vi - n * (k * mj), vj + n * (k * mi))
 }
 
 /// The seed's centre-of-mass restitution (seed 000 Eq. 22–27, physics.md §4a):
 /// elastic resolution, then v'' = (v' − v_cm) R + v_cm with
-/// v_cm = (m_i v_i + m_j v_j)/(m_i + m_j). Returns (v_i'', v_j'').
+/// v_cm = (m_i v_i + m_j v_j)/(m_i + m_j). `n` as in [`elastic`]. Returns (v_i'', v_j'').
 #[inline]
 pub fn centre_of_mass_restitution(
     vi: DVec2,
@@ -98,7 +105,7 @@ pub fn centre_of_mass_restitution(
 
 /// Resolve a pair collision with the chosen rule (physics.md §3–4).
 ///
-/// `n` is the unit normal from i to j at contact. The energy lost is the model's
+/// `n` is the line of centres from i to j at contact (any length). The energy lost is the model's
 /// closed form: (1 − e²) μ u²/2 for normal restitution, (1 − R²) μ |g|²/2 for the
 /// centre-of-mass model, with μ = m_i m_j/(m_i + m_j).
 #[inline]
@@ -110,8 +117,9 @@ pub fn resolve(vi: DVec2, vj: DVec2, mi: f64, mj: f64, n: DVec2, rule: Restituti
         }
         Restitution::Normal(e) => {
             let (a, b) = normal_restitution(vi, vj, mi, mj, n, e);
-            let u = (vi - vj).dot(n);
-            (a, b, 0.5 * (1.0 - e * e) * reduced_mass(mi, mj) * u * u)
+            let un = (vi - vj).dot(n);
+            let u2 = un * un / n.length_squared();
+            (a, b, 0.5 * (1.0 - e * e) * reduced_mass(mi, mj) * u2)
         }
         Restitution::CentreOfMass(r) => {
             let (a, b) = centre_of_mass_restitution(vi, vj, mi, mj, n, r);

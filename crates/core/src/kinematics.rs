@@ -78,6 +78,11 @@ pub fn contact_time_before(dr: DVec2, dv: DVec2, sigma: f64, limit: f64) -> Opti
     (t < limit).then_some(t)
 }
 
+/// Absolute angular tolerance (radians) of the seed form at its degenerate
+/// boundaries: 4π machine epsilons, a bound on the rounding of a difference of two
+/// `atan2` angles (each within an ulp of π) passed through `sin_cos`.
+pub const SEED_ANGLE_TOLERANCE: f64 = 4.0 * std::f64::consts::PI * f64::EPSILON;
+
 /// The seed's angular contact time (seed 000, Eq. 14–17), kept as a reference.
 ///
 /// Disc 1 at `r1` with velocity `v1` and radius `a1`, disc 2 likewise. With
@@ -88,6 +93,12 @@ pub fn contact_time_before(dr: DVec2, dv: DVec2, sigma: f64, limit: f64) -> Opti
 /// (the discs approach). `atan2` replaces the printed arctan of a ratio, which loses
 /// the quadrant. The same rules as [`contact_time`] apply: overlapping and
 /// approaching collides now, misses and receding pairs never.
+///
+/// The angle difference carries an absolute rounding error of a few ulps of 2π, so
+/// the two degenerate boundaries are resolved with a documented angular tolerance
+/// δγ = [`SEED_ANGLE_TOLERANCE`] (radians): motion within δγ of exactly sideways
+/// (cos(γ_xy − γ_v) ≤ δγ, i.e. b ≈ 0) never meets, and an impact parameter
+/// |d sin(γ_xy − γ_v)| within d δγ of σ is a grazing contact (Eq. 14 at equality).
 pub fn contact_time_seed(
     r1: DVec2,
     v1: DVec2,
@@ -106,15 +117,15 @@ pub fn contact_time_seed(
     let gamma_xy = sep.y.atan2(sep.x);
     let gamma_v = g.y.atan2(g.x);
     let (s, c) = (gamma_xy - gamma_v).sin_cos();
-    if c <= 0.0 {
+    if c <= SEED_ANGLE_TOLERANCE {
         return None; // receding or moving sideways
     }
     let sigma = a1 + a2;
     let h = d * s;
-    if h.abs() > sigma {
+    if h.abs() > sigma + d * SEED_ANGLE_TOLERANCE {
         return None; // miss (Eq. 14 undefined)
     }
-    let t = (d * c - (sigma * sigma - h * h).sqrt()) / speed;
+    let t = (d * c - (sigma * sigma - h * h).max(0.0).sqrt()) / speed;
     Some(t.max(0.0))
 }
 

@@ -498,7 +498,8 @@ impl Engine {
         self.sync(j);
         let now = self.now;
         let dr = self.bodies[j].r + self.shift_of(shift_code) - self.bodies[i].r;
-        let normal = dr / dr.length();
+        // The unnormalised contact vector goes to the collision rule (see
+        // carom_core::collision: energy is then conserved without rounding bias).
         let (vi, vj) = (self.bodies[i].v, self.bodies[j].v);
         let (mi, mj) = (self.mass(i), self.mass(j));
         let tc = self.params.tc;
@@ -509,7 +510,7 @@ impl Engine {
         } else {
             self.params.restitution
         };
-        let res = resolve(vi, vj, mi, mj, normal, rule);
+        let res = resolve(vi, vj, mi, mj, dr, rule);
         // r_ij = r_i − r_j = −dr.
         let virial = -dr.dot(res.impulse_i);
         self.bodies[i].v = res.vi;
@@ -527,7 +528,7 @@ impl Engine {
             time: now,
             i: self.label[i],
             j: self.label[j],
-            normal,
+            normal: dr / dr.length(),
             vi_before: vi,
             vj_before: vj,
             vi_after: res.vi,
