@@ -162,7 +162,7 @@ pub struct Analyzer {
 impl Analyzer {
     /// An analyzer for `run` with options `opts`.
     pub fn new(run: RunDescription, opts: AnalysisOptions) -> Result<Self, StatsError> {
-        if !(run.t_end > run.t_start) {
+        if run.t_start.is_nan() || run.t_end.is_nan() || run.t_end <= run.t_start {
             return Err(StatsError::NotEnoughData(format!(
                 "the log spans no time ({} to {})",
                 run.t_start, run.t_end
@@ -243,7 +243,7 @@ impl Analyzer {
     /// in [t0, t1] (e.g. differences of consecutive `/thermo` records), spread
     /// over the time bins in proportion to their overlap.
     pub fn increment(&mut self, t0: f64, t1: f64, virial: f64, wall_impulse: f64, pairs: u64) {
-        if !(t1 > t0) {
+        if t0.is_nan() || t1.is_nan() || t1 <= t0 {
             return;
         }
         self.pairs_from_increments += pairs;
@@ -478,7 +478,7 @@ impl Analyzer {
             window: [self.t_eq, run.t_end],
         };
         let monodisperse = run.species.iter().filter(|s| s.count > 0).count() == 1;
-        let enskog = if monodisperse && !walls && elastic && pressure.is_some() {
+        let enskog = if let (true, Some(pr)) = (monodisperse && !walls && elastic, &pressure) {
             let sp = run
                 .species
                 .iter()
@@ -496,7 +496,7 @@ impl Analyzer {
                 .collect();
             let d_est = blocked(&d)?;
             let rhs_est = blocked(&rhs)?;
-            let z = pressure.as_ref().expect("checked").z;
+            let z = pr.z;
             Some(EnskogReport {
                 z_minus_1: z - 1.0,
                 rate_term: rhs_est.mean,

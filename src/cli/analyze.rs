@@ -79,7 +79,7 @@ pub fn read_report(args: &AnalyzeArgs) -> Result<(Report, bool), CliError> {
         t_start = t_start.min(*a);
         t_end = t_end.max(*b);
     }
-    if !(t_end > t_start) {
+    if t_end.is_nan() || t_start.is_nan() || t_end <= t_start {
         return Err(CliError::Usage(format!(
             "{} holds no data spanning any simulated time",
             args.file.display()

@@ -1632,16 +1632,23 @@ mod tests {
     /// A configuration in which every optional field is present (as far as fields
     /// can coexist in one value), serialised.
     fn maximal_values() -> Vec<Value> {
-        let mut c = Config::default();
-        c.schema = Some("x".into());
-        c.description = Some("x".into());
-        c.sim_box.packing_fraction = Some(0.5);
-        c.sim_box.aspect = Some(1.0);
-        c.sim_box.size = Some([1.0, 1.0]);
-        c.sim_box.wall_restitution = Some(1.0);
+        let mut c = Config {
+            schema: Some("x".into()),
+            description: Some("x".into()),
+            sim_box: BoxConfig {
+                packing_fraction: Some(0.5),
+                aspect: Some(1.0),
+                size: Some([1.0, 1.0]),
+                wall_restitution: Some(1.0),
+                ..BoxConfig::default()
+            },
+            stop: StopConfig {
+                duration: Some(1.0),
+                collisions: Some(1),
+            },
+            ..Config::default()
+        };
         c.collision.coefficient = Some(1.0);
-        c.stop.duration = Some(1.0);
-        c.stop.collisions = Some(1);
         let mut d = c.clone();
         c.placement = PlacementConfig::Explicit(vec![[0.0, 0.0]]);
         c.velocities = VelocitiesConfig::Explicit(vec![[0.0, 0.0]]);

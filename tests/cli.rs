@@ -1,0 +1,427 @@
+//! End-to-end tests of the `carom` binary: run, analyze, info, resume, bad
+//! configurations and Ctrl-C (issue 4).
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output, Stdio};
+
+use serde_json::Value;
+
+const BIN: &str = env!("CARGO_BIN_EXE_carom");
+
+/// A fresh directory for one test.
+fn scratch(name: &str) -> PathBuf {
+    let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join(format!("cli-{name}"));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    dir
+}
+
+fn carom(dir: &Path, args: &[&str]) -> Output {
+    Command::new(BIN)
+        .args(args)
+        .current_dir(dir)
+        .stdin(Stdio::null())
+        .output()
+        .unwrap()
+}
+
+fn ok(out: &Output) -> String {
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(out.status.success(), "exit {:?}: {stderr}", out.status);
+    assert!(!stderr.contains("panicked"), "{stderr}");
+    String::from_utf8(out.stdout.clone()).unwrap()
+}
+
+fn json_of(out: &Output) -> Value {
+    serde_json::from_str(&ok(out)).unwrap()
+}
+
+fn f(v: &Value) -> f64 {
+    v.as_f64().unwrap_or_else(|| panic!("not a number: {v}"))
+}
+
+#[test]
+fn run_then_analyze_at_eta_0_3_matches_the_equation_of_state() {
+    let dir = scratch("eos");
+    ok(&carom(
+        &dir,
+        &[
+            "run",
+            "--quiet",
+            "--out",
+            "eos.mcap",
+            "--set",
+            "species.0.count=1024",
+            "--set",
+            "box.packing_fraction=0.3",
+            "--set",
+            "stop.duration=220",
+            "--set",
+            "seed=11",
+            "--set",
+            "log.snapshot_interval=2",
+        ],
+    ));
+    let r = json_of(&carom(
+        &dir,
+        &[
+            "analyze",
+            "eos.mcap",
+            "--json",
+            "--equilibrate",
+            "20",
+            "--every",
+            "4",
+        ],
+    ));
+    assert_eq!(r["n"], 1024);
+    assert_eq!(r["log_complete"], true);
+    // Temperature with f = 2N − 2 (NVE from velocities scaled to kT = 1).
+    assert_eq!(r["temperature"]["dof"], 2046);
+    assert!((f(&r["temperature"]["kt"]) - 1.0).abs() < 1e-9);
+    // Maxwell–Boltzmann passes: p-values not tiny.
+    let mb = &r["maxwell_boltzmann"][0];
+    assert_eq!(mb["passed"], true, "{mb}");
+    assert!(f(&mb["chi_square"]["p_value"]) > 1e-3);
+    assert!(f(&mb["ks"]["p_value"]) > 1e-3);
+    assert_eq!(mb["snapshots"], 51);
+    // Z at η = 0.3 within 3 standard errors of physics.md §7's 2.0633 ± 0.0020.
+    let z = f(&r["pressure"]["z"]);
+    let se = f(&r["pressure"]["z_std_error"]);
+    assert!(se > 0.0 && se < 0.02, "se = {se}");
+    let tol = 3.0 * (se * se + 0.0020f64 * 0.0020).sqrt();
+    assert!((z - 2.0633).abs() < tol, "Z = {z} ± {se}");
+    // The Enskog consistency check closes.
+    let e = &r["enskog"];
+    assert!(
+        f(&e["difference"]).abs() < 4.0 * f(&e["difference_std_error"]),
+        "{e}"
+    );
+    assert!(r["inelastic"].is_null());
+
+    // The text report says the same.
+    let text = ok(&carom(
+        &dir,
+        &["analyze", "eos.mcap", "--equilibrate", "20"],
+    ));
+    assert!(text.contains("Z = βPA/N"), "{text}");
+    assert!(text.contains("consistent with MB"), "{text}");
+}
+
+#[test]
+fn equal_speeds_analysed_from_the_first_snapshot_fail_maxwell_boltzmann() {
+    let dir = scratch("equal");
+    ok(&carom(
+        &dir,
+        &[
+            "run",
+            "--quiet",
+            "--out",
+            "eq.mcap",
+            "--set",
+            "species.0.count=1000",
+            "--set",
+            "box.packing_fraction=0.3",
+            "--set",
+            "velocities=equal-speed",
+            "--set",
+            "stop.duration=5",
+        ],
+    ));
+    let r = json_of(&carom(
+        &dir,
+        &[
+            "analyze",
+            "eq.mcap",
+            "--json",
+            "--equilibrate",
+            "0",
+            "--every",
+            "1e9",
+        ],
+    ));
+    let mb = &r["maxwell_boltzmann"][0];
+    assert_eq!(mb["snapshots"], 1, "{mb}");
+    assert_eq!(r["window"]["snapshot_times"][0], 0.0);
+    assert_eq!(mb["passed"], false);
+    assert!(f(&mb["ks"]["p_value"]) < 1e-10);
+    assert!(f(&mb["chi_square"]["p_value"]) < 1e-10);
+}
+
+#[test]
+fn bad_configurations_fail_cleanly_naming_the_field() {
+    let dir = scratch("bad");
+    let cases: &[(&str, &[&str], &str)] = &[
+        // (config text, --set arguments, field the message must name)
+        (
+            r#"{"species": [{"count": "many"}]}"#,
+            &[],
+            "species.0.count",
+        ),
+        (
+            r#"{"species": [{"count": 10, "radius": true}]}"#,
+            &[],
+            "species.0.radius",
+        ),
+        (
+            r#"{"species": [{"count": 10, "mass": -1}]}"#,
+            &[],
+            "species.0.mass",
+        ),
+        (
+            r#"{"box": {"packing_fraction": "dense"}}"#,
+            &[],
+            "box.packing_fraction",
+        ),
+        (
+            r#"{"box": {"packing_fraction": 0.95}}"#,
+            &[],
+            "box.packing_fraction",
+        ),
+        (r#"{"box": {"size": [10]}}"#, &[], "box.size"),
+        (r#"{"box": {"boundary": "sticky"}}"#, &[], "box.boundary"),
+        (
+            r#"{"box": {"boundary": "walls", "wall_restitution": 2}}"#,
+            &[],
+            "box.wall_restitution",
+        ),
+        (r#"{"temperature": "hot"}"#, &[], "temperature"),
+        (r#"{"temperature": -1}"#, &[], "temperature"),
+        (r#"{"seed": 1.5}"#, &[], "seed"),
+        (r#"{"placement": "hexagonal"}"#, &[], "placement"),
+        (r#"{"velocities": 3}"#, &[], "velocities"),
+        (
+            r#"{"collision": {"model": "sticky"}}"#,
+            &[],
+            "collision.model",
+        ),
+        (
+            r#"{"collision": {"model": "normal", "coefficient": 1.5}}"#,
+            &[],
+            "collision.coefficient",
+        ),
+        (r#"{"collision": {"tc": "short"}}"#, &[], "collision.tc"),
+        (r#"{"stop": {"duration": 0}}"#, &[], "stop.duration"),
+        (r#"{"stop": {"collisions": -5}}"#, &[], "stop.collisions"),
+        (
+            r#"{"log": {"compression": "gzip"}}"#,
+            &[],
+            "log.compression",
+        ),
+        (
+            r#"{"log": {"snapshot_interval": -1}}"#,
+            &[],
+            "log.snapshot_interval",
+        ),
+        (r#"{"log": {"collisions": "all"}}"#, &[], "log.collisions"),
+        (
+            r#"{"species": [{"count": 10, "charge": 1}]}"#,
+            &[],
+            "species.0.charge",
+        ),
+        (r#"{"temprature": 1}"#, &[], "temprature"),
+        (
+            r#"{"species": [{"count": 2}], "box": {"size": [10, 10]},
+               "placement": {"explicit": [[2, 2], [2.5, 2]]}}"#,
+            &[],
+            "placement.explicit",
+        ),
+        (
+            r#"{"species": [{"count": 200}], "box": {"packing_fraction": 0.85},
+               "placement": "random"}"#,
+            &[],
+            "placement",
+        ),
+        ("{}", &["--set", "species.0.count=many"], "species.0.count"),
+        ("{}", &["--set", "log.nonsense=1"], "log.nonsense"),
+        ("{}", &["--set", "species.3.count=1"], "species.3"),
+        ("{ not json", &[], "line 1"),
+    ];
+    for (k, (text, sets, field)) in cases.iter().enumerate() {
+        let cfg = dir.join(format!("bad{k}.json"));
+        std::fs::write(&cfg, text).unwrap();
+        let mut args = vec!["run", "--quiet", cfg.to_str().unwrap(), "--out", "x.mcap"];
+        args.extend_from_slice(sets);
+        let out = carom(&dir, &args);
+        let stderr = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(2), "{text} {sets:?}: {stderr}");
+        assert!(stderr.contains(field), "{text} {sets:?}: {stderr}");
+        assert!(!stderr.contains("panicked"), "{stderr}");
+        assert!(!dir.join("x.mcap").exists(), "{text}: a log was written");
+    }
+    // A missing configuration file.
+    let out = carom(&dir, &["run", "no-such.json"]);
+    assert_eq!(out.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("no-such.json"));
+}
+
+#[test]
+fn info_describes_a_complete_log_and_run_refuses_to_overwrite_it() {
+    let dir = scratch("info");
+    let two = Path::new(env!("CARGO_MANIFEST_DIR")).join("data/two-discs.json");
+    ok(&carom(&dir, &["run", "--quiet", two.to_str().unwrap()]));
+    assert!(dir.join("two-discs.mcap").exists());
+    let i = json_of(&carom(&dir, &["info", "two-discs.mcap", "--json"]));
+    assert_eq!(i["complete"], true);
+    assert_eq!(i["run"]["n_discs"], 2);
+    assert_eq!(i["summary"]["stop_reason"], "collisions");
+    assert_eq!(
+        i["summary"]["pair_collisions"].as_u64().unwrap()
+            + i["summary"]["wall_collisions"].as_u64().unwrap(),
+        10
+    );
+    assert_eq!(i["channels"]["/collisions"]["defined"], true);
+    assert_eq!(i["run"]["config"]["species"][0]["count"], 2);
+    let text = ok(&carom(&dir, &["info", "two-discs.mcap"]));
+    assert!(
+        text.contains("complete") && text.contains("/snapshot"),
+        "{text}"
+    );
+    // Running again into the same file needs --force.
+    let out = carom(&dir, &["run", "--quiet", two.to_str().unwrap()]);
+    assert_eq!(out.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("--force"));
+    ok(&carom(
+        &dir,
+        &["run", "--quiet", "--force", two.to_str().unwrap()],
+    ));
+    // Not a log.
+    std::fs::write(dir.join("junk.mcap"), b"definitely not mcap").unwrap();
+    let out = carom(&dir, &["info", "junk.mcap"]);
+    assert_eq!(out.status.code(), Some(1));
+    assert!(!String::from_utf8_lossy(&out.stderr).contains("panicked"));
+    let out = carom(&dir, &["analyze", "junk.mcap"]);
+    assert_eq!(out.status.code(), Some(1));
+}
+
+#[test]
+fn granular_cooling_reports_the_energy_budget_and_plots() {
+    let dir = scratch("granular");
+    let cfg = Path::new(env!("CARGO_MANIFEST_DIR")).join("data/granular-cooling.json");
+    ok(&carom(
+        &dir,
+        &[
+            "run",
+            "--quiet",
+            cfg.to_str().unwrap(),
+            "--out",
+            "g.mcap",
+            "--set",
+            "species.0.count=900",
+            "--set",
+            "box.packing_fraction=0.1",
+            "--set",
+            "stop.duration=30",
+            "--set",
+            "log.snapshot_interval=5",
+        ],
+    ));
+    let r = json_of(&carom(
+        &dir,
+        &["analyze", "g.mcap", "--json", "--plot", "figs"],
+    ));
+    assert_eq!(r["elastic"], false);
+    let e = &r["inelastic"]["energy"];
+    assert!(f(&e["final"]) < 0.6 * f(&e["initial"]), "{e}");
+    assert!(f(&e["relative_residual"]).abs() < 1e-9, "{e}");
+    let h = &r["inelastic"]["haff"];
+    assert!((f(&h["ratio"]) - 1.0).abs() < 0.15, "{h}");
+    assert!(r["temperature"]["series"].as_array().unwrap().len() > 100);
+    for name in [
+        "speed_species0",
+        "components_species0",
+        "temperature",
+        "pressure",
+    ] {
+        let png = std::fs::read(dir.join(format!("figs/{name}.png"))).unwrap();
+        assert_eq!(&png[..4], b"\x89PNG", "{name}");
+        let svg = std::fs::read_to_string(dir.join(format!("figs/{name}.svg"))).unwrap();
+        assert!(svg.contains("<svg"), "{name}");
+    }
+}
+
+#[test]
+fn channel_pressure_comes_from_the_walls() {
+    let dir = scratch("channel");
+    let cfg = Path::new(env!("CARGO_MANIFEST_DIR")).join("data/channel.json");
+    ok(&carom(
+        &dir,
+        &[
+            "run",
+            "--quiet",
+            cfg.to_str().unwrap(),
+            "--out",
+            "c.mcap",
+            "--set",
+            "species.0.count=400",
+            "--set",
+            "stop.duration=40",
+        ],
+    ));
+    let r = json_of(&carom(&dir, &["analyze", "c.mcap", "--json"]));
+    assert_eq!(r["periodic"], serde_json::json!([true, false]));
+    assert_eq!(r["temperature"]["dof"], 799);
+    let p = &r["pressure"];
+    assert!(p["estimator"].as_str().unwrap().contains("wall"));
+    // Reachable area L_x (L_y − 2a) with a = 0.5.
+    let size = &r["box_size"];
+    let area = f(&size[0]) * (f(&size[1]) - 1.0);
+    assert!((f(&p["area"]) - area).abs() < 1e-9 * area);
+    // A dense-ish channel is well above ideal: Z between 1.5 and 4 at η = 0.4.
+    assert!(f(&p["z"]) > 1.5 && f(&p["z"]) < 4.0, "{p}");
+    assert!(r["enskog"].is_null());
+}
+
+#[test]
+fn ctrl_c_finishes_the_log_and_resume_continues_it() {
+    let dir = scratch("ctrlc");
+    let child = Command::new(BIN)
+        .args([
+            "run",
+            "--out",
+            "long.mcap",
+            "--set",
+            "species.0.count=2000",
+            "--set",
+            "stop.duration=1e6",
+        ])
+        .current_dir(&dir)
+        .stdin(Stdio::null())
+        .stdout(Stdio::null())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    std::thread::sleep(std::time::Duration::from_millis(1500));
+    let status = Command::new("kill")
+        .args(["-INT", &child.id().to_string()])
+        .status()
+        .unwrap();
+    assert!(status.success());
+    let out = child.wait_with_output().unwrap();
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(130), "{stderr}");
+    assert!(stderr.contains("interrupted"), "{stderr}");
+    let i = json_of(&carom(&dir, &["info", "long.mcap", "--json"]));
+    assert_eq!(i["complete"], true);
+    assert_eq!(i["summary"]["stop_reason"], "interrupted");
+    let t_stop = f(&i["summary"]["sim_time"]);
+    assert!(t_stop > 0.0);
+    // Resume with a nearby stop time, into a new file.
+    let until = format!("{}", t_stop + 1.0);
+    ok(&carom(
+        &dir,
+        &[
+            "resume",
+            "long.mcap",
+            "--out",
+            "more.mcap",
+            "--until",
+            &until,
+            "--quiet",
+        ],
+    ));
+    let j = json_of(&carom(&dir, &["info", "more.mcap", "--json"]));
+    assert_eq!(j["summary"]["stop_reason"], "time");
+    assert!((f(&j["summary"]["sim_time"]) - (t_stop + 1.0)).abs() < 1e-9);
+    assert_eq!(j["run"]["resumed_from"], "long.mcap");
+}
