@@ -211,3 +211,48 @@ fn cooling_granular_gas_closes_its_energy_budget() {
     assert_eq!(r.temperature.series.len(), 41);
     assert!(r.enskog.is_none());
 }
+
+#[test]
+fn binary_mixture_each_species_follows_its_own_maxwell_boltzmann() {
+    let species = vec![
+        Species {
+            count: 512,
+            radius: 0.5,
+            mass: 1.0,
+        },
+        Species {
+            count: 512,
+            radius: 0.6,
+            mass: 4.0,
+        },
+    ];
+    let size = box_size_for(&species, 0.3, 1.0);
+    let spec = SystemSpec {
+        species,
+        sim_box: SimBox::periodic(size.x, size.y),
+        temperature: 1.0,
+        seed: 21,
+        placement: Placement::Lattice,
+        velocities: Velocities::MaxwellBoltzmann,
+    };
+    let opts = AnalysisOptions {
+        equilibrate: Some(10.0),
+        every: Some(4.0),
+        ..Default::default()
+    };
+    let r = analyse(spec, EngineParams::default(), 130.0, 2.0, opts);
+    assert_eq!(r.maxwell_boltzmann.len(), 2);
+    for m in &r.maxwell_boltzmann {
+        assert!(
+            m.passed,
+            "species {}: {:?} {:?}",
+            m.species, m.chi_square, m.ks
+        );
+    }
+    // The heavy species is slower: its histogram ends at 4.5 √(kT/m) = 2.25.
+    let last = *r.maxwell_boltzmann[1].speed_histogram.edges.last().unwrap();
+    assert!((last - 2.25).abs() < 1e-9, "{last}");
+    // No Enskog check for mixtures; the pressure is still measured.
+    assert!(r.enskog.is_none());
+    assert!(r.pressure.as_ref().unwrap().z > 1.5);
+}

@@ -425,3 +425,41 @@ fn ctrl_c_finishes_the_log_and_resume_continues_it() {
     assert!((f(&j["summary"]["sim_time"]) - (t_stop + 1.0)).abs() < 1e-9);
     assert_eq!(j["run"]["resumed_from"], "long.mcap");
 }
+
+#[test]
+fn pressure_from_thermo_totals_when_collisions_are_not_logged() {
+    let dir = scratch("nocoll");
+    ok(&carom(
+        &dir,
+        &[
+            "run",
+            "--quiet",
+            "--out",
+            "n.mcap",
+            "--set",
+            "species.0.count=1024",
+            "--set",
+            "box.packing_fraction=0.3",
+            "--set",
+            "stop.duration=150",
+            "--set",
+            "log.collisions=false",
+        ],
+    ));
+    let i = json_of(&carom(&dir, &["info", "n.mcap", "--json"]));
+    assert_eq!(i["logged_collisions"], 0);
+    let r = json_of(&carom(&dir, &["analyze", "n.mcap", "--json"]));
+    assert_eq!(r["collision_rate"]["logged_pair_collisions"], 0);
+    let z = f(&r["pressure"]["z"]);
+    let se = f(&r["pressure"]["z_std_error"]);
+    assert!(se > 0.0 && se < 0.02, "se = {se}");
+    let tol = 3.0 * (se * se + 0.0020f64 * 0.0020).sqrt();
+    assert!((z - 2.0633).abs() < tol, "Z = {z} ± {se}");
+    // ω from the thermo pair counts; the Enskog check still closes.
+    assert!(f(&r["collision_rate"]["per_disc"]) > 2.0);
+    let e = &r["enskog"];
+    assert!(
+        f(&e["difference"]).abs() < 4.0 * f(&e["difference_std_error"]) + 0.01,
+        "{e}"
+    );
+}

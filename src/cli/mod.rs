@@ -29,7 +29,7 @@ enum Command {
     /// Run a simulation and write its MCAP log.
     ///
     /// Without CONFIG runs the built-in default: 10⁴ discs at packing fraction 0.5
-    /// for 100 time units (a few seconds), logged to ./carom.mcap.
+    /// for 50 time units (a few seconds), logged to ./carom.mcap.
     Run(RunArgs),
     /// Continue a log from its last checkpoint (a killed run, or a finished one with
     /// a later stop).

@@ -29,7 +29,7 @@
 //!   "placement": "lattice",
 //!   "velocities": "maxwell-boltzmann",
 //!   "collision": { "model": "elastic", "tc": 0.0, "max_events_without_time_advance": 100000 },
-//!   "stop": { "duration": 100.0 },
+//!   "stop": { "duration": 50.0 },
 //!   "log": { "collisions": true, "collision_every": 1, "snapshot_interval": 1.0,
 //!            "thermo_interval": 0.1, "checkpoint_interval": 10.0,
 //!            "compression": "zstd", "flush_seconds": 1.0 }
@@ -37,7 +37,7 @@
 //! ```
 //!
 //! Every field is optional; the values above are the defaults (a fluid of 10⁴ discs
-//! at η = 0.5 running for 100 time units, about 3.5 × 10⁶ collisions, a few seconds
+//! at η = 0.5 running for 50 time units, about 1.75 × 10⁶ collisions, a few seconds
 //! of wall time). The fields, their units and allowed values are documented on the
 //! structs below and in `data/config.schema.json`.
 
@@ -224,7 +224,7 @@ pub struct Config {
     /// The pair collision rule and the inelastic-collapse safeguards.
     #[serde(default)]
     pub collision: CollisionConfig,
-    /// When the run ends. Default `{"duration": 100}`.
+    /// When the run ends. Default `{"duration": 50}`.
     #[serde(default)]
     pub stop: StopConfig,
     /// What the MCAP log records and how often.
@@ -446,7 +446,7 @@ impl Default for CollisionConfig {
 #[derive(Debug, Clone, Copy, PartialEq, Default, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct StopConfig {
-    /// Simulated time to run for (time). Default 100 when `collisions` is not
+    /// Simulated time to run for (time). Default 50 when `collisions` is not
     /// given; allowed: finite, > 0.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub duration: Option<f64>,
@@ -524,9 +524,9 @@ impl Default for LogConfig {
 }
 
 /// Default run length in simulated time: at η = 0.5, N = 10⁴ there are about
-/// 3.5 × 10⁴ collisions per unit time, so 100 time units are ~3.5 × 10⁶ collisions,
+/// 3.5 × 10⁴ collisions per unit time, so 50 time units are ~1.75 × 10⁶ collisions,
 /// a few seconds at ~10⁶ collisions/s.
-pub const DEFAULT_DURATION: f64 = 100.0;
+pub const DEFAULT_DURATION: f64 = 50.0;
 /// Default packing fraction η when the box size is not given.
 pub const DEFAULT_PACKING_FRACTION: f64 = 0.5;
 /// Default number of discs (one species).
