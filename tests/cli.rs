@@ -463,3 +463,38 @@ fn pressure_from_thermo_totals_when_collisions_are_not_logged() {
         "{e}"
     );
 }
+
+#[test]
+fn a_truncated_log_is_analysed_up_to_the_cut_with_a_warning() {
+    let dir = scratch("cut");
+    ok(&carom(
+        &dir,
+        &[
+            "run",
+            "--quiet",
+            "--out",
+            "full.mcap",
+            "--set",
+            "species.0.count=400",
+            "--set",
+            "box.packing_fraction=0.3",
+            "--set",
+            "stop.duration=40",
+            "--set",
+            "log.compression=none",
+        ],
+    ));
+    let bytes = std::fs::read(dir.join("full.mcap")).unwrap();
+    std::fs::write(dir.join("cut.mcap"), &bytes[..bytes.len() * 6 / 10]).unwrap();
+    let i = json_of(&carom(&dir, &["info", "cut.mcap", "--json"]));
+    assert_eq!(i["complete"], false);
+    assert!(i["summary"].is_null());
+    let out = carom(&dir, &["analyze", "cut.mcap", "--json"]);
+    let stderr = String::from_utf8_lossy(&out.stderr).to_string();
+    assert!(stderr.contains("truncated"), "{stderr}");
+    let r = json_of(&out);
+    assert_eq!(r["log_complete"], false);
+    let t_end = f(&r["window"]["t_end"]);
+    assert!(t_end > 5.0 && t_end < 40.0, "{t_end}");
+    assert!(f(&r["pressure"]["z"]) > 1.8 && f(&r["pressure"]["z"]) < 2.4);
+}
