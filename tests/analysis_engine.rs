@@ -46,7 +46,7 @@ fn analyse(
                 let vx: Vec<f64> = s.velocities.iter().map(|v| v.x).collect();
                 let vy: Vec<f64> = s.velocities.iter().map(|v| v.y).collect();
                 a.thermo(time, s.kinetic_energy(), Some(lost));
-                a.snapshot(time, &s.species_of, &vx, &vy);
+                a.snapshot(time, &s.species_of, &vx, &vy).unwrap();
                 if tag == steps {
                     break;
                 }

@@ -279,7 +279,33 @@ impl Analyzer {
     /// (length/time). Used for the temperature series, and for the velocity
     /// distribution when it is after `equilibrate` and at least `every` after the
     /// last snapshot used.
-    pub fn snapshot(&mut self, t: f64, species_of: &[u16], vx: &[f64], vy: &[f64]) {
+    ///
+    /// Errors when the three slices differ in length or a species index is not one
+    /// of the run's species.
+    pub fn snapshot(
+        &mut self,
+        t: f64,
+        species_of: &[u16],
+        vx: &[f64],
+        vy: &[f64],
+    ) -> Result<(), StatsError> {
+        if species_of.len() != vx.len() || vx.len() != vy.len() {
+            return Err(StatsError::InvalidArgument(format!(
+                "snapshot at t = {t}: {} species indices, {} vx, {} vy",
+                species_of.len(),
+                vx.len(),
+                vy.len()
+            )));
+        }
+        if let Some(&bad) = species_of
+            .iter()
+            .find(|&&s| s as usize >= self.run.species.len())
+        {
+            return Err(StatsError::InvalidArgument(format!(
+                "snapshot at t = {t}: species index {bad}, but the run has {} species",
+                self.run.species.len()
+            )));
+        }
         self.snapshots_seen += 1;
         let masses: Vec<f64> = self.run.species.iter().map(|s| s.mass).collect();
         let k: f64 = species_of
@@ -293,11 +319,11 @@ impl Analyzer {
             self.energy_series.push((t, k, None));
         }
         if t < self.t_eq - 1e-12 * self.t_eq.abs().max(1.0) {
-            return;
+            return Ok(());
         }
         if let (Some(&last), Some(every)) = (self.snapshots_used.last(), self.opts.every) {
             if t < last + every * (1.0 - 1e-9) {
-                return;
+                return Ok(());
             }
         }
         self.snapshots_used.push(t);
@@ -308,6 +334,7 @@ impl Analyzer {
             self.vx[s].push(x);
             self.vy[s].push(y);
         }
+        Ok(())
     }
 
     /// Record kT at `t`, once per time (a thermo record and a snapshot at the
@@ -972,4 +999,59 @@ pub struct HaffReport {
     pub kt_final_measured: f64,
     /// measured / predicted (1 in homogeneous cooling; clustering makes it differ).
     pub ratio: f64,
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn run() -> RunDescription {
+        RunDescription {
+            species: vec![Species {
+                count: 2,
+                radius: 0.5,
+                mass: 1.0,
+            }],
+            sim_box: SimBox::periodic(10.0, 10.0),
+            restitution: Restitution::Elastic,
+            collision_stride: 1,
+            t_start: 0.0,
+            t_end: 10.0,
+        }
+    }
+
+    #[test]
+    fn inconsistent_snapshots_are_errors_not_panics() {
+        let mut a = Analyzer::new(run(), AnalysisOptions::default()).unwrap();
+        assert!(a.snapshot(1.0, &[0, 1], &[1.0, 1.0], &[0.0, 0.0]).is_err());
+        assert!(a.snapshot(1.0, &[0], &[1.0, 1.0], &[0.0, 0.0]).is_err());
+        assert!(a.snapshot(1.0, &[0, 0], &[1.0, -1.0], &[0.0, 0.0]).is_ok());
+        let mut r = run();
+        r.t_end = 0.0;
+        assert!(Analyzer::new(r, AnalysisOptions::default()).is_err());
+        let opts = AnalysisOptions {
+            equilibrate: Some(20.0),
+            ..Default::default()
+        };
+        assert!(Analyzer::new(run(), opts).is_err());
+    }
+
+    #[test]
+    fn increments_spread_over_time_bins_keep_their_total() {
+        let mut a = Analyzer::new(
+            run(),
+            AnalysisOptions {
+                equilibrate: Some(0.0),
+                time_bins: 16,
+                ..Default::default()
+            },
+        )
+        .unwrap();
+        a.increment(0.3, 7.1, 68.0, 0.0, 34);
+        let v: f64 = a.bins.iter().map(|b| b.virial).sum();
+        let p: f64 = a.bins.iter().map(|b| b.pairs_weighted).sum();
+        assert!((v - 68.0).abs() < 1e-9 && (p - 34.0).abs() < 1e-9);
+        // Bin 0 ([0, 0.625)) holds the overlap 0.325 of 6.8.
+        assert!((a.bins[0].virial - 68.0 * 0.325 / 6.8).abs() < 1e-9);
+    }
 }

@@ -36,7 +36,12 @@ fn describe(
             eprintln!("warning: the log's configuration cannot be read ({e}); using its first snapshot and assuming elastic collisions");
             let mut counts = vec![0usize; s.species_radius.len()];
             for &k in &s.species {
-                counts[k as usize] += 1;
+                *counts.get_mut(k as usize).ok_or_else(|| {
+                    CliError::Usage(format!(
+                        "the first snapshot names species {k} but lists {} species",
+                        s.species_radius.len()
+                    ))
+                })? += 1;
             }
             let species = counts
                 .iter()
@@ -145,7 +150,7 @@ pub fn read_report(args: &AnalyzeArgs) -> Result<(Report, bool), CliError> {
                 vy.clear();
                 vx.extend(s.velocities.iter().map(|v: &DVec2| v.x));
                 vy.extend(s.velocities.iter().map(|v: &DVec2| v.y));
-                a.snapshot(s.time, &s.species, &vx, &vy);
+                a.snapshot(s.time, &s.species, &vx, &vy)?;
             }
             LogMessage::Thermo(t) => {
                 a.thermo(t.time, t.kinetic_energy, Some(t.energy_lost));
