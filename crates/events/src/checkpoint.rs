@@ -100,12 +100,12 @@ impl Engine {
             positions: self.bodies.iter().map(|b| b.r).collect(),
             velocities: self.bodies.iter().map(|b| b.v).collect(),
             times: self.bodies.iter().map(|b| b.t).collect(),
-            counts: self.count.clone(),
+            counts: self.bodies.iter().map(|b| b.count).collect(),
             last_collision: self.last_collision.clone(),
             event_times: (0..n)
                 .map(|i| self.queue.get(i as u32).into_inner())
                 .collect(),
-            pending: self.pending.iter().map(encode).collect(),
+            pending: self.bodies.iter().map(|b| encode(&b.pending)).collect(),
             cell_head: self.grid.head.clone(),
             cell_next: self.grid.next.clone(),
             cell_prev: self.grid.prev.clone(),
@@ -206,6 +206,8 @@ impl Engine {
                 v: cp.velocities[i],
                 t: cp.times[i],
                 radius: cp.species[cp.species_of[i] as usize].radius,
+                count: cp.counts[i],
+                pending: pending[i],
             })
             .collect();
         let scheduled = cp
@@ -221,8 +223,6 @@ impl Engine {
             species: cp.species,
             species_of: cp.species_of,
             bodies,
-            count: cp.counts,
-            pending,
             last_collision: cp.last_collision,
             queue,
             grid,

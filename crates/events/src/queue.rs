@@ -22,16 +22,24 @@ const OVERFLOW: u32 = u32::MAX - 1;
 const IN_HEAP: u32 = 1 << 31;
 const NIL: u32 = u32::MAX;
 
+/// One disc's entry: its time, where it is, and its bucket-list links — kept in one
+/// record so an update touches one cache line of its own.
+#[derive(Debug, Clone, Copy, PartialEq)]
+struct Entry {
+    /// Event time (+∞ for none).
+    time: f64,
+    /// `NEVER`, `OVERFLOW`, `IN_HEAP | position`, or a bucket slot.
+    loc: u32,
+    /// Links of the bucket or overflow list.
+    prev: u32,
+    next: u32,
+}
+
 /// An event calendar of per-disc event times.
 #[derive(Debug, Clone)]
 pub struct EventQueue {
-    /// Event time of each disc (+∞ for none).
-    time: Vec<f64>,
-    /// Where each disc is: `NEVER`, `OVERFLOW`, `IN_HEAP | position`, or a bucket slot.
-    loc: Vec<u32>,
-    /// Linked lists of the buckets and of the overflow.
-    prev: Vec<u32>,
-    next: Vec<u32>,
+    /// Per-disc entries.
+    e: Vec<Entry>,
     /// First disc of each calendar slot.
     slot_head: Vec<u32>,
     /// First disc of the overflow list.
@@ -56,10 +64,15 @@ impl EventQueue {
     pub fn new(n: usize) -> Self {
         let m = n.max(2).next_power_of_two();
         EventQueue {
-            time: vec![f64::INFINITY; n],
-            loc: vec![NEVER; n],
-            prev: vec![NIL; n],
-            next: vec![NIL; n],
+            e: vec![
+                Entry {
+                    time: f64::INFINITY,
+                    loc: NEVER,
+                    prev: NIL,
+                    next: NIL,
+                };
+                n
+            ],
             slot_head: vec![NIL; m],
             overflow_head: NIL,
             heap: Vec::new(),
@@ -77,24 +90,24 @@ impl EventQueue {
     /// mean event intervals. Changes speed only, never the order.
     pub fn retune(&mut self, now: f64) {
         let (mut sum, mut k) = (0.0, 0usize);
-        for &t in &self.time {
+        for t in self.e.iter().map(|e| e.time) {
             if t.is_finite() {
                 sum += t - now;
                 k += 1;
             }
         }
-        let n = self.time.len().max(1);
+        let n = self.e.len().max(1);
         let width = if k > 0 && sum > 0.0 {
             4.0 * sum / k as f64 / n as f64
         } else {
             1.0
         };
-        let times = std::mem::take(&mut self.time);
+        let times: Vec<f64> = self.e.iter().map(|e| e.time).collect();
         *self = EventQueue::new(times.len());
         self.t0 = now;
         self.inv_width = 1.0 / width;
         for (i, &t) in times.iter().enumerate() {
-            self.time[i] = t;
+            self.e[i].time = t;
             if t.is_finite() {
                 self.insert(i as u32);
             }
@@ -107,7 +120,7 @@ impl EventQueue {
         loop {
             if let Some(&top) = self.heap.first() {
                 return (
-                    NotNan::new(self.time[top as usize]).expect("no NaN in queue"),
+                    NotNan::new(self.e[top as usize].time).expect("no NaN in queue"),
                     top,
                 );
             }
@@ -121,14 +134,14 @@ impl EventQueue {
     /// The time currently stored for disc `i`.
     #[inline]
     pub fn get(&self, i: u32) -> Time {
-        NotNan::new(self.time[i as usize]).expect("no NaN in queue")
+        NotNan::new(self.e[i as usize].time).expect("no NaN in queue")
     }
 
     /// Set the event time of disc `i`.
     #[inline]
     pub fn set(&mut self, i: u32, t: Time) {
         self.remove(i);
-        self.time[i as usize] = t.into_inner();
+        self.e[i as usize].time = t.into_inner();
         if t.is_finite() {
             self.insert(i);
         }
@@ -136,8 +149,7 @@ impl EventQueue {
 
     /// Bytes of heap memory used (for the memory report).
     pub fn heap_bytes(&self) -> usize {
-        self.time.capacity() * 8
-            + (self.loc.capacity() + self.prev.capacity() + self.next.capacity()) * 4
+        self.e.capacity() * std::mem::size_of::<Entry>()
             + self.slot_head.capacity() * 4
             + self.heap.capacity() * 4
     }
@@ -151,7 +163,7 @@ impl EventQueue {
     #[inline]
     fn insert(&mut self, i: u32) {
         self.finite += 1;
-        let b = self.bucket(self.time[i as usize]);
+        let b = self.bucket(self.e[i as usize].time);
         if b <= self.cur {
             self.heap_push(i);
         } else if b - self.cur <= self.mask {
@@ -160,31 +172,31 @@ impl EventQueue {
             self.in_slots += 1;
         } else {
             let h = self.overflow_head;
-            self.prev[i as usize] = NIL;
-            self.next[i as usize] = h;
+            self.e[i as usize].prev = NIL;
+            self.e[i as usize].next = h;
             if h != NIL {
-                self.prev[h as usize] = i;
+                self.e[h as usize].prev = i;
             }
             self.overflow_head = i;
-            self.loc[i as usize] = OVERFLOW;
+            self.e[i as usize].loc = OVERFLOW;
         }
     }
 
     #[inline]
     fn link(&mut self, i: u32, s: u32) {
         let h = self.slot_head[s as usize];
-        self.prev[i as usize] = NIL;
-        self.next[i as usize] = h;
+        self.e[i as usize].prev = NIL;
+        self.e[i as usize].next = h;
         if h != NIL {
-            self.prev[h as usize] = i;
+            self.e[h as usize].prev = i;
         }
         self.slot_head[s as usize] = i;
-        self.loc[i as usize] = s;
+        self.e[i as usize].loc = s;
     }
 
     #[inline]
     fn remove(&mut self, i: u32) {
-        let l = self.loc[i as usize];
+        let l = self.e[i as usize].loc;
         if l == NEVER {
             return;
         }
@@ -192,22 +204,22 @@ impl EventQueue {
         if l & IN_HEAP != 0 && l != OVERFLOW {
             self.heap_remove((l & !IN_HEAP) as usize);
         } else {
-            let (p, n) = (self.prev[i as usize], self.next[i as usize]);
+            let (p, n) = (self.e[i as usize].prev, self.e[i as usize].next);
             if p != NIL {
-                self.next[p as usize] = n;
+                self.e[p as usize].next = n;
             } else if l == OVERFLOW {
                 self.overflow_head = n;
             } else {
                 self.slot_head[l as usize] = n;
             }
             if n != NIL {
-                self.prev[n as usize] = p;
+                self.e[n as usize].prev = p;
             }
             if l != OVERFLOW {
                 self.in_slots -= 1;
             }
         }
-        self.loc[i as usize] = NEVER;
+        self.e[i as usize].loc = NEVER;
     }
 
     /// Move to the next bucket: pour its slot into the heap; at every full turn of
@@ -218,8 +230,8 @@ impl EventQueue {
             let mut b = u64::MAX;
             let mut k = self.overflow_head;
             while k != NIL {
-                b = b.min(self.bucket(self.time[k as usize]));
-                k = self.next[k as usize];
+                b = b.min(self.bucket(self.e[k as usize].time));
+                k = self.e[k as usize].next;
             }
             self.cur = b.max(self.cur + 1);
             self.redistribute_overflow();
@@ -233,7 +245,7 @@ impl EventQueue {
         let mut k = self.slot_head[s];
         self.slot_head[s] = NIL;
         while k != NIL {
-            let nx = self.next[k as usize];
+            let nx = self.e[k as usize].next;
             self.in_slots -= 1;
             self.heap_push(k);
             k = nx;
@@ -244,8 +256,8 @@ impl EventQueue {
         let mut k = self.overflow_head;
         self.overflow_head = NIL;
         while k != NIL {
-            let nx = self.next[k as usize];
-            self.loc[k as usize] = NEVER;
+            let nx = self.e[k as usize].next;
+            self.e[k as usize].loc = NEVER;
             self.finite -= 1;
             self.insert(k);
             k = nx;
@@ -254,14 +266,14 @@ impl EventQueue {
 
     #[inline]
     fn less(&self, a: u32, b: u32) -> bool {
-        let (ta, tb) = (self.time[a as usize], self.time[b as usize]);
+        let (ta, tb) = (self.e[a as usize].time, self.e[b as usize].time);
         ta < tb || (ta == tb && a < b)
     }
 
     #[inline]
     fn place(&mut self, pos: usize, i: u32) {
         self.heap[pos] = i;
-        self.loc[i as usize] = IN_HEAP | pos as u32;
+        self.e[i as usize].loc = IN_HEAP | pos as u32;
     }
 
     fn heap_push(&mut self, i: u32) {
