@@ -151,6 +151,7 @@ pub fn reduced_mass(mi: f64, mj: f64) -> f64 {
 /// then Eq. 10–13 give the new velocities. Angles use atan2 (Eq. 7 and 16 as printed
 /// lose the quadrant). The tan form is singular when the line of centres is vertical
 /// (a → ∞); [`elastic`] is not. Returns (v1', v2').
+#[allow(clippy::too_many_arguments)] // mirrors the seed's variables, ball 1 then ball 2
 pub fn elastic_seed(
     r1: DVec2,
     v1: DVec2,

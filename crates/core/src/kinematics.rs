@@ -32,8 +32,7 @@ pub fn advance(r: DVec2, v: DVec2, dt: f64) -> DVec2 {
 #[inline]
 pub fn contact_time(dr: DVec2, dv: DVec2, sigma: f64) -> Option<f64> {
     let b = dr.dot(dv);
-    // `!(b < 0)` also rejects NaN.
-    if !(b < 0.0) {
+    if b.is_nan() || b >= 0.0 {
         return None;
     }
     let c = dr.length_squared() - sigma * sigma;
@@ -41,7 +40,7 @@ pub fn contact_time(dr: DVec2, dv: DVec2, sigma: f64) -> Option<f64> {
         return Some(0.0);
     }
     let d = b * b - dv.length_squared() * c;
-    if !(d >= 0.0) {
+    if d.is_nan() || d < 0.0 {
         return None;
     }
     // c > 0 and −b > 0, so the denominator is positive and t is finite and positive.
@@ -59,7 +58,7 @@ pub fn contact_time(dr: DVec2, dv: DVec2, sigma: f64) -> Option<f64> {
 #[inline]
 pub fn contact_time_before(dr: DVec2, dv: DVec2, sigma: f64, limit: f64) -> Option<f64> {
     let b = dr.dot(dv);
-    if !(b < 0.0) {
+    if b.is_nan() || b >= 0.0 {
         return None;
     }
     let c = dr.length_squared() - sigma * sigma;
@@ -71,7 +70,7 @@ pub fn contact_time_before(dr: DVec2, dv: DVec2, sigma: f64, limit: f64) -> Opti
         return None;
     }
     let d = b * b - dv.length_squared() * c;
-    if !(d >= 0.0) {
+    if d.is_nan() || d < 0.0 {
         return None;
     }
     let t = c / (d.sqrt() - b);

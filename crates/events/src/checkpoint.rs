@@ -18,7 +18,7 @@ pub struct Checkpoint {
     pub sim_box: SimBox,
     /// The species.
     pub species: Vec<Species>,
-    /// Species index of each disc.
+    /// Species index of each disc, in the engine's internal order (see `labels`).
     pub species_of: Vec<u16>,
     /// Dynamics parameters.
     pub params: EngineParams,
@@ -92,7 +92,7 @@ impl Engine {
         Checkpoint {
             sim_box: self.sim_box,
             species: self.species.clone(),
-            species_of: self.species_of.clone(),
+            species_of: self.slot_species.clone(),
             params: self.params,
             now: self.now,
             same_time_collisions: self.same_time_collisions,
@@ -155,9 +155,9 @@ impl Engine {
             }
             index_of[l as usize] = k as u32;
         }
-        let mut external_species_of = vec![0u16; n];
+        let mut species_of_ext = vec![0u16; n];
         for (k, &l) in cp.labels.iter().enumerate() {
-            external_species_of[l as usize] = cp.species_of[k];
+            species_of_ext[l as usize] = cp.species_of[k];
         }
         let a_max = cp.species.iter().map(|s| s.radius).fold(0.0, f64::max);
         let mut grid = CellGrid::new(&cp.sim_box, 2.0 * a_max, n);
@@ -221,7 +221,7 @@ impl Engine {
         Ok(Engine {
             sim_box: cp.sim_box,
             species: cp.species,
-            species_of: cp.species_of,
+            slot_species: cp.species_of,
             bodies,
             last_collision: cp.last_collision,
             queue,
@@ -234,7 +234,7 @@ impl Engine {
             stats: cp.stats,
             label: cp.labels,
             index_of,
-            external_species_of,
+            species_of: species_of_ext,
             next_reorder: cp.next_reorder,
         })
     }

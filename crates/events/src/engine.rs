@@ -125,7 +125,7 @@ impl Pending {
 pub struct Engine {
     pub(crate) sim_box: SimBox,
     pub(crate) species: Vec<Species>,
-    pub(crate) species_of: Vec<u16>,
+    pub(crate) slot_species: Vec<u16>,
     pub(crate) bodies: Vec<Body>,
     pub(crate) last_collision: Vec<f64>,
     pub(crate) queue: EventQueue,
@@ -141,7 +141,7 @@ pub struct Engine {
     /// Internal slot of each external index.
     pub(crate) index_of: Vec<u32>,
     /// Species of each disc in external order.
-    pub(crate) external_species_of: Vec<u16>,
+    pub(crate) species_of: Vec<u16>,
     /// Pair-collision count at which discs are next renumbered along the Z curve.
     pub(crate) next_reorder: u64,
 }
@@ -207,8 +207,8 @@ impl Engine {
         let mut engine = Engine {
             sim_box: state.sim_box,
             species: state.species,
-            external_species_of: state.species_of.clone(),
-            species_of: state.species_of,
+            species_of: state.species_of.clone(),
+            slot_species: state.species_of,
             label: (0..n as u32).collect(),
             index_of: (0..n as u32).collect(),
             next_reorder: reorder_interval(n),
@@ -258,7 +258,7 @@ impl Engine {
 
     /// Species index of each disc.
     pub fn species_of(&self) -> &[u16] {
-        &self.external_species_of
+        &self.species_of
     }
 
     /// The dynamics parameters.
@@ -290,7 +290,7 @@ impl Engine {
     /// Total kinetic energy (energy).
     pub fn kinetic_energy(&self) -> f64 {
         let v: Vec<DVec2> = self.bodies.iter().map(|b| b.v).collect();
-        kinetic_energy(&self.species, &self.species_of, &v)
+        kinetic_energy(&self.species, &self.slot_species, &v)
     }
 
     /// The exact state of every disc at the current time. Reading it does not
@@ -299,7 +299,7 @@ impl Engine {
         State {
             sim_box: self.sim_box,
             species: self.species.clone(),
-            species_of: self.external_species_of.clone(),
+            species_of: self.species_of.clone(),
             positions: (0..self.len()).map(|i| self.position(i)).collect(),
             velocities: (0..self.len()).map(|i| self.velocity(i)).collect(),
             time: self.now,
@@ -310,8 +310,8 @@ impl Engine {
     pub fn heap_bytes(&self) -> usize {
         self.bodies.capacity() * std::mem::size_of::<Body>()
             + self.last_collision.capacity() * 8
+            + self.slot_species.capacity() * 2
             + self.species_of.capacity() * 2
-            + self.external_species_of.capacity() * 2
             + (self.label.capacity() + self.index_of.capacity()) * 4
             + self.queue.heap_bytes()
             + self.grid.heap_bytes()
@@ -321,7 +321,7 @@ impl Engine {
     /// same time are delivered in the order they were scheduled, before any collision
     /// at that time.
     pub fn schedule(&mut self, time: f64, tag: u64) -> Result<(), EngineError> {
-        if !(time >= self.now) || time.is_infinite() {
+        if time.is_nan() || time < self.now || time.is_infinite() {
             return Err(EngineError::ScheduleInPast {
                 time,
                 now: self.now,
@@ -454,7 +454,7 @@ impl Engine {
         }
         self.bodies = permute(&self.bodies, &perm);
         self.last_collision = permute(&self.last_collision, &perm);
-        self.species_of = permute(&self.species_of, &perm);
+        self.slot_species = permute(&self.slot_species, &perm);
         self.label = permute(&self.label, &perm);
         let cells = permute(&self.grid.cell, &perm);
         for b in self.bodies.iter_mut() {
@@ -488,7 +488,7 @@ impl Engine {
 
     #[inline]
     fn mass(&self, i: usize) -> f64 {
-        self.species[self.species_of[i] as usize].mass
+        self.species[self.slot_species[i] as usize].mass
     }
 
     #[inline]
