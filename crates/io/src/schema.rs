@@ -167,6 +167,54 @@ pub struct CollisionRecord {
 }
 
 impl CollisionRecord {
+    /// The record of pair collision `c` with run ordinal `ordinal`.
+    #[inline]
+    pub fn from_pair(c: &PairCollision, ordinal: u64) -> Self {
+        CollisionRecord {
+            ordinal,
+            time: c.time,
+            kind: KIND_PAIR,
+            i: c.i,
+            j: c.j,
+            normal: c.normal,
+            vi_before: c.vi_before,
+            vj_before: c.vj_before,
+            vi_after: c.vi_after,
+            vj_after: c.vj_after,
+            energy_lost: c.energy_lost,
+            virial: c.virial,
+        }
+    }
+
+    /// The record of wall collision `c` with run ordinal `ordinal`; the normal
+    /// points from the disc to the wall, `j` is [`NO_DISC`], `virial` holds the
+    /// impulse given to the wall.
+    #[inline]
+    pub fn from_wall(c: &WallCollision, ordinal: u64) -> Self {
+        let sign = match c.side {
+            WallSide::Low => -1.0,
+            WallSide::High => 1.0,
+        };
+        let normal = match c.axis {
+            Axis::X => DVec2::new(sign, 0.0),
+            Axis::Y => DVec2::new(0.0, sign),
+        };
+        CollisionRecord {
+            ordinal,
+            time: c.time,
+            kind: KIND_WALL,
+            i: c.i,
+            j: NO_DISC,
+            normal,
+            vi_before: c.v_before,
+            vj_before: DVec2::ZERO,
+            vi_after: c.v_after,
+            vj_after: DVec2::ZERO,
+            energy_lost: c.energy_lost,
+            virial: c.impulse,
+        }
+    }
+
     /// True for a wall collision.
     pub fn is_wall(&self) -> bool {
         self.kind == KIND_WALL
@@ -349,48 +397,34 @@ impl CollisionBatch {
         self.virial.push(virial);
     }
 
+    /// Append a record (its `ordinal` is not stored).
+    #[inline]
+    pub fn push(&mut self, r: &CollisionRecord) {
+        self.push_raw(
+            r.time,
+            r.kind,
+            r.i,
+            r.j,
+            r.normal,
+            r.vi_before,
+            r.vj_before,
+            r.vi_after,
+            r.vj_after,
+            r.energy_lost,
+            r.virial,
+        );
+    }
+
     /// Append a pair collision.
     #[inline]
     pub fn push_pair(&mut self, c: &PairCollision) {
-        self.push_raw(
-            c.time,
-            KIND_PAIR,
-            c.i,
-            c.j,
-            c.normal,
-            c.vi_before,
-            c.vj_before,
-            c.vi_after,
-            c.vj_after,
-            c.energy_lost,
-            c.virial,
-        );
+        self.push(&CollisionRecord::from_pair(c, 0));
     }
 
     /// Append a wall collision; the normal points from the disc to the wall.
     #[inline]
     pub fn push_wall(&mut self, c: &WallCollision) {
-        let sign = match c.side {
-            WallSide::Low => -1.0,
-            WallSide::High => 1.0,
-        };
-        let n = match c.axis {
-            Axis::X => DVec2::new(sign, 0.0),
-            Axis::Y => DVec2::new(0.0, sign),
-        };
-        self.push_raw(
-            c.time,
-            KIND_WALL,
-            c.i,
-            NO_DISC,
-            n,
-            c.v_before,
-            DVec2::ZERO,
-            c.v_after,
-            DVec2::ZERO,
-            c.energy_lost,
-            c.impulse,
-        );
+        self.push(&CollisionRecord::from_wall(c, 0));
     }
 
     /// Entry `k` as a record.
@@ -451,6 +485,39 @@ impl CollisionBatch {
         ] {
             w.seq(a);
         }
+    }
+
+    /// Encode records (given as an array of structs, e.g. gathered by the writer's
+    /// hot loop) as one CDR batch into `w` (which is reset first): the same bytes as
+    /// pushing them into a batch and calling [`CollisionBatch::encode`]. The
+    /// records' own `ordinal` fields are not stored; `first_ordinal` and `stride`
+    /// describe them.
+    pub fn encode_records(
+        records: &[CollisionRecord],
+        first_ordinal: u64,
+        stride: u64,
+        w: &mut CdrWriter,
+    ) {
+        w.reset();
+        w.reserve(4 + 16 + 16 * 8 + records.len() * 113);
+        w.put(first_ordinal);
+        w.put(stride);
+        w.seq_iter(records.iter().map(|r| r.time));
+        w.seq_iter(records.iter().map(|r| r.kind));
+        w.seq_iter(records.iter().map(|r| r.i));
+        w.seq_iter(records.iter().map(|r| r.j));
+        w.seq_iter(records.iter().map(|r| r.normal.x));
+        w.seq_iter(records.iter().map(|r| r.normal.y));
+        w.seq_iter(records.iter().map(|r| r.vi_before.x));
+        w.seq_iter(records.iter().map(|r| r.vi_before.y));
+        w.seq_iter(records.iter().map(|r| r.vj_before.x));
+        w.seq_iter(records.iter().map(|r| r.vj_before.y));
+        w.seq_iter(records.iter().map(|r| r.vi_after.x));
+        w.seq_iter(records.iter().map(|r| r.vi_after.y));
+        w.seq_iter(records.iter().map(|r| r.vj_after.x));
+        w.seq_iter(records.iter().map(|r| r.vj_after.y));
+        w.seq_iter(records.iter().map(|r| r.energy_lost));
+        w.seq_iter(records.iter().map(|r| r.virial));
     }
 
     /// Decode from CDR into `self`, reusing its allocations. On error `self` is
@@ -748,6 +815,10 @@ mod tests {
         let mut d = CollisionBatch::default();
         d.decode_into(w.bytes()).unwrap();
         assert_eq!(d, b);
+        let recs: Vec<_> = b.iter().collect();
+        let mut w2 = CdrWriter::new();
+        CollisionBatch::encode_records(&recs, b.first_ordinal, b.stride, &mut w2);
+        assert_eq!(w.bytes(), w2.bytes());
         let recs: Vec<_> = d.iter().collect();
         assert_eq!(recs[1].ordinal, 12);
         let wall = recs[1].as_wall().unwrap();
