@@ -1,0 +1,428 @@
+//! Inelastic dynamics (physics.md §4): both pair models, the TC model, collapse
+//! detection, and lossy walls.
+//!
+//! * Normal restitution e = 0.9 and the centre-of-mass model R = 0.9 (N = 400,
+//!   η = 0.25, periodic, monodisperse and a binary mixture; 50–100 collisions per
+//!   disc, over which the gas cools by a factor of 10³–10⁶ — much longer and it is
+//!   frozen and clustered, and the check becomes trivial): every pair event's `energy_lost` equals the model's closed
+//!   form computed here from the event's own velocities and normal, and equals the
+//!   pair's kinetic-energy change (1e-12 of the pair's energy); Σ of the events'
+//!   losses equals `stats().energy_lost`; E0 − Σ losses equals the engine's current
+//!   kinetic energy to 1e-9 of E0 (checked every 10⁴ collisions and at the end;
+//!   relative to E0 because the bookkeeping error is a sum of roundings of terms
+//!   of the size of the energies already subtracted); total momentum stays within
+//!   1e-12 of the initial Σ m|v| (the current Σ m|v| shrinks as the gas cools, so
+//!   the initial one is the scale of the accumulated rounding).
+//! * A dense e = 0.5 system (N = 500, η = 0.6) without the TC model collapses: the
+//!   engine returns `Err(EngineError::Stalled)` with the configured limit (10⁴ events
+//!   without time advancing) within a bounded number of calls, instead of hanging.
+//!   With the TC model (t_c = 10⁻⁴ τ0, about 10⁻³ of the initial mean free time) the
+//!   same system runs 2·10⁵ collisions with no overlap beyond 1e-10 of σ and an exact
+//!   energy budget.
+//! * Walls with restitution e_w < 1 (walled box and channel, elastic pairs): every
+//!   wall hit reverses and scales the normal velocity by e_w, keeps the tangential
+//!   one, reports the impulse m (1 + e_w)|v_n| and dissipates exactly
+//!   ½ m (1 − e_w²) v_n², which is also the engine's kinetic-energy change.
+
+use carom::core::boundary::{Boundary, SimBox};
+use carom::core::collision::reduced_mass;
+use carom::core::{DVec2, Restitution, Species};
+use carom::events::{
+    box_size_for, Engine, EngineError, EngineParams, Event, InvariantChecker, Placement, State,
+    SystemSpec, Velocities,
+};
+
+fn state(n: usize, eta: f64, boundary: [Boundary; 2], seed: u64) -> State {
+    let species = vec![Species {
+        count: n,
+        radius: 0.5,
+        mass: 1.0,
+    }];
+    let size = box_size_for(&species, eta, 1.0);
+    SystemSpec {
+        species,
+        sim_box: SimBox { size, boundary },
+        temperature: 1.0,
+        seed,
+        placement: Placement::Lattice,
+        velocities: Velocities::MaxwellBoltzmann,
+    }
+    .build()
+    .expect("valid system")
+}
+
+/// A binary mixture, so that the reduced mass differs between pairs.
+fn mixture_state(eta: f64, seed: u64) -> State {
+    let species = vec![
+        Species {
+            count: 250,
+            radius: 0.5,
+            mass: 1.0,
+        },
+        Species {
+            count: 150,
+            radius: 0.6,
+            mass: 2.0,
+        },
+    ];
+    let size = box_size_for(&species, eta, 1.0);
+    SystemSpec {
+        species,
+        sim_box: SimBox::periodic(size.x, size.y),
+        temperature: 1.0,
+        seed,
+        placement: Placement::Lattice,
+        velocities: Velocities::MaxwellBoltzmann,
+    }
+    .build()
+    .expect("valid system")
+}
+
+fn momentum(e: &Engine) -> (DVec2, f64) {
+    let mut p = DVec2::ZERO;
+    let mut scale = 0.0;
+    for i in 0..e.len() {
+        let m = e.species()[e.species_of()[i] as usize].mass;
+        p += e.velocity(i) * m;
+        scale += m * e.velocity(i).length();
+    }
+    (p, scale)
+}
+
+fn mass(e: &Engine, i: u32) -> f64 {
+    e.species()[e.species_of()[i as usize] as usize].mass
+}
+
+/// Run `collisions` pair collisions with `rule`, checking the energy budget and
+/// momentum; returns (E0, E_end).
+fn budget_run(state0: State, rule: Restitution, collisions: u64) -> (f64, f64) {
+    let params = EngineParams {
+        restitution: rule,
+        ..EngineParams::default()
+    };
+    let mut engine = Engine::new(state0, params).expect("engine");
+    let e0 = engine.kinetic_energy();
+    let (p0, scale0) = momentum(&engine);
+    let mut lost = 0.0;
+    let mut done = 0u64;
+    let mut last = engine.now();
+    while done < collisions {
+        let ev = engine
+            .next_event()
+            .unwrap_or_else(|e| panic!("{rule:?}: after {done} collisions: {e}"))
+            .expect("events");
+        assert!(ev.time() >= last);
+        last = ev.time();
+        let Event::Pair(p) = ev else {
+            panic!("only pair collisions in a periodic box, got {ev:?}")
+        };
+        done += 1;
+        let (mi, mj) = (mass(&engine, p.i), mass(&engine, p.j));
+        let mu = reduced_mass(mi, mj);
+        let g = p.vi_before - p.vj_before;
+        let u = g.dot(p.normal);
+        assert!(u > 0.0, "collision of a receding pair: u = {u}");
+        let formula = match rule {
+            Restitution::Normal(e) => 0.5 * (1.0 - e * e) * mu * u * u,
+            Restitution::CentreOfMass(r) => 0.5 * (1.0 - r * r) * mu * g.length_squared(),
+            Restitution::Elastic => 0.0,
+        };
+        let k_before =
+            0.5 * (mi * p.vi_before.length_squared() + mj * p.vj_before.length_squared());
+        let k_after = 0.5 * (mi * p.vi_after.length_squared() + mj * p.vj_after.length_squared());
+        assert!(
+            (p.energy_lost - formula).abs() <= 1e-12 * k_before,
+            "{rule:?}: reported loss {} vs formula {formula}",
+            p.energy_lost
+        );
+        assert!(
+            ((k_before - k_after) - p.energy_lost).abs() <= 1e-12 * k_before,
+            "{rule:?}: pair energy {k_before} → {k_after}, reported loss {}",
+            p.energy_lost
+        );
+        lost += p.energy_lost;
+        if done % 10_000 == 0 || done == collisions {
+            let k = engine.kinetic_energy();
+            assert!(
+                ((e0 - lost) - k).abs() <= 1e-9 * e0,
+                "{rule:?}: after {done} collisions E0 − Σ loss = {} but K = {k}",
+                e0 - lost
+            );
+            assert!(
+                (engine.stats().energy_lost - lost).abs() <= 1e-12 * e0,
+                "{rule:?}: stats().energy_lost {} vs Σ events {lost}",
+                engine.stats().energy_lost
+            );
+            let (p, _) = momentum(&engine);
+            assert!(
+                (p - p0).length() <= 1e-12 * scale0,
+                "{rule:?}: momentum {p0} → {p}"
+            );
+        }
+    }
+    let e_end = engine.kinetic_energy();
+    assert!(
+        ((e0 - engine.stats().energy_lost) - e_end).abs() <= 1e-9 * e0,
+        "{rule:?}: E0 − stats().energy_lost ≠ K"
+    );
+    println!(
+        "{rule:?}: {collisions} collisions to t = {:.3}: K {e0:.3} → {e_end:.5}",
+        engine.now()
+    );
+    (e0, e_end)
+}
+
+#[test]
+fn normal_restitution_energy_budget_and_momentum() {
+    let (e0, e1) = budget_run(
+        state(400, 0.25, [Boundary::Periodic; 2], 1),
+        Restitution::Normal(0.9),
+        40_000,
+    );
+    assert!(e1 < 0.5 * e0, "the gas must cool: {e0} → {e1}");
+    let (e0, e1) = budget_run(mixture_state(0.25, 2), Restitution::Normal(0.9), 20_000);
+    assert!(e1 < e0);
+}
+
+#[test]
+fn centre_of_mass_restitution_energy_budget_and_momentum() {
+    let (e0, e1) = budget_run(
+        state(400, 0.25, [Boundary::Periodic; 2], 3),
+        Restitution::CentreOfMass(0.9),
+        40_000,
+    );
+    assert!(e1 < 0.5 * e0, "the gas must cool: {e0} → {e1}");
+    let (e0, e1) = budget_run(
+        mixture_state(0.25, 4),
+        Restitution::CentreOfMass(0.9),
+        20_000,
+    );
+    assert!(e1 < e0);
+}
+
+fn dense_params(tc: f64) -> EngineParams {
+    EngineParams {
+        restitution: Restitution::Normal(0.5),
+        tc,
+        max_events_without_time_advance: 10_000,
+    }
+}
+
+/// Without a cure, a dense e = 0.5 system collapses; the engine must say so.
+#[test]
+fn dense_collapse_without_tc_is_reported_as_stalled() {
+    let mut engine = Engine::new(
+        state(500, 0.6, [Boundary::Periodic; 2], 5),
+        dense_params(0.0),
+    )
+    .expect("engine");
+    // Bounded work: at most 10⁷ calls (the stall must come long before; a hang or a
+    // run that never detects the collapse fails here instead of spinning forever).
+    const MAX_CALLS: u64 = 10_000_000;
+    let mut last = engine.now();
+    let mut outcome = None;
+    for call in 0..MAX_CALLS {
+        match engine.next_event() {
+            Ok(Some(ev)) => {
+                assert!(ev.time() >= last, "time went backwards at call {call}");
+                last = ev.time();
+            }
+            Ok(None) => panic!("the system came to rest instead of collapsing"),
+            Err(e) => {
+                outcome = Some((call, e));
+                break;
+            }
+        }
+    }
+    let (calls, err) = outcome.expect("no Stalled error within 10⁷ events: collapse not detected");
+    match err {
+        EngineError::Stalled {
+            time,
+            events,
+            limit,
+        } => {
+            assert_eq!(limit, 10_000);
+            assert!(
+                events > limit,
+                "stalled after {events} ≤ limit {limit} events"
+            );
+            assert!(time.is_finite() && time >= 0.0);
+            println!("collapse at t = {time} after {calls} events");
+        }
+        other => panic!("expected Stalled, got {other:?}"),
+    }
+    let msg = EngineError::Stalled {
+        time: 1.0,
+        events: 10_001,
+        limit: 10_000,
+    }
+    .to_string();
+    assert!(msg.contains("max_events_without_time_advance"), "{msg}");
+}
+
+/// With the TC model the same system runs on, without overlap and with an exact
+/// energy budget (TC collisions are elastic and lose nothing).
+#[test]
+fn dense_system_with_tc_model_runs_without_overlap() {
+    let tc = 1e-4;
+    let mut engine = Engine::new(
+        state(500, 0.6, [Boundary::Periodic; 2], 5),
+        dense_params(tc),
+    )
+    .expect("engine");
+    let mut checker = InvariantChecker::new(&engine);
+    let e0 = engine.kinetic_energy();
+    let mut lost = 0.0;
+    let mut elastic_by_tc = 0u64;
+    let mut last_collision = vec![f64::NEG_INFINITY; engine.len()];
+    const TARGET: u64 = 200_000;
+    let mut done = 0;
+    while done < TARGET {
+        let ev = engine
+            .next_event()
+            .unwrap_or_else(|e| panic!("TC run failed after {done} collisions: {e}"))
+            .expect("events");
+        let Event::Pair(p) = ev else {
+            panic!("unexpected {ev:?}")
+        };
+        done += 1;
+        // The TC rule, checked from the outside: elastic iff either disc collided less
+        // than t_c ago.
+        let (i, j) = (p.i as usize, p.j as usize);
+        let recent = p.time - last_collision[i] < tc || p.time - last_collision[j] < tc;
+        let u = (p.vi_before - p.vj_before).dot(p.normal);
+        let u_after = (p.vi_after - p.vj_after).dot(p.normal);
+        let want = if recent { -u } else { -0.5 * u };
+        assert!(
+            (u_after - want).abs()
+                <= 1e-12 * (u.abs() + p.vi_before.length() + p.vj_before.length()),
+            "collision {done}: u {u} → {u_after}, expected {want} (recent: {recent})"
+        );
+        if recent {
+            elastic_by_tc += 1;
+            assert_eq!(p.energy_lost, 0.0);
+        }
+        last_collision[i] = p.time;
+        last_collision[j] = p.time;
+        lost += p.energy_lost;
+        if done % 10_000 == 0 {
+            checker
+                .check_conservation(&engine)
+                .unwrap_or_else(|v| panic!("after {done}: {v}"));
+            checker
+                .check_overlaps(&engine)
+                .unwrap_or_else(|v| panic!("after {done}: {v}"));
+        }
+    }
+    checker
+        .check(&engine)
+        .unwrap_or_else(|v| panic!("at the end: {v}"));
+    let k = engine.kinetic_energy();
+    assert!(
+        ((e0 - lost) - k).abs() <= 1e-9 * e0,
+        "E0 − Σ loss {} vs K {k}",
+        e0 - lost
+    );
+    println!(
+        "TC run: {TARGET} collisions to t = {:.4}, {elastic_by_tc} made elastic by TC, K {e0:.2} → {k:.3e}, max overlap {:e}",
+        engine.now(),
+        checker.max_overlap
+    );
+}
+
+fn wall_run(boundary: [Boundary; 2], seed: u64, events: u64) {
+    let s = state(100, 0.2, boundary, seed);
+    let mut engine = Engine::new(s, EngineParams::default()).expect("engine");
+    let e0 = engine.kinetic_energy();
+    let (p0, scale0) = momentum(&engine);
+    let mut k_prev = e0;
+    let mut lost = 0.0;
+    let mut wall_hits = 0;
+    let mut impulse_sum = [[0.0f64; 2]; 2];
+    for _ in 0..events {
+        let ev = engine.next_event().expect("engine").expect("events");
+        let k = engine.kinetic_energy();
+        match ev {
+            Event::Wall(w) => {
+                wall_hits += 1;
+                let ax = w.axis.index();
+                let e = match boundary[ax] {
+                    Boundary::Walls { restitution } => restitution,
+                    Boundary::Periodic => panic!("wall hit on a periodic axis"),
+                };
+                let m = mass(&engine, w.i);
+                let vn = w.v_before[ax];
+                let mut want = w.v_before;
+                want[ax] = -e * vn;
+                assert_eq!(
+                    w.v_after, want,
+                    "normal reversed and scaled, tangential kept"
+                );
+                let expected = 0.5 * m * (1.0 - e * e) * vn * vn;
+                assert!(
+                    (w.energy_lost - expected).abs() <= 1e-14 * expected.max(1e-300),
+                    "wall loss {} vs ½ m (1 − e²) v_n² = {expected}",
+                    w.energy_lost
+                );
+                assert!((w.impulse - m * (1.0 + e) * vn.abs()).abs() <= 1e-14 * w.impulse);
+                impulse_sum[ax][(w.side == carom::core::WallSide::High) as usize] += w.impulse;
+                assert!(
+                    ((k_prev - k) - w.energy_lost).abs() <= 1e-12 * e0,
+                    "engine energy {k_prev} → {k} vs wall loss {}",
+                    w.energy_lost
+                );
+                lost += w.energy_lost;
+            }
+            Event::Pair(p) => {
+                assert_eq!(p.energy_lost, 0.0);
+                assert!((k_prev - k).abs() <= 1e-12 * e0, "elastic pair changed K");
+            }
+            Event::Scheduled { .. } => unreachable!(),
+        }
+        k_prev = k;
+    }
+    assert!(wall_hits > 100, "only {wall_hits} wall hits");
+    let k = engine.kinetic_energy();
+    assert!(((e0 - lost) - k).abs() <= 1e-9 * e0);
+    assert!((engine.stats().energy_lost - lost).abs() <= 1e-12 * e0);
+    for (ax, sides) in impulse_sum.iter().enumerate() {
+        for (side, &sum) in sides.iter().enumerate() {
+            let s = engine.stats().wall_impulse[ax][side];
+            assert!(
+                (s - sum).abs() <= 1e-12 * sum.max(1.0),
+                "wall impulse [{ax}][{side}]"
+            );
+        }
+    }
+    // Along a periodic axis momentum is still conserved.
+    let (p, _) = momentum(&engine);
+    for ax in 0..2 {
+        if boundary[ax].is_periodic() {
+            assert!(
+                (p[ax] - p0[ax]).abs() <= 1e-12 * scale0,
+                "momentum along {ax}"
+            );
+        }
+    }
+    assert!(k < e0, "lossy walls must cool the gas");
+}
+
+#[test]
+fn lossy_walls_dissipate_half_m_one_minus_e2_vn2() {
+    wall_run([Boundary::Walls { restitution: 0.7 }; 2], 7, 20_000);
+    // Different restitution per axis.
+    wall_run(
+        [
+            Boundary::Walls { restitution: 0.95 },
+            Boundary::Walls { restitution: 0.3 },
+        ],
+        8,
+        20_000,
+    );
+    // A channel: periodic x, lossy walls in y.
+    wall_run(
+        [Boundary::Periodic, Boundary::Walls { restitution: 0.5 }],
+        9,
+        20_000,
+    );
+}
