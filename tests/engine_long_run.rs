@@ -65,6 +65,8 @@ fn checked_run(seed: u64, collisions: u64, snapshot_at: u64) -> (State, State) {
     let mut last = engine.now();
     let mut done = 0u64;
     let mut snapshot = None;
+    // Next collision counts at which to check conservation and overlaps.
+    let (mut next_conservation, mut next_overlap) = (10_000u64, 100_000u64);
     while done < collisions {
         let ev = engine
             .next_event()
@@ -79,12 +81,14 @@ fn checked_run(seed: u64, collisions: u64, snapshot_at: u64) -> (State, State) {
             Event::Wall(w) => panic!("wall collision in a periodic box: {w:?}"),
             Event::Scheduled { .. } => panic!("nothing was scheduled"),
         }
-        if done % 10_000 == 0 {
+        if done == next_conservation {
+            next_conservation += 10_000;
             checker
                 .check_conservation(&engine)
                 .unwrap_or_else(|v| panic!("after {done} collisions: {v}"));
         }
-        if done % 100_000 == 0 {
+        if done == next_overlap {
+            next_overlap += 100_000;
             checker
                 .check_overlaps(&engine)
                 .unwrap_or_else(|v| panic!("after {done} collisions: {v}"));

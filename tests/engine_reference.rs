@@ -602,7 +602,7 @@ impl Reference {
                     Boundary::Walls { restitution } => restitution,
                     Boundary::Periodic => unreachable!(),
                 };
-                self.vel[i][k] = -e * self.vel[i][k];
+                self.vel[i][k] *= -e;
             }
         }
         (ev.key, self.time)

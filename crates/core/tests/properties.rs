@@ -217,10 +217,10 @@ proptest! {
     /// D = b² − |Δv|² c = 0 with no rounding. Axis-aligned geometry with small dyadic
     /// numbers makes every product exact: Δr = (±X, ±σ) (or transposed), the relative
     /// velocity along the other axis. Both forms must say `Some` (a touch is a
-    /// contact), at the same time. The time is compared to 1e-7 only: at D = 0 the
-    /// seed's √(σ² − h²) turns a rounding of h (1 ulp) into √ε ≈ 1e-8 of σ.
+    /// contact), at the same time up to the seed form's inherent loss of half the
+    /// digits at tangency (bound below).
     #[test]
-        fn grazing_contacts_classified_alike(
+    fn grazing_contacts_classified_alike(
         x_units in 1u32..200,
         sigma_units in 1u32..64,
         speed_units in 1u32..64,
@@ -564,11 +564,11 @@ fn grazing_example_is_a_contact_in_both_forms() {
     );
 }
 
-/// Minimal reproduction of the grazing misclassification (the failing input proptest
-/// found): Δr = (−24, −0.4375), σ = 0.4375, g = v1 − v2 = (−0.25, 0). The relative
-/// motion is exactly tangent to the contact circle (D = 0 computed without rounding),
-/// and the vector form reports the touch at t = X/|g| = 96; the seed form rounds
-/// h = d sin(γ_xy − γ_v) to just above σ and reports a miss.
+/// Regression test (the failing input proptest found for the first version of
+/// `contact_time_seed`): Δr = (−24, −0.4375), σ = 0.4375, g = v1 − v2 = (−0.25, 0). The
+/// relative motion is exactly tangent to the contact circle (D = 0 computed without
+/// rounding), and the vector form reports the touch at t = X/|g| = 96; the seed form
+/// rounded h = d sin(γ_xy − γ_v) to just above σ and reported a miss.
 #[test]
 fn seed_grazing_repro() {
     let (r1, v1) = (DVec2::ZERO, DVec2::new(-0.25, 0.0));
@@ -584,9 +584,9 @@ fn seed_grazing_repro() {
 
 /// A touching pair whose relative velocity is exactly tangential (Δr = (0, 1), σ = 1,
 /// g = (1, 0), so b = Δr·Δv = 0 exactly): it neither approaches nor recedes, and
-/// physics.md §2 says b ≥ 0 never collides. The vector form says `None`; the seed form
-/// computes cos(γ_xy − γ_v) = cos(π/2) = 6.1e-17 > 0 and reports a contact at
-/// t = 6.1e-17.
+/// physics.md §2 says b ≥ 0 never collides. The vector form says `None`; the first
+/// seed form computed cos(γ_xy − γ_v) = cos(π/2) = 6.1e-17 > 0 and reported a contact
+/// at t = 6.1e-17 (regression test).
 #[test]
 fn seed_sideways_touch_repro() {
     let (r1, v1) = (DVec2::ZERO, DVec2::new(1.0, 0.0));
