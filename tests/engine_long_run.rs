@@ -13,7 +13,7 @@
 //!   positions, velocities and time have identical bits; a different seed ends
 //!   elsewhere.
 //!
-//! Two sizes: 10⁶ collisions (≈ 1.5 s) and the 10⁷ (≈ 14 s in the test
+//! Two sizes: 10⁶ collisions (≈ 1.5 s) and the 10⁷ (≈ 14–30 s in the test
 //! profile on 2 cores). Both are in the default suite. (The 10⁷ run caught a
 //! systematic energy drift from normalising the contact normal before the
 //! collision rule; see `carom_core::collision`.)
@@ -154,7 +154,7 @@ fn elastic_run_1e6_keeps_invariants_and_is_reproducible() {
     long_run(1_000_000);
 }
 
-/// Takes ≈ 14 s in the test profile on the 2-core machine (the checked run and its
+/// Takes ≈ 14–30 s (depending on load) in the test profile on the 2-core machine (the checked run and its
 /// repeat run in parallel threads).
 #[test]
 fn elastic_run_1e7_keeps_invariants_and_is_reproducible() {
