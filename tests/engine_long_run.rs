@@ -154,8 +154,8 @@ fn elastic_run_1e6_keeps_invariants_and_is_reproducible() {
     long_run(1_000_000);
 }
 
-/// Takes ≈ 14–30 s (depending on load) in the test profile on the 2-core machine (the checked run and its
-/// repeat run in parallel threads).
+/// Takes ≈ 14–30 s (depending on load) in the test profile on the 2-core machine
+/// (the checked run and its repeat run in parallel threads).
 #[test]
 fn elastic_run_1e7_keeps_invariants_and_is_reproducible() {
     long_run(10_000_000);
