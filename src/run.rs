@@ -238,7 +238,7 @@ fn validate(log: &LogOptions, stop: &Stop, now: f64) -> Result<(), RunError> {
             allowed: "integers ≥ 1",
         });
     }
-    if !(log.flush_seconds >= 0.0) {
+    if log.flush_seconds.is_nan() || log.flush_seconds < 0.0 {
         return Err(RunError::Invalid {
             field: "log.flush_seconds",
             problem: format!("{} is not ≥ 0", log.flush_seconds),
@@ -673,7 +673,7 @@ impl<'a> Driver<'a> {
                 reason = Some(StopReason::Collisions);
             }
             tick = tick.wrapping_add(1);
-            if tick % 1024 == 0 {
+            if tick.is_multiple_of(1024) {
                 self.writer.maybe_flush()?;
                 if self.control.progress.is_some()
                     && self.last_progress.elapsed() >= self.control.progress_interval

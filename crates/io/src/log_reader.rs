@@ -208,7 +208,7 @@ pub struct RawMessage<'a> {
 #[derive(Debug, Clone, PartialEq)]
 pub enum LogMessage {
     /// A batch of collisions.
-    Collisions(CollisionBatch),
+    Collisions(Box<CollisionBatch>),
     /// A snapshot.
     Snapshot(Snapshot),
     /// A thermo record.
@@ -813,7 +813,7 @@ fn decode_current<R: Read + Seek>(
     let data = &reader.record[MESSAGE_HEADER_LEN.min(reader.record.len())..];
     let r = match channel {
         CH_COLLISIONS => {
-            let mut b = CollisionBatch::default();
+            let mut b = Box::<CollisionBatch>::default();
             b.decode_into(data).map(|_| LogMessage::Collisions(b))
         }
         CH_SNAPSHOT => Snapshot::decode(data).map(LogMessage::Snapshot),

@@ -109,22 +109,28 @@ pub struct WriterOptions {
     pub collision_every: u64,
     /// Chunk compression.
     pub compression: Compression,
-    /// Compression level (zstd: 1–22, lz4: 0–12); 0 = the library default.
-    pub compression_level: u32,
+    /// Compression level: zstd 1 to 22, or negative for zstd's fast levels (−1 to
+    /// −7 and below: less CPU, slightly larger files); lz4 0 to 12; 0 means the
+    /// library's default.
+    pub compression_level: i32,
     /// Target uncompressed chunk size (bytes).
     pub chunk_size: u64,
     /// Collisions per `/collisions` message.
     pub batch_size: usize,
     /// Wall-clock time between forced flushes.
     pub flush_every: Duration,
-    /// Encode, compress and write on a separate thread (default) instead of inline.
+    /// Encode, compress and write on a separate thread instead of inline (default:
+    /// when the machine has more than one core).
     pub background: bool,
 }
 
-/// zstd level used by default: on carom's collision data (near-random float
-/// mantissas) level 1 gives 97 bytes per collision against 92 at the library default
-/// (3) for about half the CPU time (see `docs/log-format.md`, "Throughput").
-pub const DEFAULT_ZSTD_LEVEL: u32 = 1;
+/// zstd level used by default: −1, zstd's first fast level. Collision data are
+/// mostly float mantissas that do not compress: level −1 writes 103 bytes per
+/// collision against 97 at level 1 and 92 at level 3, but needs about 60 % of level
+/// 1's CPU time and 35 % of level 3's, which keeps a run at N = 10⁴, η = 0.5 above
+/// 75 % of the bare engine's speed even when no core is free for the writer thread
+/// (`benches/logging.rs`; `docs/log-format.md`, "Throughput").
+pub const DEFAULT_ZSTD_LEVEL: i32 = -1;
 /// Collisions per `/collisions` message by default.
 pub const DEFAULT_BATCH_SIZE: usize = 4096;
 /// Target uncompressed chunk size by default (bytes).
@@ -148,7 +154,7 @@ impl WriterOptions {
             } else {
                 1e9
             }),
-            background: true,
+            background: std::thread::available_parallelism().is_ok_and(|n| n.get() > 1),
         }
     }
 }
@@ -394,7 +400,10 @@ impl LogWriter {
         };
         let mut mcap = mcap::WriteOptions::new()
             .compression(compression)
-            .compression_level(opts.compression_level)
+            // The mcap crate takes the level as u32 and hands it to zstd as i32
+            // (`as` casts), so a negative (fast) zstd level passes through its
+            // two's-complement bit pattern.
+            .compression_level(opts.compression_level as u32)
             .compression_threads(0)
             .chunk_size(Some(opts.chunk_size))
             .library(format!("carom-io {}", env!("CARGO_PKG_VERSION")))
@@ -539,7 +548,7 @@ impl LogWriter {
     fn observe(&mut self, record: impl FnOnce(u64) -> CollisionRecord) -> Result<(), WriteError> {
         let ordinal = self.stats.next_ordinal;
         self.stats.next_ordinal += 1;
-        if self.opts.collisions && ordinal % self.opts.collision_every == 0 {
+        if self.opts.collisions && ordinal.is_multiple_of(self.opts.collision_every) {
             if self.pending.is_empty() {
                 self.pending_first = ordinal;
             }

@@ -1,0 +1,240 @@
+//! Cost of logging every collision to MCAP (issue 3): collisions per second of the
+//! bare engine against the same engine with every collision logged, at N = 10⁴,
+//! η = 0.5 (periodic, σ = 1, m = 1, kT = 1, equilibrated for 10 collisions per
+//! disc), plus the full run driver.
+//!
+//! * `bare` — `Engine::run_collisions`, no logging;
+//! * first, outside criterion, `interleaved`: bare and logged blocks of 200 000
+//!   collisions of the same trajectory, alternated so that changing machine load
+//!   hits both alike; prints both rates, their ratio, and bytes per collision, for
+//!   the default (zstd −1, writer thread), inline writing, and zstd levels 1 and 3;
+//! * `logged/zstd` (default level −1), `logged/zstd1`, `logged/lz4`, `logged/none` —
+//!   the driver's hot loop: every event to a [`LogWriter`] with its default options
+//!   (batches of 4096 collisions, writer thread), into a file that is finished and
+//!   deleted after each sample;
+//! * `run/bare-engine` vs `run/logged` — a whole `carom::run::run` of 200 000
+//!   collisions from the lattice start (snapshots, thermo, checkpoints included)
+//!   against building and running a bare engine for as many collisions.
+//!
+//! Each logged case prints the bytes per logged collision of the files it wrote.
+//! Run: `cargo bench --bench logging -- --warm-up-time 1 --measurement-time 5`.
+
+use carom::core::{SimBox, Species};
+use carom::events::{box_size_for, Engine, EngineParams, Event, Placement, SystemSpec, Velocities};
+use carom::io::log_writer::{LogWriter, WriterOptions, WriterPosition};
+use carom::io::{Compression, LogOptions, RunSpec, Stop};
+use criterion::{criterion_group, Criterion, Throughput};
+use std::collections::BTreeMap;
+use std::path::PathBuf;
+use std::time::{Duration, Instant};
+
+const N: usize = 10_000;
+const ETA: f64 = 0.5;
+const BATCH: u64 = 100_000;
+
+fn system() -> SystemSpec {
+    let species = vec![Species {
+        count: N,
+        radius: 0.5,
+        mass: 1.0,
+    }];
+    let size = box_size_for(&species, ETA, 1.0);
+    SystemSpec {
+        species,
+        sim_box: SimBox::periodic(size.x, size.y),
+        temperature: 1.0,
+        seed: 42,
+        placement: Placement::Lattice,
+        velocities: Velocities::MaxwellBoltzmann,
+    }
+}
+
+fn engine() -> Engine {
+    let mut e = Engine::new(system().build().expect("valid"), EngineParams::default())
+        .expect("engine starts");
+    e.run_collisions(10 * N as u64).expect("equilibrates");
+    e
+}
+
+fn out_path(name: &str) -> PathBuf {
+    std::env::temp_dir().join(format!("carom-bench-{}-{name}.mcap", std::process::id()))
+}
+
+fn bench(c: &mut Criterion) {
+    let mut group = c.benchmark_group("N=10000,eta=0.50");
+    group.throughput(Throughput::Elements(BATCH));
+    group.sample_size(10);
+    let mut slot: Option<Engine> = None;
+    group.bench_function("bare", |b| {
+        let e = slot.get_or_insert_with(engine);
+        b.iter_custom(|iters| {
+            let start = Instant::now();
+            for _ in 0..iters {
+                e.run_collisions(BATCH).expect("elastic");
+            }
+            start.elapsed()
+        });
+    });
+    for (name, compression, level) in [
+        ("logged/zstd", Compression::Zstd, None),
+        ("logged/zstd1", Compression::Zstd, Some(1)),
+        ("logged/lz4", Compression::Lz4, None),
+        ("logged/none", Compression::None, None),
+    ] {
+        let mut slot: Option<Engine> = None;
+        let (mut bytes, mut logged) = (0u64, 0u64);
+        group.bench_function(name, |b| {
+            let e = slot.get_or_insert_with(engine);
+            b.iter_custom(|iters| {
+                let path = out_path("hot");
+                let mut opts = WriterOptions::from_log_options(&LogOptions {
+                    compression,
+                    ..LogOptions::default()
+                });
+                if let Some(level) = level {
+                    opts.compression_level = level;
+                }
+                let start = Instant::now();
+                let mut w =
+                    LogWriter::create(&path, opts, &BTreeMap::new(), WriterPosition::default())
+                        .expect("log opens");
+                let mut tick = 0u32;
+                for _ in 0..iters {
+                    let mut done = 0;
+                    while done < BATCH {
+                        match e.next_event().expect("elastic").expect("events") {
+                            Event::Pair(p) => {
+                                done += 1;
+                                w.observe_pair(&p).expect("write")
+                            }
+                            Event::Wall(wc) => {
+                                done += 1;
+                                w.observe_wall(&wc).expect("write")
+                            }
+                            Event::Scheduled { .. } => {}
+                        }
+                        tick = tick.wrapping_add(1);
+                        if tick % 1024 == 0 {
+                            w.maybe_flush().expect("flush");
+                        }
+                    }
+                }
+                let size = w.finish(&BTreeMap::new()).expect("finish");
+                let elapsed = start.elapsed();
+                bytes += size;
+                logged += w.stats().logged_collisions;
+                std::fs::remove_file(&path).ok();
+                elapsed
+            });
+        });
+        if logged > 0 {
+            eprintln!(
+                "\n[{name}] {:.1} bytes per logged collision ({:.1} MB per 10^6 collisions)",
+                bytes as f64 / logged as f64,
+                bytes as f64 / logged as f64
+            );
+        }
+    }
+    group.finish();
+
+    // The full driver against an equally long bare run, both from the lattice start.
+    let mut group = c.benchmark_group("run,N=10000,eta=0.50");
+    const RUN: u64 = 200_000;
+    group.throughput(Throughput::Elements(RUN));
+    group.sample_size(10);
+    group.measurement_time(Duration::from_secs(10));
+    group.bench_function("bare-engine", |b| {
+        b.iter(|| {
+            let mut e = Engine::new(system().build().expect("valid"), EngineParams::default())
+                .expect("engine starts");
+            e.run_collisions(RUN).expect("elastic")
+        })
+    });
+    let path = out_path("run");
+    let spec = RunSpec {
+        system: system(),
+        params: EngineParams::default(),
+        stop: Stop::Collisions(RUN),
+        log: LogOptions::default(),
+        config_json: "{}".into(),
+    };
+    let mut size = 0;
+    group.bench_function("logged", |b| {
+        b.iter(|| {
+            let s = carom::run::run(&spec, &path, Default::default()).expect("runs");
+            size = s.file_bytes;
+            s.collisions_this_process
+        })
+    });
+    if size > 0 {
+        eprintln!(
+        "\n[run/logged] file of {size} bytes for {RUN} collisions ({:.1} bytes per collision incl. snapshots/checkpoints)",
+        size as f64 / RUN as f64
+    );
+    }
+    std::fs::remove_file(&path).ok();
+    group.finish();
+}
+
+/// Bare and logged runs of the same trajectory, alternated in blocks so that a
+/// machine whose load changes over time (other processes) affects both alike.
+/// Prints both rates and their ratio. Each logged block opens a log, logs every
+/// collision of the block and finishes the file (waiting for the writer thread).
+fn interleaved(label: &str, level: i32, background: bool, rounds: usize) {
+    const BLOCK: u64 = 200_000;
+    let mut bare = engine();
+    let mut logged = bare.clone();
+    let (mut t_bare, mut t_logged) = (Duration::ZERO, Duration::ZERO);
+    let (mut bytes, mut count) = (0u64, 0u64);
+    let path = out_path("interleaved");
+    for _ in 0..rounds {
+        let start = Instant::now();
+        bare.run_collisions(BLOCK).expect("elastic");
+        t_bare += start.elapsed();
+
+        let mut opts = WriterOptions::from_log_options(&LogOptions::default());
+        opts.compression_level = level;
+        opts.background = background;
+        let start = Instant::now();
+        let mut w = LogWriter::create(&path, opts, &BTreeMap::new(), WriterPosition::default())
+            .expect("log opens");
+        let mut done = 0;
+        while done < BLOCK {
+            match logged.next_event().expect("elastic").expect("events") {
+                Event::Pair(p) => {
+                    done += 1;
+                    w.observe_pair(&p).expect("write")
+                }
+                Event::Wall(wc) => {
+                    done += 1;
+                    w.observe_wall(&wc).expect("write")
+                }
+                Event::Scheduled { .. } => {}
+            }
+        }
+        bytes += w.finish(&BTreeMap::new()).expect("finish");
+        t_logged += start.elapsed();
+        count += BLOCK;
+    }
+    std::fs::remove_file(&path).ok();
+    let rb = count as f64 / t_bare.as_secs_f64();
+    let rl = count as f64 / t_logged.as_secs_f64();
+    eprintln!(
+        "[interleaved {label}] bare {:.0} collisions/s, logged {:.0} collisions/s: {:.1} % of bare; {:.1} bytes per collision",
+        rb,
+        rl,
+        100.0 * rl / rb,
+        bytes as f64 / count as f64
+    );
+}
+
+criterion_group!(benches, bench);
+
+fn main() {
+    interleaved("zstd level -1 (default), writer thread", -1, true, 10);
+    interleaved("zstd level -1 (default), inline", -1, false, 10);
+    interleaved("zstd level 1, writer thread", 1, true, 10);
+    interleaved("zstd level 3 (zstd's default), writer thread", 3, true, 10);
+    benches();
+    Criterion::default().configure_from_args().final_summary();
+}
