@@ -10,10 +10,9 @@
 //!   Where an edge is shorter than a diameter (N = 2 at aspect 3 and 4, N = 3 at
 //!   aspect 4, and the transposed 1/4 cases) no placement can exist — a disc would
 //!   overlap its own periodic image — and the build must be an `Err` naming the box
-//!   edge. A second, `#[ignore]`d test demands success wherever the test itself can
-//!   exhibit a valid arrangement (a sheared lattice, found by enumerating all lattices
-//!   with M ≥ N points on the torus), which the engine's placement does not yet reach
-//!   for 34 small-N cases (engine bug, see its attribute).
+//!   edge. A second test demands success wherever the test itself can exhibit a valid
+//!   arrangement (a sheared lattice, found by enumerating all lattices with M ≥ N
+//!   points on the torus; two discs on a diagonal of a small walled box).
 //! * Walled and channel (periodic x, walls y) boxes at moderate η (0.3 for every N,
 //!   0.5 for N ≥ 4); random placement at low density.
 //! * Maxwell–Boltzmann velocities: zero total momentum (to 1e-12 of Σ m|v|) and kinetic
@@ -347,10 +346,6 @@ fn sheared_lattice(n: usize, size: DVec2, diameter: f64) -> Option<Vec<DVec2>> {
 
 /// Wherever an arrangement provably exists, lattice placement must find one.
 #[test]
-#[ignore = "engine bug: lattice placement only tries rectangular and half-shifted rows, \
-            and refuses η = 0.72 for 34 small-N cases where a sheared lattice fits \
-            (e.g. N = 5, 10, 13, 14, 20, 33 in a square box); also N = 2 in a square \
-            walled box at η = 0.4 and N = 3 in a 1.7 channel at η = 0.5"]
 fn lattice_places_wherever_an_arrangement_exists() {
     let mut failures = Vec::new();
     for &aspect in &ASPECTS {
@@ -455,9 +450,6 @@ fn lattice_in_walled_and_channel_boxes_at_moderate_density() {
 /// same `SystemSpec` with `Placement::Explicit(state.positions)` is accepted (a user
 /// saving an initial state and reusing it must not be refused).
 #[test]
-#[ignore = "engine bug: lattice placement in walled boxes puts centres at L − a + 1 ulp \
-            (e.g. walls η = 0.3, N = 6, aspect 1/4: y = 7.426654595212023 > L − a), \
-            which the explicit-position check then rejects"]
 fn lattice_output_is_valid_explicit_input() {
     let mut failures = Vec::new();
     for kind in [Kind::Periodic, Kind::Walls, Kind::Channel] {
@@ -789,11 +781,22 @@ fn invalid_temperature_is_an_error_naming_the_field() {
 
 #[test]
 fn packing_fraction_beyond_reach_is_an_error() {
-    // Lattice placement at η = 0.85 (below close packing, but beyond the lattices that
-    // fit 101 discs in a square box).
-    let sp = spec(mono(101), 0.85, 1.0, Kind::Periodic, 1);
+    // Lattice placement at η = 0.85, below close packing but provably out of reach
+    // for two discs on a square torus: their distance is at most L/√2 (the centred
+    // square), so η ≤ 2·π(σ/2)²/(2σ²) = π/4 ≈ 0.785.
+    let sp = spec(mono(2), 0.85, 1.0, Kind::Periodic, 1);
     let msg = assert_err_names(build(&sp, "η 0.85"), "packing_fraction", "lattice η = 0.85");
     assert!(msg.contains("0.85"), "{msg}");
+    // ... while π/4 − 0.001 is placed.
+    let sp = spec(
+        mono(2),
+        std::f64::consts::FRAC_PI_4 - 1e-3,
+        1.0,
+        Kind::Periodic,
+        1,
+    );
+    let s = build(&sp, "η π/4 − 0.001 N 2").expect("the centred square fits");
+    validate(&s, &sp, "η π/4 − 0.001 N 2");
     // Where a triangular lattice does fit (500 discs: 24 rows of 21, spacing ≥ σ),
     // η = 0.85 is placed, without overlap.
     let sp = spec(mono(500), 0.85, 1.0, Kind::Periodic, 1);

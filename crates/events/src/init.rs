@@ -216,7 +216,13 @@ fn axis_sites(len: f64, periodic: bool, a: f64, count: usize) -> (Vec<f64>, f64)
         (vec![len / 2.0], f64::INFINITY)
     } else {
         let s = (len - 2.0 * a) / (count - 1) as f64;
-        ((0..count).map(|k| a + k as f64 * s).collect(), s)
+        // Clamped: a + (count − 1) s may round one ulp past len − a.
+        (
+            (0..count)
+                .map(|k| (a + k as f64 * s).min(len - a))
+                .collect(),
+            s,
+        )
     }
 }
 
@@ -298,10 +304,169 @@ impl Lattice {
     }
 }
 
+/// A lattice in a box periodic on both axes: `q` rows of `p` sites, row j shifted
+/// along x by j k/q of the site spacing. Every lattice with p q sites that fits the
+/// torus has such a basis (its Hermite normal form), so this family holds every
+/// periodic lattice arrangement; `k = 0` is square-like and `k = q/2` the usual
+/// alternate-row triangular lattice.
+#[derive(Debug, Clone, Copy)]
+struct Sheared {
+    p: usize,
+    q: usize,
+    k: usize,
+}
+
+impl Sheared {
+    /// Basis vectors b1 = (L_x/p, 0), b2 = (k L_x/(p q), L_y/q) (length).
+    fn basis(&self, size: DVec2) -> (DVec2, DVec2) {
+        (
+            DVec2::new(size.x / self.p as f64, 0.0),
+            DVec2::new(
+                size.x * self.k as f64 / (self.p * self.q) as f64,
+                size.y / self.q as f64,
+            ),
+        )
+    }
+
+    /// Closest distance between two sites (including periodic images): the shortest
+    /// nonzero lattice vector, by Lagrange–Gauss reduction of the basis.
+    fn closest(&self, size: DVec2) -> f64 {
+        let (mut u, mut v) = self.basis(size);
+        if u.length_squared() > v.length_squared() {
+            std::mem::swap(&mut u, &mut v);
+        }
+        loop {
+            let mu = (u.dot(v) / u.length_squared()).round();
+            v -= u * mu;
+            if v.length_squared() >= u.length_squared() {
+                return u.length();
+            }
+            std::mem::swap(&mut u, &mut v);
+        }
+    }
+
+    fn sites(&self, size: DVec2) -> Vec<DVec2> {
+        let (p, q) = (self.p as f64, self.q as f64);
+        let mut out = Vec::with_capacity(self.p * self.q);
+        for j in 0..self.q {
+            let y = (j as f64 + 0.5) * size.y / q;
+            let shift = j as f64 * self.k as f64 / q;
+            for i in 0..self.p {
+                let x = ((i as f64 + 0.5 + shift) * size.x / p).rem_euclid(size.x);
+                out.push(DVec2::new(x.min(size.x * (1.0 - f64::EPSILON)), y));
+            }
+        }
+        out
+    }
+}
+
+/// A candidate arrangement of lattice sites.
+#[derive(Debug, Clone, Copy)]
+enum Arrangement {
+    /// Rows, plain or alternately shifted (any boundaries), with the rule choosing
+    /// which sites are occupied when there are more sites than discs.
+    Rows(Lattice, Selection),
+    /// A sheared lattice (periodic on both axes).
+    Sheared(Sheared),
+}
+
+/// Which n of m ≥ n sites (in row order) are occupied.
+#[derive(Debug, Clone, Copy, PartialEq)]
+enum Selection {
+    /// Sites ⌊k m/n⌋: spread evenly.
+    Spread,
+    /// Sites ⌊k (m−1)/(n−1)⌋: spread evenly including the last site (corners).
+    Ends,
+}
+
+impl Selection {
+    fn pick<T: Copy>(self, sites: &[T], n: usize) -> Vec<T> {
+        let m = sites.len();
+        match self {
+            Selection::Ends if n > 1 => (0..n).map(|k| sites[k * (m - 1) / (n - 1)]).collect(),
+            _ => (0..n).map(|k| sites[k * m / n]).collect(),
+        }
+    }
+}
+
+impl Arrangement {
+    /// The n occupied sites.
+    fn occupied(&self, sim_box: &SimBox, a: f64, n: usize) -> Vec<DVec2> {
+        match self {
+            Arrangement::Rows(l, sel) => sel.pick(&l.sites(sim_box, a), n),
+            Arrangement::Sheared(l) => Selection::Spread.pick(&l.sites(sim_box.size), n),
+        }
+    }
+}
+
+/// Closest distance between any two of `pts` (minimum image on periodic axes); ∞ for
+/// fewer than two points. O(n²): for small n only.
+fn closest_pair_distance(sim_box: &SimBox, pts: &[DVec2]) -> f64 {
+    let mut d2 = f64::INFINITY;
+    for (i, p) in pts.iter().enumerate() {
+        for q in &pts[i + 1..] {
+            d2 = d2.min(sim_box.minimum_image(*q - *p).length_squared());
+        }
+    }
+    d2.sqrt()
+}
+
 /// The best lattice for `n` discs of largest radius `a` in `sim_box`: the candidate
-/// whose closest pair of sites is farthest apart. Returns it with that distance.
-fn best_lattice(sim_box: &SimBox, n: usize, a: f64) -> (Lattice, f64) {
-    let mut best: Option<(Lattice, f64, usize)> = None;
+/// whose closest pair of sites is farthest apart (fewer spare sites on ties).
+/// Returns it with that distance.
+fn best_lattice(sim_box: &SimBox, n: usize, a: f64) -> (Arrangement, f64) {
+    let mut best: Option<(Arrangement, f64, usize)> = None;
+    fn consider(
+        best: &mut Option<(Arrangement, f64, usize)>,
+        arr: Arrangement,
+        d: f64,
+        cap: usize,
+    ) {
+        let better = match *best {
+            None => true,
+            Some((_, bd, bcap)) => d > bd || (d == bd && cap < bcap),
+        };
+        if better {
+            *best = Some((arr, d, cap));
+        }
+    }
+    let fully_periodic = sim_box.boundary.iter().all(|b| b.is_periodic());
+    if fully_periodic {
+        // Row counts to try: all of them (with up to 2n sites) for small n, else a
+        // wide band around the row count of an ideal triangular lattice.
+        let ideal = (n as f64 * sim_box.size.y / sim_box.size.x * 3f64.sqrt() / 2.0).sqrt();
+        let (q_lo, q_hi) = if n <= 500 {
+            (1, 2 * n)
+        } else {
+            ((ideal / 2.0) as usize, (2.0 * ideal) as usize + 1)
+        };
+        for q in q_lo.max(1)..=q_hi.min(2 * n) {
+            // Columns: from the fewest that hold n discs; for small n up to 2n sites
+            // (a sparser-looking lattice can have a better shape).
+            let p0 = n.div_ceil(q).max(1);
+            let p_hi = if n <= 500 {
+                (2 * n / q).max(p0)
+            } else {
+                p0 + 1
+            };
+            for p in p0..=p_hi {
+                // b1 is a lattice vector, so L_x/p bounds the closest distance: no shear
+                // of a lattice with this many columns can beat the best found so far.
+                if best.is_some_and(|(_, bd, _)| sim_box.size.x / p as f64 <= bd) {
+                    break;
+                }
+                for k in 0..q {
+                    let l = Sheared { p, q, k };
+                    consider(
+                        &mut best,
+                        Arrangement::Sheared(l),
+                        l.closest(sim_box.size),
+                        p * q,
+                    );
+                }
+            }
+        }
+    }
     for transposed in [false, true] {
         let (ku, kv) = if transposed { (1, 0) } else { (0, 1) };
         let (lu, lv) = (sim_box.size[ku], sim_box.size[kv]);
@@ -322,12 +487,15 @@ fn best_lattice(sim_box: &SimBox, n: usize, a: f64) -> (Lattice, f64) {
                     lat.cols += 1;
                 }
                 let (cap, d) = lat.quality(lu, lv, pu, pv, a);
-                let better = match best {
-                    None => true,
-                    Some((_, bd, bcap)) => d > bd || (d == bd && cap < bcap),
-                };
-                if better {
-                    best = Some((lat, d, cap));
+                consider(&mut best, Arrangement::Rows(lat, Selection::Spread), d, cap);
+                if cap > n && n <= 64 && !fully_periodic {
+                    // In small walled boxes the occupied subset can be much better
+                    // spaced than the full lattice (two discs on a diagonal).
+                    let sites = lat.sites(sim_box, a);
+                    for sel in [Selection::Spread, Selection::Ends] {
+                        let d = closest_pair_distance(sim_box, &sel.pick(&sites, n));
+                        consider(&mut best, Arrangement::Rows(lat, sel), d, cap);
+                    }
                 }
             }
         }
@@ -379,10 +547,7 @@ fn lattice(
             ),
         ));
     }
-    let sites = lat.sites(&spec.sim_box, a);
-    let m = sites.len();
-    // Spread the n discs evenly over the m ≥ n sites.
-    let mut chosen: Vec<DVec2> = (0..n).map(|k| sites[k * m / n]).collect();
+    let mut chosen = lat.occupied(&spec.sim_box, a, n);
     // Shuffle which disc sits where, so species mix (Fisher–Yates, seeded).
     for k in (1..n).rev() {
         let j = rng.random_range(0..=k);
