@@ -1,10 +1,13 @@
 //! Initial states: placement of the discs and their velocities, reproducible from a
 //! seed (a `rand_pcg` generator).
 //!
-//! * Lattice placement picks, among square and triangular arrangements of rows and
-//!   columns, the one whose closest pair of sites is farthest apart, and leaves the
-//!   spare sites empty (spread evenly). In a periodic box it reaches packing fraction
-//!   0.72 for every N ≥ 2 and aspect ratio in [1/4, 4].
+//! * Lattice placement picks the arrangement whose closest pair of occupied sites is
+//!   farthest apart, and leaves spare sites empty (spread evenly). In a fully periodic
+//!   box it searches every lattice that fits the torus (q rows of p sites with shear
+//!   k/q — the Hermite normal form — with up to 2N sites for N ≤ 500), so it reaches
+//!   packing fraction 0.72 for every N ≥ 2 and aspect ratio in [1/4, 4] where the box
+//!   edges exceed a diameter. With walls it uses square and triangular rows spread
+//!   to the walls.
 //! * Random placement inserts discs one by one at uniformly random non-overlapping
 //!   positions; meant for low density.
 //! * Velocities are Maxwell–Boltzmann at temperature kT (each component Gaussian with
