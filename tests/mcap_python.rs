@@ -15,54 +15,6 @@ use carom::run::{run, Control};
 use mcap_common::*;
 use serde_json::Value;
 use std::path::Path;
-use std::process::Command;
-
-/// The Python interpreter with the packages, or `None` (after saying so) to skip.
-pub fn python() -> Option<String> {
-    let (py, explicit) = match std::env::var("CAROM_PYTHON") {
-        Ok(p) if !p.is_empty() => (p, true),
-        _ => ("python3".to_string(), false),
-    };
-    let ok = Command::new(&py)
-        .args(["-c", "import mcap, mcap_ros2.decoder"])
-        .output()
-        .map(|o| o.status.success())
-        .unwrap_or(false);
-    if ok {
-        return Some(py);
-    }
-    assert!(
-        !explicit,
-        "CAROM_PYTHON={py} is set but cannot import mcap and mcap_ros2 \
-         (pip install -r tests/python-requirements.txt)"
-    );
-    // Straight to stderr, past the test harness's output capture, so that the skip
-    // shows in a normal `cargo test` run.
-    use std::io::Write;
-    let _ = writeln!(
-        std::io::stderr(),
-        "SKIPPED: the Python packages mcap and mcap-ros2-support are not available to {py}; \
-         set CAROM_PYTHON to an interpreter that has them (.ci/run does)"
-    );
-    None
-}
-
-/// Run the helper script on `path` and parse its JSON.
-pub fn read_with_python(py: &str, path: &Path, streaming: bool) -> Value {
-    let script = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/python/read_carom_log.py");
-    let mut cmd = Command::new(py);
-    cmd.arg(script).arg(path);
-    if streaming {
-        cmd.arg("--streaming");
-    }
-    let out = cmd.output().expect("python runs");
-    assert!(
-        out.status.success(),
-        "python reader failed:\n{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    serde_json::from_slice(&out.stdout).expect("python prints JSON")
-}
 
 /// CRC-32 (IEEE, as Python's zlib.crc32), continuing from `crc`.
 fn crc32(mut crc: u32, bytes: &[u8]) -> u32 {
@@ -114,7 +66,7 @@ fn rust_side(path: &Path) -> (Value, u64) {
                     i,
                     j,
                     ..
-                } = &b;
+                } = &*b;
                 batches.push(serde_json::json!({
                     "first_ordinal": first_ordinal, "stride": stride, "len": time.len(),
                 }));
