@@ -14,3 +14,7 @@ pub mod run_metadata;
 pub mod schema;
 
 pub use options::{Compression, LogOptions, RunSpec, Stop};
+
+/// The `mcap` crate carom's logs are written with (for tools and tests that need
+/// raw MCAP access).
+pub use mcap;
