@@ -314,6 +314,12 @@ pub fn resume(
         .filter(|s| s.2 >> TAG_SHIFT == TAG_STOP)
         .map(|s| s.0)
         .collect();
+    if let Some(problem) = non_finite(&engine) {
+        return Err(RunError::BadCheckpoint {
+            file: input.to_path_buf(),
+            source: EngineError::BadCheckpoint(problem),
+        });
+    }
     let next_ordinal = engine.stats.pair_collisions + engine.stats.wall_collisions;
     let resumed_at = engine.now;
     let engine = Engine::from_checkpoint(engine).map_err(|source| RunError::BadCheckpoint {
@@ -388,6 +394,34 @@ pub fn resume(
         });
     }
     Ok(summary)
+}
+
+/// The first non-finite value among the checkpoint's times, positions and
+/// velocities (which the engine assumes finite), if any.
+fn non_finite(cp: &carom_events::Checkpoint) -> Option<String> {
+    if !cp.now.is_finite() {
+        return Some(format!("current time {} is not finite", cp.now));
+    }
+    if !cp.sim_box.size.is_finite() {
+        return Some("box size is not finite".into());
+    }
+    let bad = |name: &str, k: usize| Some(format!("{name} of disc slot {k} is not finite"));
+    for (k, p) in cp.positions.iter().enumerate() {
+        if !p.is_finite() {
+            return bad("position", k);
+        }
+    }
+    for (k, v) in cp.velocities.iter().enumerate() {
+        if !v.is_finite() {
+            return bad("velocity", k);
+        }
+    }
+    for (k, t) in cp.times.iter().enumerate() {
+        if !t.is_finite() {
+            return bad("update time", k);
+        }
+    }
+    None
 }
 
 fn same_file(a: &Path, b: &Path) -> bool {

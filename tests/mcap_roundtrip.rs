@@ -292,3 +292,22 @@ fn bad_options_name_the_field() {
     .unwrap_err();
     assert!(e.to_string().contains("log.snapshot_interval"), "{e}");
 }
+
+#[test]
+fn docs_show_every_schema_verbatim() {
+    use carom::io::checkpoint_codec::CHECKPOINT_MSG;
+    use carom::io::schema::{COLLISION_BATCH_MSG, SNAPSHOT_MSG, THERMO_JSON_SCHEMA};
+    let doc = std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/docs/log-format.md"))
+        .unwrap();
+    for (name, text) in [
+        ("CollisionBatch", COLLISION_BATCH_MSG),
+        ("Snapshot", SNAPSHOT_MSG),
+        ("Checkpoint", CHECKPOINT_MSG),
+        ("Thermo", THERMO_JSON_SCHEMA),
+    ] {
+        assert!(
+            doc.contains(text),
+            "docs/log-format.md does not show the current {name} schema"
+        );
+    }
+}
