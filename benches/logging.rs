@@ -114,7 +114,7 @@ fn bench(c: &mut Criterion) {
                             Event::Scheduled { .. } => {}
                         }
                         tick = tick.wrapping_add(1);
-                        if tick % 1024 == 0 {
+                        if tick.is_multiple_of(1024) {
                             w.maybe_flush().expect("flush");
                         }
                     }
