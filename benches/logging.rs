@@ -12,9 +12,11 @@
 //!   the driver's hot loop: every event to a [`LogWriter`] with its default options
 //!   (batches of 4096 collisions, writer thread), into a file that is finished and
 //!   deleted after each sample;
-//! * `run/bare-engine` vs `run/logged` — a whole `carom::run::run` of 200 000
-//!   collisions from the lattice start (snapshots, thermo, checkpoints included)
-//!   against building and running a bare engine for as many collisions.
+//! * `run/bare-engine` vs `run/logged` — a whole `carom::run::run` of 10⁶
+//!   collisions from the lattice start against building and running a bare engine
+//!   for as many collisions: `run/logged` with the default log options (snapshots,
+//!   thermo, checkpoints), `run/logged-collisions-only` with every collision and
+//!   only the initial and final checkpoints.
 //!
 //! Each logged case prints the bytes per logged collision of the files it wrote.
 //! Run: `cargo bench --bench logging -- --warm-up-time 1 --measurement-time 5`.
@@ -139,10 +141,10 @@ fn bench(c: &mut Criterion) {
 
     // The full driver against an equally long bare run, both from the lattice start.
     let mut group = c.benchmark_group("run,N=10000,eta=0.50");
-    const RUN: u64 = 200_000;
+    const RUN: u64 = 1_000_000;
     group.throughput(Throughput::Elements(RUN));
     group.sample_size(10);
-    group.measurement_time(Duration::from_secs(10));
+    group.measurement_time(Duration::from_secs(15));
     group.bench_function("bare-engine", |b| {
         b.iter(|| {
             let mut e = Engine::new(system().build().expect("valid"), EngineParams::default())
@@ -151,26 +153,42 @@ fn bench(c: &mut Criterion) {
         })
     });
     let path = out_path("run");
-    let spec = RunSpec {
-        system: system(),
-        params: EngineParams::default(),
-        stop: Stop::Collisions(RUN),
-        log: LogOptions::default(),
-        config_json: "{}".into(),
-    };
-    let mut size = 0;
-    group.bench_function("logged", |b| {
-        b.iter(|| {
-            let s = carom::run::run(&spec, &path, Default::default()).expect("runs");
-            size = s.file_bytes;
-            s.collisions_this_process
-        })
-    });
-    if size > 0 {
-        eprintln!(
-        "\n[run/logged] file of {size} bytes for {RUN} collisions ({:.1} bytes per collision incl. snapshots/checkpoints)",
-        size as f64 / RUN as f64
-    );
+    for (name, log) in [
+        // The default log options: snapshots every 1, thermo every 0.1, checkpoints
+        // every 10 time units (at N = 10⁴ a snapshot is ~340 kB, a checkpoint ~1.3 MB).
+        ("logged", LogOptions::default()),
+        // Every collision, nothing else but the initial and final checkpoint.
+        (
+            "logged-collisions-only",
+            LogOptions {
+                snapshot_interval: None,
+                thermo_interval: None,
+                checkpoint_interval: None,
+                ..LogOptions::default()
+            },
+        ),
+    ] {
+        let spec = RunSpec {
+            system: system(),
+            params: EngineParams::default(),
+            stop: Stop::Collisions(RUN),
+            log,
+            config_json: "{}".into(),
+        };
+        let mut size = 0;
+        group.bench_function(name, |b| {
+            b.iter(|| {
+                let s = carom::run::run(&spec, &path, Default::default()).expect("runs");
+                size = s.file_bytes;
+                s.collisions_this_process
+            })
+        });
+        if size > 0 {
+            eprintln!(
+                "\n[run/{name}] file of {size} bytes for {RUN} collisions ({:.1} bytes per collision)",
+                size as f64 / RUN as f64
+            );
+        }
     }
     std::fs::remove_file(&path).ok();
     group.finish();
