@@ -26,7 +26,8 @@ pub struct LogOptions {
     pub snapshot_interval: Option<f64>,
     /// Simulated time between `/thermo` messages (time); `None` = no thermo.
     pub thermo_interval: Option<f64>,
-    /// Simulated time between `/checkpoint` messages (time); `None` = only at the end.
+    /// Simulated time between `/checkpoint` messages (time); `None` = only at the start
+    /// and the end (a checkpoint is always written at both, so any flushed log resumes).
     pub checkpoint_interval: Option<f64>,
     /// Chunk compression.
     pub compression: Compression,
