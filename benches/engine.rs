@@ -14,7 +14,11 @@ use criterion::{criterion_group, criterion_main, Criterion, Throughput};
 use std::time::{Duration, Instant};
 
 fn engine(n: usize, eta: f64) -> Engine {
-    let species = vec![Species { count: n, radius: 0.5, mass: 1.0 }];
+    let species = vec![Species {
+        count: n,
+        radius: 0.5,
+        mass: 1.0,
+    }];
     let size = box_size_for(&species, eta, 1.0);
     let spec = SystemSpec {
         species,
