@@ -96,7 +96,7 @@ fn main() {
             }
             done += 1;
             since_report += 1;
-            if done % every == 0 || done == total {
+            if done.is_multiple_of(every) || done == total {
                 let _ = checker.check(&engine);
                 let drift = (engine.kinetic_energy() - k0) / k0;
                 max_drift = max_drift.max(drift.abs());
