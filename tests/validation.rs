@@ -626,7 +626,7 @@ fn case1_eos_fluid_short() {
 }
 
 #[test]
-#[ignore = "long: ≈ 2 min in release"]
+#[ignore = "long: ≈ 2 min (4 × 4·10⁷ collisions)"]
 fn case1_eos_fluid() {
     eos_fluid(
         "1b-eos-fluid",
@@ -637,7 +637,7 @@ fn case1_eos_fluid() {
 }
 
 #[test]
-#[ignore = "long: ≈ 10 min in release"]
+#[ignore = "long: ≈ 8 min (3 × 2.2·10⁸ collisions)"]
 fn case1_eos_dense_n870() {
     let mut frag = Fragment::new("1c-eos-dense", "1/2 EOS + Enskog, N = 870 dense");
     for (k, &eta) in [0.670, 0.680, 0.690].iter().enumerate() {
@@ -1293,7 +1293,7 @@ fn case4_granular_cooling_short() {
 }
 
 #[test]
-#[ignore = "long: ≈ 1 min in release"]
+#[ignore = "long: ≈ 30 s (32 cooling runs of 10⁴ discs)"]
 fn case4_granular_cooling() {
     granular("4b-granular", "4 Granular cooling", 10_000, 16, 80.0);
 }
@@ -1628,7 +1628,7 @@ fn case6_walls_short() {
 }
 
 #[test]
-#[ignore = "long: ≈ 1 min in release"]
+#[ignore = "long: ≈ 10 s"]
 fn case6_walls() {
     walls("6b-walls", "6 Walls", 2.0);
 }
