@@ -7,9 +7,9 @@
 //! 1. Equation of state Z(η) in a periodic box: η = 0.2, 0.4, 0.5, 0.6 (N = 1024)
 //!    against the Kolafa–Rottner values of physics.md §7, and η = 0.670, 0.680,
 //!    0.690 (N = 870, square box) against the canonical Monte Carlo of Li et al.
-//!    2022 (`shared/reference/hard-disc-pressure.csv`), with the finite-N
-//!    estimator βPA = N + W/kT, kT = 2K/f (physics.md §5). Pass: within 3 combined
-//!    standard errors.
+//!    2022 (`data/reference/hard-disc-pressure.csv`, a copy of the project's
+//!    reference data), with the finite-N estimator βPA = N + W/kT, kT = 2K/f
+//!    (physics.md §5). Pass: within 3 combined standard errors.
 //! 2. Collision rate: Z − 1 = (√π/4) ω τ0 within 0.1 % on the same runs.
 //! 3. Maxwell–Boltzmann: χ² and KS of speeds and velocity components, monodisperse
 //!    fluid and a binary mixture with mass ratio 4 (each species at its own mass),
@@ -355,8 +355,7 @@ fn kolafa_rottner(eta: f64) -> (f64, f64) {
 
 /// βPd² and its error for N = 870, aspect 1 at `eta` from the Li et al. 2022 CSV.
 fn li2022(eta: f64) -> (f64, f64) {
-    let path =
-        Path::new(env!("CARGO_MANIFEST_DIR")).join("../shared/reference/hard-disc-pressure.csv");
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("data/reference/hard-disc-pressure.csv");
     let text = std::fs::read_to_string(&path)
         .unwrap_or_else(|e| panic!("reference {} not readable: {e}", path.display()));
     for line in text.lines() {
