@@ -8,26 +8,12 @@
 //! `cargo bench --bench engine -- 'eta=0.50/N=10000$'`.
 //! The setup also prints the engine's heap bytes per disc for each case.
 
-use carom::core::{SimBox, Species};
-use carom::events::{box_size_for, Engine, EngineParams, Placement, SystemSpec, Velocities};
+use carom::events::{Engine, EngineParams, SystemSpec};
 use criterion::{criterion_group, criterion_main, Criterion, Throughput};
 use std::time::{Duration, Instant};
 
 fn engine(n: usize, eta: f64) -> Engine {
-    let species = vec![Species {
-        count: n,
-        radius: 0.5,
-        mass: 1.0,
-    }];
-    let size = box_size_for(&species, eta, 1.0);
-    let spec = SystemSpec {
-        species,
-        sim_box: SimBox::periodic(size.x, size.y),
-        temperature: 1.0,
-        seed: 42,
-        placement: Placement::Lattice,
-        velocities: Velocities::MaxwellBoltzmann,
-    };
+    let spec = SystemSpec::periodic_fluid(n, eta, 42);
     let mut e = Engine::new(spec.build().expect("valid system"), EngineParams::default())
         .expect("engine starts");
     e.run_collisions(10 * n as u64).expect("equilibration runs");

@@ -1,8 +1,7 @@
 //! Profiling driver: `cargo run --release -p carom-events --example profile -- N ETA COLLISIONS`.
 //! Equilibrates 5 collisions per disc, then runs COLLISIONS more and prints event
 //! counts per collision (for use under `valgrind --tool=cachegrind` or `perf`).
-use carom_core::{SimBox, Species};
-use carom_events::{box_size_for, Engine, EngineParams, Placement, SystemSpec, Velocities};
+use carom_events::{Engine, EngineParams, SystemSpec};
 
 fn main() {
     let arg = |k: usize, d: f64| {
@@ -14,20 +13,7 @@ fn main() {
     let n = arg(1, 10_000.0) as usize;
     let eta = arg(2, 0.5);
     let count = arg(3, 1e6) as u64;
-    let species = vec![Species {
-        count: n,
-        radius: 0.5,
-        mass: 1.0,
-    }];
-    let size = box_size_for(&species, eta, 1.0);
-    let spec = SystemSpec {
-        species,
-        sim_box: SimBox::periodic(size.x, size.y),
-        temperature: 1.0,
-        seed: 42,
-        placement: Placement::Lattice,
-        velocities: Velocities::MaxwellBoltzmann,
-    };
+    let spec = SystemSpec::periodic_fluid(n, eta, 42);
     let mut e = Engine::new(spec.build().unwrap(), EngineParams::default()).unwrap();
     e.run_collisions(5 * n as u64).unwrap();
     let s0 = *e.stats();

@@ -109,6 +109,41 @@ impl CellGrid {
         }
     }
 
+    /// Every disc in the 3 × 3 block of cells around cell `c`: cells beyond a wall
+    /// are dropped, and on a periodic axis narrower than three cells a disc may come
+    /// more than once. For setup and checks that use minimum images; the event loop
+    /// walks the block itself because it tracks each cell's image shift.
+    pub fn discs_near(&self, c: [u32; 2]) -> impl Iterator<Item = u32> + '_ {
+        let cell = move |o: [i64; 2]| -> Option<usize> {
+            let mut cc = [0u32; 2];
+            for k in 0..2 {
+                let v = c[k] as i64 + o[k];
+                let nk = self.n[k] as i64;
+                cc[k] = if self.periodic[k] {
+                    v.rem_euclid(nk) as u32
+                } else if (0..nk).contains(&v) {
+                    v as u32
+                } else {
+                    return None;
+                };
+            }
+            Some(self.index(cc))
+        };
+        (-1..=1)
+            .flat_map(|oy| (-1..=1).map(move |ox| [ox, oy]))
+            .filter_map(cell)
+            .flat_map(move |k| {
+                let mut j = self.head[k];
+                std::iter::from_fn(move || {
+                    let cur = j;
+                    (cur != NONE).then(|| {
+                        j = self.next[cur as usize];
+                        cur
+                    })
+                })
+            })
+    }
+
     /// Time from now until a disc at coordinate `x` (its position now), moving with
     /// velocity `v`, leaves cell column/row `c` along axis `k`; with the direction of
     /// the crossing (+1 or −1). `None` when it never does (at rest, or heading into a

@@ -14,7 +14,7 @@
 //!   variance kT/m, physics.md §6), shifted to zero total momentum and scaled so that
 //!   the kinetic temperature 2K/f equals kT exactly; or all of one speed per species.
 
-use crate::cells::{CellGrid, NONE};
+use crate::cells::CellGrid;
 use crate::error::InitError;
 use crate::state::{degrees_of_freedom, packing_fraction, State};
 use carom_core::{Boundary, DVec2, SimBox, Species};
@@ -83,6 +83,26 @@ fn check_finite_positive(field: &str, x: f64) -> Result<(), InitError> {
 }
 
 impl SystemSpec {
+    /// The reference system of physics.md: `n` discs of diameter σ = 1 and mass 1 at
+    /// packing fraction `eta` in a square periodic box, on a lattice, with
+    /// Maxwell–Boltzmann velocities at kT = 1 drawn from `seed`.
+    pub fn periodic_fluid(n: usize, eta: f64, seed: u64) -> SystemSpec {
+        let species = vec![Species {
+            count: n,
+            radius: 0.5,
+            mass: 1.0,
+        }];
+        let size = box_size_for(&species, eta, 1.0);
+        SystemSpec {
+            species,
+            sim_box: SimBox::periodic(size.x, size.y),
+            temperature: 1.0,
+            seed,
+            placement: Placement::Lattice,
+            velocities: Velocities::MaxwellBoltzmann,
+        }
+    }
+
     /// Check every field, place the discs and draw velocities.
     pub fn build(&self) -> Result<State, InitError> {
         self.validate()?;
@@ -609,37 +629,10 @@ fn overlaps_any(
     r: DVec2,
     a: f64,
 ) -> bool {
-    let c = grid.coords_of(r);
-    for oy in -1i64..=1 {
-        for ox in -1i64..=1 {
-            let mut cc = [0u32; 2];
-            let mut skip = false;
-            for (k, o) in [ox, oy].into_iter().enumerate() {
-                let v = c[k] as i64 + o;
-                let nk = grid.n[k] as i64;
-                if grid.periodic[k] {
-                    cc[k] = v.rem_euclid(nk) as u32;
-                } else if v < 0 || v >= nk {
-                    skip = true;
-                } else {
-                    cc[k] = v as u32;
-                }
-            }
-            if skip {
-                continue;
-            }
-            let mut j = grid.head[grid.index(cc)];
-            while j != NONE {
-                let sigma = a + species[species_of[j as usize] as usize].radius;
-                let d = sim_box.minimum_image(pos[j as usize] - r);
-                if d.length_squared() < sigma * sigma {
-                    return true;
-                }
-                j = grid.next[j as usize];
-            }
-        }
-    }
-    false
+    grid.discs_near(grid.coords_of(r)).any(|j| {
+        let sigma = a + species[species_of[j as usize] as usize].radius;
+        sim_box.minimum_image(pos[j as usize] - r).length_squared() < sigma * sigma
+    })
 }
 
 fn check_explicit(spec: &SystemSpec, species_of: &[u16], p: &[DVec2]) -> Result<(), InitError> {

@@ -179,37 +179,13 @@ pub fn max_overlap(engine: &Engine) -> Option<(usize, usize, f64)> {
     let radius = |i: usize| engine.species()[engine.species_of()[i] as usize].radius;
     let mut worst: Option<(usize, usize, f64)> = None;
     for i in 0..n {
-        let c = grid.cell[i];
-        for oy in -1i64..=1 {
-            for ox in -1i64..=1 {
-                let mut cc = [0u32; 2];
-                let mut skip = false;
-                for (k, o) in [ox, oy].into_iter().enumerate() {
-                    let v = c[k] as i64 + o;
-                    let nk = grid.n[k] as i64;
-                    if grid.periodic[k] {
-                        cc[k] = v.rem_euclid(nk) as u32;
-                    } else if v < 0 || v >= nk {
-                        skip = true;
-                    } else {
-                        cc[k] = v as u32;
-                    }
-                }
-                if skip {
-                    continue;
-                }
-                let mut j = grid.head[grid.index(cc)];
-                while j != crate::cells::NONE {
-                    let ju = j as usize;
-                    if ju > i {
-                        let sigma = radius(i) + radius(ju);
-                        let d = sim_box.minimum_image(pos[ju] - pos[i]).length();
-                        let ov = (sigma - d) / sigma;
-                        if ov > 0.0 && worst.is_none_or(|w| ov > w.2) {
-                            worst = Some((i, ju, ov));
-                        }
-                    }
-                    j = grid.next[ju];
+        for j in grid.discs_near(grid.cell[i]).map(|j| j as usize) {
+            if j > i {
+                let sigma = radius(i) + radius(j);
+                let d = sim_box.minimum_image(pos[j] - pos[i]).length();
+                let ov = (sigma - d) / sigma;
+                if ov > 0.0 && worst.is_none_or(|w| ov > w.2) {
+                    worst = Some((i, j, ov));
                 }
             }
         }
