@@ -16,7 +16,7 @@ use crate::cells::{CellGrid, NONE};
 use crate::error::EngineError;
 use crate::event::{Event, PairCollision, WallCollision};
 use crate::queue::{EventQueue, Time};
-use crate::state::{kinetic_energy, State};
+use crate::state::State;
 use carom_core::boundary::{wall_reflect, wall_time};
 use carom_core::collision::resolve;
 use carom_core::kinematics::contact_time_before;
@@ -287,10 +287,13 @@ impl Engine {
         self.bodies[self.index_of[i] as usize].v
     }
 
-    /// Total kinetic energy (energy).
+    /// Total kinetic energy K = Σ m v²/2 (energy).
     pub fn kinetic_energy(&self) -> f64 {
-        let v: Vec<DVec2> = self.bodies.iter().map(|b| b.v).collect();
-        kinetic_energy(&self.species, &self.slot_species, &v)
+        self.bodies
+            .iter()
+            .zip(&self.slot_species)
+            .map(|(b, &s)| 0.5 * self.species[s as usize].mass * b.v.length_squared())
+            .sum()
     }
 
     /// The exact state of every disc at the current time. Reading it does not
