@@ -266,7 +266,11 @@ pub struct KsTest {
 /// looking at the data. When a parameter (the temperature) is estimated from the
 /// same sample, D is stochastically smaller and this p-value is conservative
 /// (too large): a small p-value still rejects, but a large one is weaker evidence
-/// than it looks. With N ≫ 1 discs and kT = 2K/f the effect is O(1/N).
+/// than it looks. The effect does not shrink with N when every disc of a snapshot
+/// is tested against the kT = 2K/f of the same velocities: the sample's second
+/// moment is then fitted exactly. The samples must also be independent: velocities
+/// of one disc in snapshots less than a few collision times apart are correlated,
+/// which makes the test reject too often (physics.md §6).
 pub fn ks_test(samples: &[f64], cdf: impl Fn(f64) -> f64) -> Result<KsTest, StatsError> {
     let n = samples.len();
     if n == 0 {
