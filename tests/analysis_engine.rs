@@ -57,19 +57,9 @@ fn analyse(
 }
 
 fn fluid(n: usize, eta: f64, seed: u64, velocities: Velocities) -> SystemSpec {
-    let species = vec![Species {
-        count: n,
-        radius: 0.5,
-        mass: 1.0,
-    }];
-    let size = box_size_for(&species, eta, 1.0);
     SystemSpec {
-        species,
-        sim_box: SimBox::periodic(size.x, size.y),
-        temperature: 1.0,
-        seed,
-        placement: Placement::Lattice,
         velocities,
+        ..SystemSpec::periodic_fluid(n, eta, seed)
     }
 }
 

@@ -18,32 +18,15 @@
 //! systematic energy drift from normalising the contact normal before the
 //! collision rule; see `carom_core::collision`.)
 
-use carom::core::{SimBox, Species};
-use carom::events::{
-    box_size_for, Engine, EngineParams, Event, InvariantChecker, Placement, State, SystemSpec,
-    Velocities,
-};
+use carom::events::{Engine, EngineParams, Event, InvariantChecker, State, SystemSpec};
 
 const N: usize = 1000;
 const ETA: f64 = 0.5;
 
 fn initial_state(seed: u64) -> State {
-    let species = vec![Species {
-        count: N,
-        radius: 0.5,
-        mass: 1.0,
-    }];
-    let size = box_size_for(&species, ETA, 1.0);
-    SystemSpec {
-        species,
-        sim_box: SimBox::periodic(size.x, size.y),
-        temperature: 1.0,
-        seed,
-        placement: Placement::Lattice,
-        velocities: Velocities::MaxwellBoltzmann,
-    }
-    .build()
-    .expect("a valid η = 0.5 system")
+    SystemSpec::periodic_fluid(N, ETA, seed)
+        .build()
+        .expect("a valid η = 0.5 system")
 }
 
 /// The bits of every position and velocity and of the time.
