@@ -10,6 +10,7 @@
 //! work too: the same cell is then visited more than once, each time with a different
 //! image shift, which is exactly the set of images a disc can reach.
 
+use crate::memory;
 use carom_core::{DVec2, SimBox};
 
 /// Marker for "no disc" in the linked lists.
@@ -54,10 +55,10 @@ impl CellGrid {
                 sim_box.boundary[0].is_periodic(),
                 sim_box.boundary[1].is_periodic(),
             ],
-            head: vec![NONE; n[0] as usize * n[1] as usize],
-            next: vec![NONE; n_discs],
-            prev: vec![NONE; n_discs],
-            cell: vec![[0, 0]; n_discs],
+            head: memory::filled(n[0] as usize * n[1] as usize, NONE),
+            next: memory::filled(n_discs, NONE),
+            prev: memory::filled(n_discs, NONE),
+            cell: memory::filled(n_discs, [0, 0]),
         }
     }
 

@@ -6,6 +6,7 @@
 use crate::cells::CellGrid;
 use crate::engine::{Body, Engine, EngineParams, Pending, Stats};
 use crate::error::EngineError;
+use crate::memory;
 use crate::queue::EventQueue;
 use carom_core::{DVec2, SimBox, Species};
 use ordered_float::NotNan;
@@ -36,7 +37,8 @@ pub struct Checkpoint {
     pub times: Vec<f64>,
     /// Collision counters.
     pub counts: Vec<u32>,
-    /// Time of each disc's last pair collision (−∞ if none; time).
+    /// Time of each disc's last pair collision (time); −∞ if none, and never
+    /// updated when the TC model is off (t_c = 0), which is the only reader.
     pub last_collision: Vec<f64>,
     /// Time of each disc's pending event (+∞ if none; time).
     pub event_times: Vec<f64>,
@@ -184,10 +186,11 @@ impl Engine {
                 "cell lists refer to discs or cells that do not exist".into()
             ));
         }
-        grid.head = cp.cell_head;
-        grid.next = cp.cell_next;
-        grid.prev = cp.cell_prev;
-        grid.cell = cp.cell;
+        // Copied into the grid's own arrays (allocated for huge pages).
+        grid.head.copy_from_slice(&cp.cell_head);
+        grid.next.copy_from_slice(&cp.cell_next);
+        grid.prev.copy_from_slice(&cp.cell_prev);
+        grid.cell.copy_from_slice(&cp.cell);
         let mut queue = EventQueue::new(n);
         let mut pending = Vec::with_capacity(n);
         for (i, (&t, p)) in cp.event_times.iter().zip(&cp.pending).enumerate() {
@@ -200,16 +203,17 @@ impl Engine {
         }
 
         queue.retune(cp.now);
-        let bodies = (0..n)
-            .map(|i| Body {
+        let bodies = memory::collect(
+            n,
+            (0..n).map(|i| Body {
                 r: cp.positions[i],
                 v: cp.velocities[i],
                 t: cp.times[i],
                 radius: cp.species[cp.species_of[i] as usize].radius,
                 count: cp.counts[i],
                 pending: pending[i],
-            })
-            .collect();
+            }),
+        );
         let scheduled = cp
             .scheduled
             .iter()
@@ -223,7 +227,7 @@ impl Engine {
             species: cp.species,
             slot_species: cp.species_of,
             bodies,
-            last_collision: cp.last_collision,
+            last_collision: memory::collect(n, cp.last_collision),
             queue,
             grid,
             scheduled,

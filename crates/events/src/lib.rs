@@ -4,7 +4,7 @@
 //! predicted event times says what happens next, and each collision is resolved in
 //! closed form.
 //!
-//! * [`queue`] — one pending event per disc in a tournament tree keyed by time;
+//! * [`queue`] — one pending event per disc in an event calendar keyed by time;
 //! * [`cells`] — the cell grid used for neighbour search (crossings are events);
 //! * [`engine`] — the event loop ([`Engine`]);
 //! * [`init`] — initial states from a seed ([`SystemSpec`]);
@@ -22,6 +22,7 @@ pub mod error;
 pub mod event;
 pub mod init;
 pub mod invariants;
+mod memory;
 pub mod queue;
 pub mod state;
 

@@ -1,51 +1,75 @@
 //! The event queue: one pending event time per disc, in an event calendar.
 //!
-//! Every disc owns exactly one slot holding the time of its earliest predicted event
-//! (`+∞` for none). Times are sorted into buckets of width Δ (bucket
-//! b = ⌊(t − t₀)/Δ⌋, a monotone function of t): buckets ahead of the current one are
-//! unsorted doubly linked lists in a circular calendar of M buckets, events beyond
-//! the calendar wait in an overflow list, and only the current bucket is kept sorted,
-//! in a small binary heap. Inserting is O(1); popping is O(log k) for k events per
-//! bucket (G. Paul, J. Comput. Phys. 221, 615 (2007); Smallenburg's EDMD).
+//! Every disc owns exactly one current event time (`+∞` for none). Times are sorted
+//! into buckets of width Δ (bucket b = ⌊(t − t₀)/Δ⌋, a monotone function of t):
+//! buckets ahead of the current one are unsorted singly linked lists in a circular
+//! calendar of M buckets, events beyond the calendar wait in an overflow list, and
+//! only the current bucket is kept sorted, in a small binary heap. Inserting is O(1);
+//! popping is O(log k) for k events per bucket (G. Paul, J. Comput. Phys. 221, 615
+//! (2007); Smallenburg's EDMD).
+//!
+//! Deletion is lazy: setting a disc's time files a new entry (time, disc) and leaves
+//! the old one where it is; an entry whose time is no longer its disc's current time
+//! is dropped when it reaches the front. A change of a disc's time therefore touches
+//! no other disc's entry — at large N each such touch was a cache miss. An entry
+//! whose time equals its disc's current time always tells the truth ("disc i has an
+//! event at t"), so a second entry with the same time (a time set, changed and set
+//! back) is harmless: whichever comes first is the disc's current event, and the
+//! other is dropped as soon as the time changes. Entries live in a pool with a free
+//! list; when stale entries pile up beyond a fixed multiple of N the calendar is
+//! rebuilt from the current times.
 //!
 //! The order is exactly lexicographic in (time, disc index): ties are broken by disc
 //! index, and Δ only affects speed, never the order. Keys are
 //! [`NotNan<f64>`](ordered_float::NotNan): a NaN cannot enter.
 
+use crate::memory;
 use ordered_float::NotNan;
 
 /// Event time in the queue's key type (time unit of the simulation, never NaN).
 pub type Time = NotNan<f64>;
 
-const NEVER: u32 = u32::MAX;
-const OVERFLOW: u32 = u32::MAX - 1;
-const IN_HEAP: u32 = 1 << 31;
 const NIL: u32 = u32::MAX;
 
-/// One disc's entry: its time, where it is, and its bucket-list links — kept in one
-/// record so an update touches one cache line of its own.
+/// A filed event: the disc and its time when filed.
 #[derive(Debug, Clone, Copy, PartialEq)]
-struct Entry {
-    /// Event time (+∞ for none).
+struct Item {
+    /// Event time (time).
     time: f64,
-    /// `NEVER`, `OVERFLOW`, `IN_HEAP | position`, or a bucket slot.
-    loc: u32,
-    /// Links of the bucket or overflow list.
-    prev: u32,
+    /// Disc index.
+    disc: u32,
+}
+
+/// An entry of a bucket or overflow list.
+#[derive(Debug, Clone, Copy, PartialEq)]
+struct Node {
+    /// Event time (time).
+    time: f64,
+    /// Disc index.
+    disc: u32,
+    /// Next node of the list (or of the free list).
     next: u32,
 }
+
+const _: () = assert!(std::mem::size_of::<Node>() == 16);
 
 /// An event calendar of per-disc event times.
 #[derive(Debug, Clone)]
 pub struct EventQueue {
-    /// Per-disc entries.
-    e: Vec<Entry>,
-    /// First disc of each calendar slot.
+    /// Per-disc current event time (+∞ for none).
+    time_of: Vec<f64>,
+    /// Pool of list nodes.
+    nodes: Vec<Node>,
+    /// First free node of the pool.
+    free: u32,
+    /// Nodes in use (in slots or overflow).
+    used: usize,
+    /// First node of each calendar slot.
     slot_head: Vec<u32>,
-    /// First disc of the overflow list.
+    /// First node of the overflow list.
     overflow_head: u32,
-    /// Discs of the current bucket, a binary heap on (time, index).
-    heap: Vec<u32>,
+    /// Items of the current bucket, a binary heap on (time, disc).
+    heap: Vec<Item>,
     /// The current bucket (absolute number).
     cur: u64,
     /// Time origin of bucket 0.
@@ -54,26 +78,23 @@ pub struct EventQueue {
     inv_width: f64,
     /// M − 1 for M calendar slots (M a power of two).
     mask: u64,
-    /// Discs with a finite time, and how many of them sit in calendar slots.
+    /// Discs with a finite time.
     finite: usize,
+    /// Nodes (current or stale) in calendar slots.
     in_slots: usize,
 }
 
 impl EventQueue {
-    /// A queue for `n` discs, every slot empty (time +∞), buckets of width 1.
+    /// A queue for `n` discs, every time +∞, buckets of width 1.
     pub fn new(n: usize) -> Self {
         let m = n.max(2).next_power_of_two();
         EventQueue {
-            e: vec![
-                Entry {
-                    time: f64::INFINITY,
-                    loc: NEVER,
-                    prev: NIL,
-                    next: NIL,
-                };
-                n
-            ],
-            slot_head: vec![NIL; m],
+            time_of: memory::filled(n, f64::INFINITY),
+            // About one entry per disc is current and as many again are stale.
+            nodes: memory::with_capacity(2 * n + 64),
+            free: NIL,
+            used: 0,
+            slot_head: memory::filled(m, NIL),
             overflow_head: NIL,
             heap: Vec::new(),
             cur: 0,
@@ -87,42 +108,51 @@ impl EventQueue {
 
     /// Re-tune the bucket width to the current times: Δ = 4 ⟨t − now⟩ / N over the
     /// finite times, so a bucket holds a few events and the calendar spans a few
-    /// mean event intervals. Changes speed only, never the order.
+    /// mean event intervals; refile every current time and drop stale entries.
+    /// Changes speed only, never the order.
     pub fn retune(&mut self, now: f64) {
         let (mut sum, mut k) = (0.0, 0usize);
-        for t in self.e.iter().map(|e| e.time) {
+        for &t in &self.time_of {
             if t.is_finite() {
                 sum += t - now;
                 k += 1;
             }
         }
-        let n = self.e.len().max(1);
+        let n = self.time_of.len().max(1);
         let width = if k > 0 && sum > 0.0 {
             4.0 * sum / k as f64 / n as f64
         } else {
             1.0
         };
-        let times: Vec<f64> = self.e.iter().map(|e| e.time).collect();
-        *self = EventQueue::new(times.len());
+        self.nodes.clear();
+        self.free = NIL;
+        self.used = 0;
+        self.slot_head.fill(NIL);
+        self.overflow_head = NIL;
+        self.heap.clear();
+        self.cur = 0;
         self.t0 = now;
         self.inv_width = 1.0 / width;
-        for (i, &t) in times.iter().enumerate() {
-            self.e[i].time = t;
-            if t.is_finite() {
-                self.insert(i as u32);
+        self.finite = 0;
+        self.in_slots = 0;
+        for i in 0..self.time_of.len() {
+            if self.time_of[i].is_finite() {
+                self.finite += 1;
+                self.file(i as u32);
             }
         }
     }
 
-    /// The earliest event: (time, disc). With all slots empty the time is +∞.
+    /// The earliest event: (time, disc). With every time +∞ the time is +∞.
     #[inline]
     pub fn peek(&mut self) -> (Time, u32) {
         loop {
             if let Some(&top) = self.heap.first() {
-                return (
-                    NotNan::new(self.e[top as usize].time).expect("no NaN in queue"),
-                    top,
-                );
+                if self.time_of[top.disc as usize] == top.time {
+                    return (NotNan::new(top.time).expect("no NaN in queue"), top.disc);
+                }
+                self.heap_pop();
+                continue;
             }
             if self.finite == 0 {
                 return (NotNan::new(f64::INFINITY).expect("∞ is not NaN"), 0);
@@ -134,24 +164,35 @@ impl EventQueue {
     /// The time currently stored for disc `i`.
     #[inline]
     pub fn get(&self, i: u32) -> Time {
-        NotNan::new(self.e[i as usize].time).expect("no NaN in queue")
+        NotNan::new(self.time_of[i as usize]).expect("no NaN in queue")
     }
 
     /// Set the event time of disc `i`.
     #[inline]
     pub fn set(&mut self, i: u32, t: Time) {
-        self.remove(i);
-        self.e[i as usize].time = t.into_inner();
+        let old = std::mem::replace(&mut self.time_of[i as usize], t.into_inner());
+        let was_finite = old.is_finite();
+        match (was_finite, t.is_finite()) {
+            (false, true) => self.finite += 1,
+            (true, false) => self.finite -= 1,
+            _ => {}
+        }
         if t.is_finite() {
-            self.insert(i);
+            self.file(i);
+        }
+        if self.used > 4 * self.time_of.len() + 1024 {
+            // Stale entries have piled up (times changed many times within the
+            // calendar's span): start afresh from the current times.
+            self.retune(self.t0 + self.cur as f64 / self.inv_width);
         }
     }
 
     /// Bytes of heap memory used (for the memory report).
     pub fn heap_bytes(&self) -> usize {
-        self.e.capacity() * std::mem::size_of::<Entry>()
+        self.time_of.capacity() * 8
+            + self.nodes.capacity() * std::mem::size_of::<Node>()
             + self.slot_head.capacity() * 4
-            + self.heap.capacity() * 4
+            + self.heap.capacity() * std::mem::size_of::<Item>()
     }
 
     #[inline]
@@ -160,78 +201,75 @@ impl EventQueue {
         ((t - self.t0) * self.inv_width) as u64
     }
 
+    /// File disc `i`'s current time: into the heap, a calendar slot or overflow.
     #[inline]
-    fn insert(&mut self, i: u32) {
-        self.finite += 1;
-        let b = self.bucket(self.e[i as usize].time);
+    fn file(&mut self, i: u32) {
+        let item = Item {
+            time: self.time_of[i as usize],
+            disc: i,
+        };
+        let b = self.bucket(item.time);
         if b <= self.cur {
-            self.heap_push(i);
+            self.heap_push(item);
         } else if b - self.cur <= self.mask {
-            let s = (b & self.mask) as u32;
-            self.link(i, s);
+            let s = (b & self.mask) as usize;
+            self.slot_head[s] = self.node(item, self.slot_head[s]);
             self.in_slots += 1;
         } else {
-            let h = self.overflow_head;
-            self.e[i as usize].prev = NIL;
-            self.e[i as usize].next = h;
-            if h != NIL {
-                self.e[h as usize].prev = i;
-            }
-            self.overflow_head = i;
-            self.e[i as usize].loc = OVERFLOW;
+            self.overflow_head = self.node(item, self.overflow_head);
         }
     }
 
+    /// A node holding `item` in front of `next`, from the free list or the pool's end.
     #[inline]
-    fn link(&mut self, i: u32, s: u32) {
-        let h = self.slot_head[s as usize];
-        self.e[i as usize].prev = NIL;
-        self.e[i as usize].next = h;
-        if h != NIL {
-            self.e[h as usize].prev = i;
-        }
-        self.slot_head[s as usize] = i;
-        self.e[i as usize].loc = s;
-    }
-
-    #[inline]
-    fn remove(&mut self, i: u32) {
-        let l = self.e[i as usize].loc;
-        if l == NEVER {
-            return;
-        }
-        self.finite -= 1;
-        if l & IN_HEAP != 0 && l != OVERFLOW {
-            self.heap_remove((l & !IN_HEAP) as usize);
+    fn node(&mut self, item: Item, next: u32) -> u32 {
+        self.used += 1;
+        let node = Node {
+            time: item.time,
+            disc: item.disc,
+            next,
+        };
+        let k = self.free;
+        if k != NIL {
+            self.free = self.nodes[k as usize].next;
+            self.nodes[k as usize] = node;
+            k
         } else {
-            let (p, n) = (self.e[i as usize].prev, self.e[i as usize].next);
-            if p != NIL {
-                self.e[p as usize].next = n;
-            } else if l == OVERFLOW {
-                self.overflow_head = n;
-            } else {
-                self.slot_head[l as usize] = n;
-            }
-            if n != NIL {
-                self.e[n as usize].prev = p;
-            }
-            if l != OVERFLOW {
-                self.in_slots -= 1;
-            }
+            self.nodes.push(node);
+            (self.nodes.len() - 1) as u32
         }
-        self.e[i as usize].loc = NEVER;
+    }
+
+    /// Return node `k` to the free list: its item and its successor.
+    #[inline]
+    fn release(&mut self, k: u32) -> (Item, u32) {
+        let Node { time, disc, next } = self.nodes[k as usize];
+        let item = Item { time, disc };
+        self.nodes[k as usize].next = self.free;
+        self.free = k;
+        self.used -= 1;
+        (item, next)
+    }
+
+    /// Whether `item` still holds its disc's current time.
+    #[inline]
+    fn is_current(&self, item: &Item) -> bool {
+        self.time_of[item.disc as usize] == item.time
     }
 
     /// Move to the next bucket: pour its slot into the heap; at every full turn of
     /// the calendar, bring overflow events that are now within reach into slots.
     fn advance(&mut self) {
         if self.in_slots == 0 {
-            // Only overflow events are left: jump straight to the earliest of them.
+            // Only overflow entries are left: jump straight to the earliest of them.
             let mut b = u64::MAX;
             let mut k = self.overflow_head;
             while k != NIL {
-                b = b.min(self.bucket(self.e[k as usize].time));
-                k = self.e[k as usize].next;
+                let Node { time, disc, next } = self.nodes[k as usize];
+                if self.is_current(&Item { time, disc }) {
+                    b = b.min(self.bucket(time));
+                }
+                k = next;
             }
             self.cur = b.max(self.cur + 1);
             self.redistribute_overflow();
@@ -245,10 +283,10 @@ impl EventQueue {
         let mut k = self.slot_head[s];
         self.slot_head[s] = NIL;
         while k != NIL {
-            let nx = self.e[k as usize].next;
+            let (item, next) = self.release(k);
             self.in_slots -= 1;
-            self.heap_push(k);
-            k = nx;
+            self.heap_push(item);
+            k = next;
         }
     }
 
@@ -256,74 +294,55 @@ impl EventQueue {
         let mut k = self.overflow_head;
         self.overflow_head = NIL;
         while k != NIL {
-            let nx = self.e[k as usize].next;
-            self.e[k as usize].loc = NEVER;
-            self.finite -= 1;
-            self.insert(k);
-            k = nx;
-        }
-    }
-
-    #[inline]
-    fn less(&self, a: u32, b: u32) -> bool {
-        let (ta, tb) = (self.e[a as usize].time, self.e[b as usize].time);
-        ta < tb || (ta == tb && a < b)
-    }
-
-    #[inline]
-    fn place(&mut self, pos: usize, i: u32) {
-        self.heap[pos] = i;
-        self.e[i as usize].loc = IN_HEAP | pos as u32;
-    }
-
-    fn heap_push(&mut self, i: u32) {
-        self.heap.push(i);
-        self.sift_up(self.heap.len() - 1, i);
-    }
-
-    fn heap_remove(&mut self, pos: usize) {
-        let last = self.heap.pop().expect("heap holds the removed disc");
-        if pos < self.heap.len() {
-            let removed = self.heap[pos];
-            if self.less(last, removed) {
-                self.sift_up(pos, last);
-            } else {
-                self.sift_down(pos, last);
+            let (item, next) = self.release(k);
+            if self.is_current(&item) {
+                self.file(item.disc);
             }
+            k = next;
         }
     }
 
-    fn sift_up(&mut self, mut pos: usize, i: u32) {
+    #[inline]
+    fn less(a: &Item, b: &Item) -> bool {
+        a.time < b.time || (a.time == b.time && a.disc < b.disc)
+    }
+
+    fn heap_push(&mut self, item: Item) {
+        self.heap.push(item);
+        let mut pos = self.heap.len() - 1;
         while pos > 0 {
             let parent = (pos - 1) / 2;
-            let p = self.heap[parent];
-            if !self.less(i, p) {
+            if !Self::less(&item, &self.heap[parent]) {
                 break;
             }
-            self.place(pos, p);
+            self.heap[pos] = self.heap[parent];
             pos = parent;
         }
-        self.place(pos, i);
+        self.heap[pos] = item;
     }
 
-    fn sift_down(&mut self, mut pos: usize, i: u32) {
+    fn heap_pop(&mut self) {
+        let last = self.heap.pop().expect("heap is not empty");
         let len = self.heap.len();
+        if len == 0 {
+            return;
+        }
+        let mut pos = 0;
         loop {
             let mut child = 2 * pos + 1;
             if child >= len {
                 break;
             }
-            if child + 1 < len && self.less(self.heap[child + 1], self.heap[child]) {
+            if child + 1 < len && Self::less(&self.heap[child + 1], &self.heap[child]) {
                 child += 1;
             }
-            let c = self.heap[child];
-            if !self.less(c, i) {
+            if !Self::less(&self.heap[child], &last) {
                 break;
             }
-            self.place(pos, c);
+            self.heap[pos] = self.heap[child];
             pos = child;
         }
-        self.place(pos, i);
+        self.heap[pos] = last;
     }
 }
 
@@ -360,6 +379,45 @@ mod tests {
         assert_eq!(q.peek(), (t(1e6), 1));
         q.set(1, t(f64::INFINITY));
         assert!(q.peek().0.is_infinite());
+    }
+
+    #[test]
+    fn a_time_set_back_is_found_and_stale_copies_are_dropped() {
+        let mut q = EventQueue::new(3);
+        q.set(0, t(5.0));
+        q.set(1, t(6.0));
+        q.retune(0.0);
+        // Disc 0 moves away and back: two entries with time 5 exist, both true.
+        q.set(0, t(9.0));
+        q.set(0, t(5.0));
+        assert_eq!(q.peek(), (t(5.0), 0));
+        q.set(0, t(7.0));
+        // Both old entries are stale now; the next event is disc 1's.
+        assert_eq!(q.peek(), (t(6.0), 1));
+        q.set(1, t(f64::INFINITY));
+        assert_eq!(q.peek(), (t(7.0), 0));
+        q.set(0, t(f64::INFINITY));
+        assert!(q.peek().0.is_infinite());
+    }
+
+    #[test]
+    fn piled_up_stale_entries_are_collected() {
+        let n = 10;
+        let mut q = EventQueue::new(n);
+        for i in 0..n {
+            q.set(i as u32, t(100.0 + i as f64));
+        }
+        q.retune(0.0);
+        // Many changes of far-future times leave stale entries behind; the pool
+        // must stay bounded and the order exact.
+        for k in 0..100_000u32 {
+            let i = k % n as u32;
+            q.set(i, t(50.0 + (k % 977) as f64 * 0.1 + i as f64 * 1e-3));
+            assert!(q.used <= 4 * n + 1024 + 1);
+        }
+        let (t0, i0) = q.peek();
+        let best = (0..n as u32).map(|i| (q.get(i), i)).min().unwrap();
+        assert_eq!((t0, i0), best);
     }
 
     proptest! {

@@ -52,7 +52,7 @@ float64[] vx                      # velocity (length/time)
 float64[] vy
 float64[] t                       # last update time (time)
 uint32[] collision_count
-float64[] last_collision          # time of last pair collision (-inf if none)
+float64[] last_collision          # time of last pair collision (-inf if none or TC off)
 float64[] event_time              # time of the pending event (+inf if none)
 uint32[] pending_partner
 uint32[] pending_partner_count
