@@ -178,6 +178,47 @@ fn neighbour(c: u32, o: i32, n: u32, periodic: bool) -> Option<(u32, i32)> {
     }
 }
 
+/// The earliest pair event found so far by a prediction: time from now, partner
+/// and the partner's image shift code.
+struct Found {
+    best: f64,
+    partner: u32,
+    code: u8,
+}
+
+/// Look for disc `i`'s earliest collision (before `found.best`) with the discs of one
+/// cell, whose list starts at `first`; `ri` is i's position now, shifted so that the
+/// cell's discs are seen through the image with shift code `code`.
+#[allow(clippy::too_many_arguments)]
+#[inline(always)]
+fn scan_cell(
+    bodies: &[Body],
+    next: &[u32],
+    i: usize,
+    first: u32,
+    ri: DVec2,
+    now: f64,
+    code: u8,
+    found: &mut Found,
+) {
+    let bi = &bodies[i];
+    let mut j = first;
+    while j != NONE {
+        let ju = j as usize;
+        let bj = &bodies[ju];
+        if ju != i {
+            let dr = bj.r + bj.v * (now - bj.t) - ri;
+            let sigma = bi.radius + bj.radius;
+            if let Some(dt) = contact_time_before(dr, bj.v - bi.v, sigma, found.best) {
+                found.best = dt;
+                found.partner = j;
+                found.code = code;
+            }
+        }
+        j = next[ju];
+    }
+}
+
 #[inline]
 fn time_key(t: f64) -> Time {
     NotNan::new(t).expect("event times are never NaN: inputs are validated finite")
@@ -627,65 +668,82 @@ impl Engine {
         let now = self.now;
         let bi = self.bodies[i];
         let ri = bi.r + bi.v * (now - bi.t);
-        let (mut best, mut pend) = self.boundary_event(i, ri, bi.v, bi.radius);
+        let (best, mut pend) = self.boundary_event(i, ri, bi.v, bi.radius);
 
         // Pairs in the 3 × 3 block of cells around i.
         let grid = &self.grid;
         let (bodies, head, next) = (&self.bodies[..], &grid.head[..], &grid.next[..]);
         let c = grid.cell[i];
         let [nx, ny] = grid.n;
-        let size = self.sim_box.size;
-        // The (up to) three columns: index, image shift along x, shift sign + 1.
-        let mut col_list = [(0usize, 0.0f64, 0i32); 3];
-        let mut ncols = 0;
-        for ox in [-1, 0, 1] {
-            if let Some((cx, sx)) = neighbour(c[0], ox, nx, grid.periodic[0]) {
-                col_list[ncols] = (cx as usize, sx as f64 * size.x, sx + 1);
-                ncols += 1;
+        let mut found = Found {
+            best,
+            partner: NONE,
+            code: 0,
+        };
+        if c[0] >= 1 && c[0] + 1 < nx && c[1] >= 1 && c[1] + 1 < ny {
+            // Interior cell (almost all of them): no image shifts, and each row of
+            // the block is three consecutive cells.
+            let nx = nx as usize;
+            let first = (c[1] as usize - 1) * nx + c[0] as usize - 1;
+            let heads = [
+                head[first],
+                head[first + 1],
+                head[first + 2],
+                head[first + nx],
+                head[first + nx + 1],
+                head[first + nx + 2],
+                head[first + 2 * nx],
+                head[first + 2 * nx + 1],
+                head[first + 2 * nx + 2],
+            ];
+            for h in heads {
+                scan_cell(bodies, next, i, h, ri, now, 4, &mut found);
             }
-        }
-        // Gather the block's cell heads first: their cache misses are independent
-        // and overlap, instead of each waiting behind the previous cell's list walk.
-        let mut heads = [(NONE, 0.0f64, 0.0f64, 0i32); 9];
-        let mut ncells = 0;
-        for oy in [-1, 0, 1] {
-            let Some((cy, sy)) = neighbour(c[1], oy, ny, grid.periodic[1]) else {
-                continue;
-            };
-            let row = cy as usize * nx as usize;
-            let shift_y = sy as f64 * size.y;
-            for &(cx, shift_x, cxs) in &col_list[..ncols] {
-                heads[ncells] = (head[row + cx], shift_x, shift_y, cxs + 3 * (sy + 1));
-                ncells += 1;
-            }
-        }
-        let mut partner = NONE;
-        let mut code = 0i32;
-        for &(first, shift_x, shift_y, cell_code) in &heads[..ncells] {
-            // Seeing j's image at r_j + s L is seeing i at r_i − s L.
-            let ri_img = DVec2::new(ri.x - shift_x, ri.y - shift_y);
-            let mut j = first;
-            while j != NONE {
-                let ju = j as usize;
-                let bj = &bodies[ju];
-                if ju != i {
-                    let dr = bj.r + bj.v * (now - bj.t) - ri_img;
-                    let sigma = bi.radius + bj.radius;
-                    if let Some(dt) = contact_time_before(dr, bj.v - bi.v, sigma, best) {
-                        best = dt;
-                        partner = j;
-                        code = cell_code;
-                    }
+        } else {
+            let size = self.sim_box.size;
+            // The (up to) three columns: index, image shift along x, shift sign + 1.
+            let mut col_list = [(0usize, 0.0f64, 0i32); 3];
+            let mut ncols = 0;
+            for ox in [-1, 0, 1] {
+                if let Some((cx, sx)) = neighbour(c[0], ox, nx, grid.periodic[0]) {
+                    col_list[ncols] = (cx as usize, sx as f64 * size.x, sx + 1);
+                    ncols += 1;
                 }
-                j = next[ju];
+            }
+            for oy in [-1, 0, 1] {
+                let Some((cy, sy)) = neighbour(c[1], oy, ny, grid.periodic[1]) else {
+                    continue;
+                };
+                let row = cy as usize * nx as usize;
+                let shift_y = sy as f64 * size.y;
+                for &(cx, shift_x, cxs) in &col_list[..ncols] {
+                    // Seeing j's image at r_j + s L is seeing i at r_i − s L.
+                    let ri_img = DVec2::new(ri.x - shift_x, ri.y - shift_y);
+                    let code = (cxs + 3 * (sy + 1)) as u8;
+                    scan_cell(
+                        bodies,
+                        next,
+                        i,
+                        head[row + cx],
+                        ri_img,
+                        now,
+                        code,
+                        &mut found,
+                    );
+                }
             }
         }
+        let Found {
+            best,
+            partner,
+            code,
+        } = found;
         if partner != NONE {
             pend = Pending {
                 partner,
                 partner_count: self.bodies[partner as usize].count,
                 kind: KIND_PAIR,
-                aux: code as u8,
+                aux: code,
             };
         }
         self.bodies[i].pending = pend;
