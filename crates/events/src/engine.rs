@@ -495,25 +495,26 @@ impl Engine {
         for (k, &old) in perm.iter().enumerate() {
             inv[old] = k as u32;
         }
-        fn permute<T: Copy>(v: &[T], perm: &[usize]) -> Vec<T> {
-            memory::collect(perm.len(), perm.iter().map(|&o| v[o]))
+        /// Reorder `v` in place (through a temporary copy), so that the array keeps
+        /// its allocation and with it its huge pages.
+        fn permute<T: Copy>(v: &mut [T], perm: &[usize]) {
+            let old = v.to_vec();
+            for (slot, &o) in v.iter_mut().zip(perm) {
+                *slot = old[o];
+            }
         }
-        self.bodies = permute(&self.bodies, &perm);
-        self.last_collision = permute(&self.last_collision, &perm);
-        self.slot_species = permute(&self.slot_species, &perm);
-        self.label = permute(&self.label, &perm);
-        let cells = permute(&self.grid.cell, &perm);
+        permute(&mut self.bodies, &perm);
+        permute(&mut self.last_collision, &perm);
+        permute(&mut self.slot_species, &perm);
+        permute(&mut self.label, &perm);
+        let mut cells = self.grid.cell.clone();
+        permute(&mut cells, &perm);
         for b in self.bodies.iter_mut() {
             if b.pending.partner != NONE {
                 b.pending.partner = inv[b.pending.partner as usize];
             }
         }
-        let mut queue = EventQueue::new(n);
-        for (k, &o) in perm.iter().enumerate() {
-            queue.set(k as u32, self.queue.get(o as u32));
-        }
-        queue.retune(self.now);
-        self.queue = queue;
+        self.queue.renumber(&perm, self.now);
         for (k, &l) in self.label.iter().enumerate() {
             self.index_of[l as usize] = k as u32;
         }

@@ -145,6 +145,16 @@ impl EventQueue {
         }
     }
 
+    /// Renumber the discs: disc k takes the time of old disc `perm[k]`; then
+    /// [`retune`](Self::retune) at `now`. Keeps the queue's allocations.
+    pub fn renumber(&mut self, perm: &[usize], now: f64) {
+        let old = self.time_of.clone();
+        for (t, &o) in self.time_of.iter_mut().zip(perm) {
+            *t = old[o];
+        }
+        self.retune(now);
+    }
+
     /// The earliest event: (time, disc). With every time +∞ the time is +∞.
     #[inline]
     pub fn peek(&mut self) -> (Time, u32) {
