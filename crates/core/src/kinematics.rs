@@ -47,34 +47,29 @@ pub fn contact_time(dr: DVec2, dv: DVec2, sigma: f64) -> Option<f64> {
     Some(c / (d.sqrt() - b))
 }
 
-/// [`contact_time`] restricted to contacts earlier than `limit` (time from now):
-/// returns the same value as `contact_time(dr, dv, sigma)` when that is `Some(t)`
-/// with t < `limit`, and `None` otherwise.
+/// [`contact_time`] without branches: the same time when that is `Some(t)`, and
+/// +∞ when it is `None` (bit for bit).
 ///
-/// Used by the event loop to skip the square root for pairs that cannot beat the
-/// best event found so far: since √D ≤ −b, t = c/(−b + √D) ≥ c/(−2b), so a pair
-/// with c ≥ limit·(−2b) (checked with a margin of a few ulps) meets no earlier
-/// than `limit`.
+/// Every quantity is computed for every pair and the result is selected at the
+/// end, so the event loop's scan over neighbours has no data-dependent branch:
+/// whether a pair approaches (b < 0) is a coin toss that a branch predictor
+/// cannot learn. (Measured with `examples/profile` at N = 10⁴, η = 0.5: 5 % more
+/// collisions per second than a form that skips the square root for pairs that
+/// cannot beat the best time so far, t ≥ c/(−2b), behind a branch; faster also
+/// than that pruning behind one combined branch, although every pair now pays
+/// for a square root and a division.)
 #[inline]
-pub fn contact_time_before(dr: DVec2, dv: DVec2, sigma: f64, limit: f64) -> Option<f64> {
+pub fn contact_time_or_inf(dr: DVec2, dv: DVec2, sigma: f64) -> f64 {
     let b = dr.dot(dv);
-    if b.is_nan() || b >= 0.0 {
-        return None;
-    }
     let c = dr.length_squared() - sigma * sigma;
-    if c <= 0.0 {
-        return (0.0 < limit).then_some(0.0);
-    }
-    // Lower bound on t, with a relative margin far above rounding.
-    if c > limit * (-2.0 * b) * (1.0 + 1e-12) {
-        return None;
-    }
     let d = b * b - dv.length_squared() * c;
-    if d.is_nan() || d < 0.0 {
-        return None;
-    }
-    let t = c / (d.sqrt() - b);
-    (t < limit).then_some(t)
+    // For b < 0 and D ≥ 0 the denominator is positive; elsewhere the value is
+    // discarded below (it may be ±∞ or NaN there, which never escapes).
+    let t = c / (d.max(0.0).sqrt() - b);
+    let overlap = c <= 0.0;
+    let t = std::hint::select_unpredictable(overlap, 0.0, t);
+    let meets = (b < 0.0) & (overlap | (d >= 0.0));
+    std::hint::select_unpredictable(meets, t, f64::INFINITY)
 }
 
 /// Absolute angular tolerance (radians) of the seed form at its degenerate
@@ -167,9 +162,10 @@ mod tests {
     }
 
     #[test]
-    fn limited_contact_time_is_the_filtered_contact_time() {
-        // A deterministic sweep over geometries and limits, including limits equal
-        // to the contact time and pairs just inside and outside the pruning bound.
+    fn branch_free_contact_time_is_the_contact_time() {
+        // A deterministic sweep over geometries (overlaps, misses, grazing and
+        // receding pairs, zero relative velocity): bit for bit the same time, +∞
+        // for no contact.
         let mut k = 0u64;
         let mut next = || {
             k = k
@@ -177,30 +173,28 @@ mod tests {
                 .wrapping_add(1442695040888963407);
             (k >> 11) as f64 / (1u64 << 53) as f64
         };
-        for _ in 0..200_000 {
+        let mut met = 0;
+        for n in 0..200_000 {
             let dr = DVec2::new(4.0 * next() - 2.0, 4.0 * next() - 2.0);
-            let dv = DVec2::new(4.0 * next() - 2.0, 4.0 * next() - 2.0);
-            let full = contact_time(dr, dv, 1.0);
-            let limit = match (full, next() < 0.2) {
-                (Some(t), true) => t,
-                _ => 3.0 * next(),
-            };
-            let expect = full.filter(|&t| t < limit);
-            assert_eq!(
-                contact_time_before(dr, dv, 1.0, limit),
-                expect,
-                "{dr} {dv} {limit}"
-            );
+            let mut dv = DVec2::new(4.0 * next() - 2.0, 4.0 * next() - 2.0);
+            if n % 97 == 0 {
+                dv = DVec2::ZERO;
+            }
+            let expect = contact_time(dr, dv, 1.0).unwrap_or(f64::INFINITY);
+            let got = contact_time_or_inf(dr, dv, 1.0);
+            assert_eq!(got.to_bits(), expect.to_bits(), "{dr} {dv}");
+            met += got.is_finite() as u32;
         }
-        assert_eq!(
-            contact_time_before(
-                DVec2::new(3.0, 0.0),
-                DVec2::new(-2.0, 0.0),
-                1.0,
-                f64::INFINITY
-            ),
-            Some(1.0)
-        );
+        assert!(met > 10_000, "the sweep must contain meeting pairs: {met}");
+        // Grazing exactly (D = 0), overlapping, receding and NaN.
+        let graze = contact_time_or_inf(DVec2::new(3.0, 1.0), DVec2::new(-1.0, 0.0), 1.0);
+        assert_eq!(graze, 3.0);
+        let overlap = contact_time_or_inf(DVec2::new(0.9, 0.0), DVec2::new(-1.0, 0.0), 1.0);
+        assert_eq!(overlap, 0.0);
+        let away = contact_time_or_inf(DVec2::new(0.9, 0.0), DVec2::new(1.0, 0.0), 1.0);
+        assert_eq!(away, f64::INFINITY);
+        let nan = contact_time_or_inf(DVec2::new(f64::NAN, 0.0), DVec2::new(-1.0, 0.0), 1.0);
+        assert_eq!(nan, f64::INFINITY);
     }
 
     #[test]

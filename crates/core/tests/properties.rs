@@ -24,7 +24,7 @@
 use carom_core::collision::{
     centre_of_mass_restitution, elastic, elastic_seed, normal_restitution, reduced_mass, resolve,
 };
-use carom_core::kinematics::{advance, contact_time, contact_time_seed};
+use carom_core::kinematics::{advance, contact_time, contact_time_or_inf, contact_time_seed};
 use carom_core::{DVec2, Restitution};
 use proptest::prelude::*;
 use std::f64::consts::{FRAC_PI_2, PI, TAU};
@@ -63,8 +63,17 @@ impl Pair {
     fn dv(&self) -> DVec2 {
         self.v2 - self.v1
     }
+    /// The vector-form time; every property of it is also checked for the engine's
+    /// branch-free form, which must give the same bits (+∞ for `None`).
     fn vector_time(&self) -> Option<f64> {
-        contact_time(self.dr(), self.dv(), self.sigma())
+        let t = contact_time(self.dr(), self.dv(), self.sigma());
+        let free = contact_time_or_inf(self.dr(), self.dv(), self.sigma());
+        assert_eq!(
+            free.to_bits(),
+            t.unwrap_or(f64::INFINITY).to_bits(),
+            "branch-free form {free} differs from {t:?} for {self:?}"
+        );
+        t
     }
     fn seed_time(&self) -> Option<f64> {
         contact_time_seed(self.r1, self.v1, self.a1, self.r2, self.v2, self.a2)

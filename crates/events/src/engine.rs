@@ -20,7 +20,7 @@ use crate::queue::{EventQueue, Time};
 use crate::state::State;
 use carom_core::boundary::{wall_reflect, wall_time};
 use carom_core::collision::resolve;
-use carom_core::kinematics::contact_time_before;
+use carom_core::kinematics::contact_time_or_inf;
 use carom_core::{Axis, Boundary, DVec2, Restitution, SimBox, Species, WallSide};
 use ordered_float::NotNan;
 use std::cmp::Reverse;
@@ -206,15 +206,17 @@ fn scan_cell(
     while j != NONE {
         let ju = j as usize;
         let bj = &bodies[ju];
-        if ju != i {
-            let dr = bj.r + bj.v * (now - bj.t) - ri;
-            let sigma = bi.radius + bj.radius;
-            if let Some(dt) = contact_time_before(dr, bj.v - bi.v, sigma, found.best) {
-                found.best = dt;
-                found.partner = j;
-                found.code = code;
-            }
-        }
+        // Disc i itself needs no test of its own: its relative velocity is exactly
+        // zero, so b = 0 and it never meets (whichever image is seen).
+        let dr = bj.r + bj.v * (now - bj.t) - ri;
+        let sigma = bi.radius + bj.radius;
+        let dt = contact_time_or_inf(dr, bj.v - bi.v, sigma);
+        // Kept without a branch: whether a neighbour beats the best so far is a
+        // coin toss for the branch predictor.
+        let hit = dt < found.best;
+        found.best = std::hint::select_unpredictable(hit, dt, found.best);
+        found.partner = std::hint::select_unpredictable(hit, j, found.partner);
+        found.code = std::hint::select_unpredictable(hit, code, found.code);
         j = next[ju];
     }
 }
