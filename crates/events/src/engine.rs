@@ -671,7 +671,7 @@ impl Engine {
         let now = self.now;
         let bi = self.bodies[i];
         let ri = bi.r + bi.v * (now - bi.t);
-        let (best, mut pend) = self.boundary_event(i, ri, bi.v, bi.radius);
+        let (best, pend) = self.boundary_event(i, ri, bi.v, bi.radius);
 
         // Pairs in the 3 × 3 block of cells around i.
         let grid = &self.grid;
@@ -741,15 +741,16 @@ impl Engine {
             partner,
             code,
         } = found;
-        if partner != NONE {
-            pend = Pending {
-                partner,
-                partner_count: self.bodies[partner as usize].count,
-                kind: KIND_PAIR,
-                aux: code,
-            };
-        }
-        self.bodies[i].pending = pend;
+        // Without a branch (a pair or a boundary event comes first about equally
+        // often); with no partner, the count read is of a disc in memory and unused.
+        let pair = partner != NONE;
+        let partner_count = self.bodies[(partner as usize).min(self.bodies.len() - 1)].count;
+        self.bodies[i].pending = Pending {
+            partner,
+            partner_count: std::hint::select_unpredictable(pair, partner_count, 0),
+            kind: std::hint::select_unpredictable(pair, KIND_PAIR, pend.kind),
+            aux: std::hint::select_unpredictable(pair, code, pend.aux),
+        };
         self.queue.set(i as u32, time_key(now + best));
     }
 
@@ -758,34 +759,31 @@ impl Engine {
     #[inline]
     fn boundary_event(&self, i: usize, ri: DVec2, v: DVec2, radius: f64) -> (f64, Pending) {
         let mut best = f64::INFINITY;
-        let mut pend = Pending::NONE;
+        let (mut kind, mut aux) = (KIND_NONE, 0u8);
         let c = self.grid.cell[i];
         for k in 0..2 {
-            if let Some((dt, dir)) = self.grid.crossing_time(k, c[k], ri[k], v[k]) {
-                if dt < best {
-                    best = dt;
-                    pend = Pending {
-                        partner: NONE,
-                        partner_count: 0,
-                        kind: KIND_CELL,
-                        aux: (2 * k + (dir > 0) as usize) as u8,
-                    };
-                }
-            }
+            // Without branches: which axis is crossed first is a coin toss.
+            let (dt, up) = self.grid.crossing_time(k, c[k], ri[k], v[k]);
+            let hit = dt < best;
+            best = std::hint::select_unpredictable(hit, dt, best);
+            kind = std::hint::select_unpredictable(hit, KIND_CELL, kind);
+            aux = std::hint::select_unpredictable(hit, (2 * k) as u8 + up as u8, aux);
             if let Boundary::Walls { .. } = self.sim_box.boundary[k] {
                 if let Some((dt, side)) = wall_time(ri[k], v[k], radius, self.sim_box.size[k]) {
                     if dt < best {
                         best = dt;
-                        pend = Pending {
-                            partner: NONE,
-                            partner_count: 0,
-                            kind: KIND_WALL,
-                            aux: (2 * k + (side == WallSide::High) as usize) as u8,
-                        };
+                        kind = KIND_WALL;
+                        aux = (2 * k + (side == WallSide::High) as usize) as u8;
                     }
                 }
             }
         }
+        let pend = Pending {
+            partner: NONE,
+            partner_count: 0,
+            kind,
+            aux,
+        };
         (best, pend)
     }
 }
