@@ -186,6 +186,25 @@ struct Found {
     code: u8,
 }
 
+/// Test disc `j` (record `bj`) against disc `i` (record `bi`, position `ri` now,
+/// shifted to see j through the image with shift code `code`) and keep it in
+/// `found` if it meets earlier than the best so far.
+///
+/// Disc i itself needs no test of its own: its relative velocity is exactly zero,
+/// so b = 0 and it never meets (whichever image is seen).
+#[inline(always)]
+fn test_pair(bi: &Body, j: u32, bj: &Body, ri: DVec2, now: f64, code: u8, found: &mut Found) {
+    let dr = bj.r + bj.v * (now - bj.t) - ri;
+    let sigma = bi.radius + bj.radius;
+    let dt = contact_time_or_inf(dr, bj.v - bi.v, sigma);
+    // Kept without a branch: whether a neighbour beats the best so far is a coin
+    // toss for the branch predictor.
+    let hit = dt < found.best;
+    found.best = std::hint::select_unpredictable(hit, dt, found.best);
+    found.partner = std::hint::select_unpredictable(hit, j, found.partner);
+    found.code = std::hint::select_unpredictable(hit, code, found.code);
+}
+
 /// Look for disc `i`'s earliest collision (before `found.best`) with the discs of one
 /// cell, whose list starts at `first`; `ri` is i's position now, shifted so that the
 /// cell's discs are seen through the image with shift code `code`.
@@ -205,18 +224,7 @@ fn scan_cell(
     let mut j = first;
     while j != NONE {
         let ju = j as usize;
-        let bj = &bodies[ju];
-        // Disc i itself needs no test of its own: its relative velocity is exactly
-        // zero, so b = 0 and it never meets (whichever image is seen).
-        let dr = bj.r + bj.v * (now - bj.t) - ri;
-        let sigma = bi.radius + bj.radius;
-        let dt = contact_time_or_inf(dr, bj.v - bi.v, sigma);
-        // Kept without a branch: whether a neighbour beats the best so far is a
-        // coin toss for the branch predictor.
-        let hit = dt < found.best;
-        found.best = std::hint::select_unpredictable(hit, dt, found.best);
-        found.partner = std::hint::select_unpredictable(hit, j, found.partner);
-        found.code = std::hint::select_unpredictable(hit, code, found.code);
+        test_pair(bi, j, &bodies[ju], ri, now, code, found);
         j = next[ju];
     }
 }
