@@ -308,7 +308,10 @@ impl EventQueue {
         while k != NIL {
             let (item, next) = self.release(k);
             self.in_slots -= 1;
-            self.heap_push(item);
+            // Stale entries are dropped here rather than sorted first.
+            if self.is_current(&item) {
+                self.heap_push(item);
+            }
             k = next;
         }
     }
