@@ -398,6 +398,16 @@ impl Engine {
                 self.next_reorder += reorder_interval(self.len());
             }
             let (t, who) = self.queue.peek();
+            // Start fetching the records of the likely next events while this one
+            // is processed (at large N each is a cache miss): a plain read whose
+            // value is unused, kept by `black_box`. A hint only; nothing depends
+            // on it. (`examples/profile`, η = 0.5: +2 % at N = 10⁴, +6 % at 10⁶;
+            // also touching their partners' records was slower.)
+            for d in self.queue.upcoming() {
+                if let Some(b) = self.bodies.get(d as usize) {
+                    std::hint::black_box(b.count);
+                }
+            }
             if let Some(&Reverse((ts, _, tag))) = self.scheduled.peek() {
                 if ts <= t {
                     self.scheduled.pop();
