@@ -4,7 +4,7 @@
 //! caller's scheduled events. Plain data: the io crate decides how to store it.
 
 use crate::cells::CellGrid;
-use crate::engine::{Body, Engine, EngineParams, Pending, Stats};
+use crate::engine::{Body, Engine, EngineParams, Stats, KIND_CELL};
 use crate::error::EngineError;
 use crate::memory;
 use crate::queue::EventQueue;
@@ -42,8 +42,15 @@ pub struct Checkpoint {
     pub last_collision: Vec<f64>,
     /// Time of each disc's pending event (+∞ if none; time).
     pub event_times: Vec<f64>,
-    /// Pending event of each disc: [partner, partner counter, kind | aux << 8].
+    /// Pair candidate and pending event of each disc: [candidate's partner (u32::MAX
+    /// for none), partner's counter when found, pending kind | aux << 8]. Kinds: 0
+    /// none, 1 the pair candidate, 2 wall, 3 cell crossing. aux bits 0–1: wall 2·axis +
+    /// side (1 = high) or crossing 2·axis + (1 if upwards); bits 2–5: the candidate's
+    /// image shift code (sx+1) + 3 (sy+1).
     pub pending: Vec<[u32; 3]>,
+    /// Time of each disc's pair candidate (+∞ if none; time). It can be later than
+    /// the pending event when a crossing or wall comes first.
+    pub pair_times: Vec<f64>,
 
     /// First disc of each cell (u32::MAX for none), one entry per cell.
     pub cell_head: Vec<u32>,
@@ -64,23 +71,6 @@ pub struct Checkpoint {
     pub next_reorder: u64,
 }
 
-fn encode(p: &Pending) -> [u32; 3] {
-    [
-        p.partner,
-        p.partner_count,
-        p.kind as u32 | (p.aux as u32) << 8,
-    ]
-}
-
-fn decode(p: &[u32; 3]) -> Pending {
-    Pending {
-        partner: p[0],
-        partner_count: p[1],
-        kind: (p[2] & 0xff) as u8,
-        aux: (p[2] >> 8) as u8,
-    }
-}
-
 impl Engine {
     /// Copy out the complete state (see [`Checkpoint`]).
     pub fn checkpoint(&self) -> Checkpoint {
@@ -94,7 +84,7 @@ impl Engine {
         Checkpoint {
             sim_box: self.sim_box,
             species: self.species.clone(),
-            species_of: self.slot_species.clone(),
+            species_of: self.bodies.iter().map(|b| b.species).collect(),
             params: self.params,
             now: self.now,
             same_time_collisions: self.same_time_collisions,
@@ -107,7 +97,18 @@ impl Engine {
             event_times: (0..n)
                 .map(|i| self.queue.get(i as u32).into_inner())
                 .collect(),
-            pending: self.bodies.iter().map(|b| encode(&b.pending)).collect(),
+            pending: self
+                .bodies
+                .iter()
+                .map(|b| {
+                    [
+                        b.partner,
+                        b.partner_count,
+                        b.kind as u32 | (b.aux as u32) << 8,
+                    ]
+                })
+                .collect(),
+            pair_times: self.bodies.iter().map(|b| b.pair_time).collect(),
             cell_head: self.grid.head.clone(),
             cell_next: self.grid.next.clone(),
             cell_prev: self.grid.prev.clone(),
@@ -132,6 +133,7 @@ impl Engine {
             ("last_collision", cp.last_collision.len()),
             ("event_times", cp.event_times.len()),
             ("pending", cp.pending.len()),
+            ("pair_times", cp.pair_times.len()),
             ("cell_next", cp.cell_next.len()),
             ("cell_prev", cp.cell_prev.len()),
             ("cell", cp.cell.len()),
@@ -192,14 +194,20 @@ impl Engine {
         grid.prev.copy_from_slice(&cp.cell_prev);
         grid.cell.copy_from_slice(&cp.cell);
         let mut queue = EventQueue::new(n);
-        let mut pending = Vec::with_capacity(n);
         for (i, (&t, p)) in cp.event_times.iter().zip(&cp.pending).enumerate() {
             let t = NotNan::new(t).map_err(|_| bad(format!("event time of disc {i} is NaN")))?;
             queue.set(i as u32, t);
             if p[0] != u32::MAX && p[0] as usize >= n {
                 return Err(bad(format!("pending partner of disc {i} out of range")));
             }
-            pending.push(decode(p));
+            if (p[2] & 0xff) > KIND_CELL as u32 || p[2] >> 8 > 0xff {
+                return Err(bad(format!(
+                    "pending kind of disc {i} is not one carom writes"
+                )));
+            }
+            if cp.pair_times[i].is_nan() {
+                return Err(bad(format!("pair candidate time of disc {i} is NaN")));
+            }
         }
 
         queue.retune(cp.now);
@@ -209,9 +217,13 @@ impl Engine {
                 r: cp.positions[i],
                 v: cp.velocities[i],
                 t: cp.times[i],
-                radius: cp.species[cp.species_of[i] as usize].radius,
+                pair_time: cp.pair_times[i],
                 count: cp.counts[i],
-                pending: pending[i],
+                partner: cp.pending[i][0],
+                partner_count: cp.pending[i][1],
+                kind: (cp.pending[i][2] & 0xff) as u8,
+                aux: (cp.pending[i][2] >> 8) as u8,
+                species: cp.species_of[i],
             }),
         );
         let scheduled = cp
@@ -225,7 +237,6 @@ impl Engine {
         Ok(Engine {
             sim_box: cp.sim_box,
             species: cp.species,
-            slot_species: cp.species_of,
             bodies,
             last_collision: memory::collect(n, cp.last_collision),
             queue,

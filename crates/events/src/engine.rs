@@ -11,6 +11,17 @@
 //! reaches the head of the queue and is simply recomputed. The earliest true event is
 //! always in the queue: of the two discs of any pair, the one updated last scanned the
 //! other with both current trajectories.
+//!
+//! Each disc also keeps its *pair candidate* — the earliest pair collision its last
+//! scan found, with its time — even while a cell crossing or wall comes first. A
+//! crossing changes no velocity, so after it only the three newly adjacent cells
+//! need a scan: a disc of the six cells seen before either meets no earlier than the
+//! candidate (as that scan found, unless its velocity changed since), or changed
+//! velocity since and then scanned this disc itself. A candidate made obsolete by
+//! its partner's collisions still marks a time before which nothing else was found,
+//! so it stays in the queue as it would have without the crossing and is recomputed
+//! when it comes up. A crossing through a periodic edge moves the disc by a box
+//! length and changes image shifts: it rescans the whole block.
 
 use crate::cells::{CellGrid, NONE};
 use crate::error::EngineError;
@@ -69,9 +80,10 @@ pub struct Stats {
 }
 
 /// Everything the event loop touches for one disc, in one 64-byte cache line:
-/// position at time `t`, velocity, radius, collision counter and pending event.
-/// At large N every event lands at a random place in memory, so keeping these
-/// together saves a cache miss per lookup (measured: see benches/engine.rs).
+/// position at time `t`, velocity, collision counter, pair candidate and pending
+/// event, species. At large N every event lands at a random place in memory, so
+/// keeping these together saves a cache miss per lookup (measured: see
+/// benches/engine.rs).
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[repr(C, align(64))]
 pub(crate) struct Body {
@@ -81,52 +93,39 @@ pub(crate) struct Body {
     pub v: DVec2,
     /// Last-update time (time).
     pub t: f64,
-    /// Radius (length).
-    pub radius: f64,
+    /// Time of the pair candidate, the earliest pair collision found by the scans
+    /// since the last full one (time; +∞ if none).
+    pub pair_time: f64,
     /// Collision counter: bumped on every velocity change and periodic wrap.
     pub count: u32,
-    /// The pending event.
-    pub pending: Pending,
-}
-
-const KIND_NONE: u8 = 0;
-const KIND_PAIR: u8 = 1;
-const KIND_WALL: u8 = 2;
-const KIND_CELL: u8 = 3;
-
-/// The pending event of one disc.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub(crate) struct Pending {
-    /// Partner disc of a pair event.
+    /// Partner of the pair candidate ([`NONE`] if none).
     pub partner: u32,
-    /// Partner's collision counter when the event was predicted.
+    /// Partner's collision counter when the candidate was found.
     pub partner_count: u32,
-    /// One of the `KIND_*` constants.
+    /// Which event is pending: one of the `KIND_*` constants (pair = the candidate).
     pub kind: u8,
-    /// Pair: image shift code (sx+1) + 3 (sy+1). Wall: 2·axis + side. Cell: 2·axis + (dir > 0).
+    /// Bits 0–1: the boundary event — wall: 2·axis + side; cell: 2·axis + (dir > 0).
+    /// Bits 2–5: the candidate's image shift code (sx+1) + 3 (sy+1).
     pub aux: u8,
+    /// Species index.
+    pub species: u16,
 }
+
+pub(crate) const KIND_NONE: u8 = 0;
+pub(crate) const KIND_PAIR: u8 = 1;
+pub(crate) const KIND_WALL: u8 = 2;
+pub(crate) const KIND_CELL: u8 = 3;
 
 const _: () = assert!(
     std::mem::size_of::<Body>() == 64,
     "Body must fill one cache line"
 );
 
-impl Pending {
-    const NONE: Pending = Pending {
-        partner: NONE,
-        partner_count: 0,
-        kind: KIND_NONE,
-        aux: 0,
-    };
-}
-
 /// The exact event-driven engine for hard discs.
 #[derive(Debug, Clone)]
 pub struct Engine {
     pub(crate) sim_box: SimBox,
     pub(crate) species: Vec<Species>,
-    pub(crate) slot_species: Vec<u16>,
     pub(crate) bodies: Vec<Body>,
     pub(crate) last_collision: Vec<f64>,
     pub(crate) queue: EventQueue,
@@ -186,16 +185,32 @@ struct Found {
     code: u8,
 }
 
-/// Test disc `j` (record `bj`) against disc `i` (record `bi`, position `ri` now,
-/// shifted to see j through the image with shift code `code`) and keep it in
-/// `found` if it meets earlier than the best so far.
+/// Disc `i` as a scan sees it: its record, its radius (length) and its position
+/// now (length), shifted to see the scanned cell through the right image.
+struct Scanner<'a> {
+    bi: &'a Body,
+    radius: f64,
+    ri: DVec2,
+}
+
+/// Test disc `j` (record `bj`) against disc i and keep it in `found` if it meets
+/// earlier than the best so far; `code` is the image shift code of j's cell.
 ///
 /// Disc i itself needs no test of its own: its relative velocity is exactly zero,
 /// so b = 0 and it never meets (whichever image is seen).
 #[inline(always)]
-fn test_pair(bi: &Body, j: u32, bj: &Body, ri: DVec2, now: f64, code: u8, found: &mut Found) {
-    let dr = bj.r + bj.v * (now - bj.t) - ri;
-    let sigma = bi.radius + bj.radius;
+fn test_pair(
+    me: &Scanner,
+    species: &[Species],
+    j: u32,
+    bj: &Body,
+    now: f64,
+    code: u8,
+    found: &mut Found,
+) {
+    let bi = me.bi;
+    let dr = bj.r + bj.v * (now - bj.t) - me.ri;
+    let sigma = me.radius + species[bj.species as usize].radius;
     let dt = contact_time_or_inf(dr, bj.v - bi.v, sigma);
     // Kept without a branch: whether a neighbour beats the best so far is a coin
     // toss for the branch predictor.
@@ -205,27 +220,27 @@ fn test_pair(bi: &Body, j: u32, bj: &Body, ri: DVec2, now: f64, code: u8, found:
     found.code = std::hint::select_unpredictable(hit, code, found.code);
 }
 
-/// Look for disc `i`'s earliest collision (before `found.best`) with the discs of one
-/// cell, whose list starts at `first`; `ri` is i's position now, shifted so that the
-/// cell's discs are seen through the image with shift code `code`.
-#[allow(clippy::too_many_arguments)]
-#[inline(always)]
-fn scan_cell(
-    bodies: &[Body],
-    next: &[u32],
-    i: usize,
-    first: u32,
-    ri: DVec2,
+/// The neighbour search's view of the engine: disc records, species and cell lists.
+struct Block<'a> {
+    bodies: &'a [Body],
+    species: &'a [Species],
+    head: &'a [u32],
+    next: &'a [u32],
     now: f64,
-    code: u8,
-    found: &mut Found,
-) {
-    let bi = &bodies[i];
-    let mut j = first;
-    while j != NONE {
-        let ju = j as usize;
-        test_pair(bi, j, &bodies[ju], ri, now, code, found);
-        j = next[ju];
+}
+
+impl Block<'_> {
+    /// Look for the earliest collision (before `found.best`) of the disc `me` with the
+    /// discs of the cell whose list starts at `first`, seen through the image with
+    /// shift code `code`.
+    #[inline(always)]
+    fn scan_cell(&self, me: &Scanner, first: u32, code: u8, found: &mut Found) {
+        let mut j = first;
+        while j != NONE {
+            let ju = j as usize;
+            test_pair(me, self.species, j, &self.bodies[ju], self.now, code, found);
+            j = self.next[ju];
+        }
     }
 }
 
@@ -249,9 +264,13 @@ impl Engine {
                 r: state.sim_box.wrap(state.positions[i]),
                 v: state.velocities[i],
                 t: state.time,
-                radius: state.radius(i),
+                pair_time: f64::INFINITY,
                 count: 0,
-                pending: Pending::NONE,
+                partner: NONE,
+                partner_count: 0,
+                kind: KIND_NONE,
+                aux: 0,
+                species: state.species_of[i],
             }),
         );
         for (i, b) in bodies.iter().enumerate() {
@@ -260,8 +279,7 @@ impl Engine {
         let mut engine = Engine {
             sim_box: state.sim_box,
             species: state.species,
-            species_of: state.species_of.clone(),
-            slot_species: state.species_of,
+            species_of: state.species_of,
             label: (0..n as u32).collect(),
             index_of: (0..n as u32).collect(),
             next_reorder: reorder_interval(n),
@@ -344,8 +362,7 @@ impl Engine {
     pub fn kinetic_energy(&self) -> f64 {
         self.bodies
             .iter()
-            .zip(&self.slot_species)
-            .map(|(b, &s)| 0.5 * self.species[s as usize].mass * b.v.length_squared())
+            .map(|b| 0.5 * self.species[b.species as usize].mass * b.v.length_squared())
             .sum()
     }
 
@@ -366,7 +383,6 @@ impl Engine {
     pub fn heap_bytes(&self) -> usize {
         self.bodies.capacity() * std::mem::size_of::<Body>()
             + self.last_collision.capacity() * 8
-            + self.slot_species.capacity() * 2
             + self.species_of.capacity() * 2
             + (self.label.capacity() + self.index_of.capacity()) * 4
             + self.queue.heap_bytes()
@@ -424,26 +440,27 @@ impl Engine {
             }
             debug_assert!(t >= self.now, "event in the past: {t} < {}", self.now);
             let i = who as usize;
-            let p = self.bodies[i].pending;
-            match p.kind {
+            let b = &self.bodies[i];
+            let (kind, aux) = (b.kind, b.aux);
+            match kind {
                 KIND_PAIR => {
-                    let j = p.partner as usize;
-                    if self.bodies[j].count != p.partner_count {
+                    let j = b.partner as usize;
+                    if self.bodies[j].count != b.partner_count {
                         self.now = t;
                         self.stats.stale_events += 1;
                         self.predict(i);
                         continue;
                     }
                     self.advance_clock(t)?;
-                    return Ok(Some(Event::Pair(self.collide(i, j, p.aux))));
+                    return Ok(Some(Event::Pair(self.collide(i, j, aux >> 2))));
                 }
                 KIND_WALL => {
                     self.advance_clock(t)?;
-                    return Ok(Some(Event::Wall(self.hit_wall(i, p.aux))));
+                    return Ok(Some(Event::Wall(self.hit_wall(i, aux & 3))));
                 }
                 KIND_CELL => {
                     self.now = t;
-                    self.cross(i, p.aux);
+                    self.cross(i, aux & 3);
                 }
                 _ => unreachable!("a disc with no event has time +∞"),
             }
@@ -525,13 +542,12 @@ impl Engine {
         }
         permute(&mut self.bodies, &perm);
         permute(&mut self.last_collision, &perm);
-        permute(&mut self.slot_species, &perm);
         permute(&mut self.label, &perm);
         let mut cells = self.grid.cell.clone();
         permute(&mut cells, &perm);
         for b in self.bodies.iter_mut() {
-            if b.pending.partner != NONE {
-                b.pending.partner = inv[b.pending.partner as usize];
+            if b.partner != NONE {
+                b.partner = inv[b.partner as usize];
             }
         }
         self.queue.renumber(&perm, self.now);
@@ -555,7 +571,7 @@ impl Engine {
 
     #[inline]
     fn mass(&self, i: usize) -> f64 {
-        self.species[self.slot_species[i] as usize].mass
+        self.species[self.bodies[i].species as usize].mass
     }
 
     #[inline]
@@ -678,60 +694,139 @@ impl Engine {
         if wrapped {
             // The position moved by one box length: partners' image shifts change.
             self.bodies[i].count = self.bodies[i].count.wrapping_add(1);
+            self.predict(i);
+        } else {
+            self.predict_after_crossing(i, k, up);
         }
-        self.predict(i);
     }
 
     /// Find disc `i`'s earliest event from the current time and queue it: its next
     /// cell crossing or wall collision, or its earliest pair collision with a disc
-    /// of its 3 × 3 block of cells.
+    /// of its 3 × 3 block of cells (which becomes its pair candidate).
     fn predict(&mut self, i: usize) {
         let now = self.now;
         let bi = self.bodies[i];
         let ri = bi.r + bi.v * (now - bi.t);
-        let (best, pend) = self.boundary_event(i, ri, bi.v, bi.radius);
-
-        // Pairs in the 3 × 3 block of cells around i.
-        let grid = &self.grid;
-        let (bodies, head, next) = (&self.bodies[..], &grid.head[..], &grid.next[..]);
-        let c = grid.cell[i];
-        let [nx, ny] = grid.n;
         let mut found = Found {
-            best,
+            best: f64::INFINITY,
             partner: NONE,
             code: 0,
         };
+        self.scan(i, ri, [-1, 1], [-1, 1], &mut found);
+        let (boundary, kind, aux) = self.boundary_event(i, ri, bi.v);
+        // Without branches (a pair or a boundary event comes first about equally
+        // often); with no partner, the count read is of a disc in memory and unused.
+        let partner_count = self.bodies[(found.partner as usize).min(self.bodies.len() - 1)].count;
+        let pair = found.best < boundary;
+        let b = &mut self.bodies[i];
+        b.pair_time = now + found.best;
+        b.partner = found.partner;
+        b.partner_count = std::hint::select_unpredictable(found.partner != NONE, partner_count, 0);
+        b.kind = std::hint::select_unpredictable(pair, KIND_PAIR, kind);
+        b.aux = aux | found.code << 2;
+        self.queue
+            .set(i as u32, time_key(now + found.best.min(boundary)));
+    }
+
+    /// Disc `i`'s events after it crossed into the next cell along axis `k` (upwards
+    /// if `up`) without wrapping: only the three newly adjacent cells are scanned,
+    /// and the pair candidate is kept unless one of their discs meets earlier (see
+    /// the module documentation).
+    fn predict_after_crossing(&mut self, i: usize, k: usize, up: bool) {
+        let now = self.now;
+        let bi = self.bodies[i];
+        let ri = bi.r + bi.v * (now - bi.t);
+        let mut found = Found {
+            best: f64::INFINITY,
+            partner: NONE,
+            code: 0,
+        };
+        let o = if up { 1 } else { -1 };
+        let (xs, ys) = if k == 0 {
+            ([o, o], [-1, 1])
+        } else {
+            ([-1, 1], [o, o])
+        };
+        self.scan(i, ri, xs, ys, &mut found);
+        let found_time = now + found.best;
+        let (boundary, kind, aux) = self.boundary_event(i, ri, bi.v);
+        let boundary_time = now + boundary;
+        if found_time < bi.pair_time {
+            let partner_count = self.bodies[found.partner as usize].count;
+            let b = &mut self.bodies[i];
+            b.pair_time = found_time;
+            b.partner = found.partner;
+            b.partner_count = partner_count;
+            b.aux = found.code << 2;
+        }
+        let b = &mut self.bodies[i];
+        let pair = b.pair_time < boundary_time;
+        b.kind = std::hint::select_unpredictable(pair, KIND_PAIR, kind);
+        b.aux = (b.aux & !3) | aux;
+        let t = std::hint::select_unpredictable(pair, b.pair_time, boundary_time);
+        self.queue.set(i as u32, time_key(t));
+    }
+
+    /// Look for disc `i`'s earliest pair collision (before `found.best`, time from
+    /// now) with the discs of the cells at offsets `xs[0]..=xs[1]` along x and
+    /// `ys[0]..=ys[1]` along y from its cell: the whole 3 × 3 block, or the strip of
+    /// three cells a crossing brings next to it. `ri` is its position now.
+    #[inline(always)]
+    fn scan(&self, i: usize, ri: DVec2, xs: [i32; 2], ys: [i32; 2], found: &mut Found) {
+        let grid = &self.grid;
+        let block = Block {
+            bodies: &self.bodies,
+            species: &self.species,
+            head: &grid.head,
+            next: &grid.next,
+            now: self.now,
+        };
+        let bi = &self.bodies[i];
+        let radius = self.species[bi.species as usize].radius;
+        let c = grid.cell[i];
+        let [nx, ny] = grid.n;
+        let head = block.head;
         if c[0] >= 1 && c[0] + 1 < nx && c[1] >= 1 && c[1] + 1 < ny {
             // Interior cell (almost all of them): no image shifts, and each row of
-            // the block is three consecutive cells.
+            // the block is consecutive cells.
+            let me = Scanner { bi, radius, ri };
             let nx = nx as usize;
-            let first = (c[1] as usize - 1) * nx + c[0] as usize - 1;
-            let heads = [
-                head[first],
-                head[first + 1],
-                head[first + 2],
-                head[first + nx],
-                head[first + nx + 1],
-                head[first + nx + 2],
-                head[first + 2 * nx],
-                head[first + 2 * nx + 1],
-                head[first + 2 * nx + 2],
-            ];
-            for h in heads {
-                scan_cell(bodies, next, i, h, ri, now, 4, &mut found);
+            let first = (c[1] as i32 + ys[0]) as usize * nx + (c[0] as i32 + xs[0]) as usize;
+            if xs == [-1, 1] && ys == [-1, 1] {
+                let heads = [
+                    head[first],
+                    head[first + 1],
+                    head[first + 2],
+                    head[first + nx],
+                    head[first + nx + 1],
+                    head[first + nx + 2],
+                    head[first + 2 * nx],
+                    head[first + 2 * nx + 1],
+                    head[first + 2 * nx + 2],
+                ];
+                for h in heads {
+                    block.scan_cell(&me, h, 4, found);
+                }
+            } else {
+                // A strip: a column (x crossing) or a row (y crossing) of three.
+                let stride = if xs[0] == xs[1] { nx } else { 1 };
+                let heads = [head[first], head[first + stride], head[first + 2 * stride]];
+                for h in heads {
+                    block.scan_cell(&me, h, 4, found);
+                }
             }
         } else {
             let size = self.sim_box.size;
             // The (up to) three columns: index, image shift along x, shift sign + 1.
             let mut col_list = [(0usize, 0.0f64, 0i32); 3];
             let mut ncols = 0;
-            for ox in [-1, 0, 1] {
+            for ox in xs[0]..=xs[1] {
                 if let Some((cx, sx)) = neighbour(c[0], ox, nx, grid.periodic[0]) {
                     col_list[ncols] = (cx as usize, sx as f64 * size.x, sx + 1);
                     ncols += 1;
                 }
             }
-            for oy in [-1, 0, 1] {
+            for oy in ys[0]..=ys[1] {
                 let Some((cy, sy)) = neighbour(c[1], oy, ny, grid.periodic[1]) else {
                     continue;
                 };
@@ -739,46 +834,26 @@ impl Engine {
                 let shift_y = sy as f64 * size.y;
                 for &(cx, shift_x, cxs) in &col_list[..ncols] {
                     // Seeing j's image at r_j + s L is seeing i at r_i − s L.
-                    let ri_img = DVec2::new(ri.x - shift_x, ri.y - shift_y);
+                    let me = Scanner {
+                        bi,
+                        radius,
+                        ri: DVec2::new(ri.x - shift_x, ri.y - shift_y),
+                    };
                     let code = (cxs + 3 * (sy + 1)) as u8;
-                    scan_cell(
-                        bodies,
-                        next,
-                        i,
-                        head[row + cx],
-                        ri_img,
-                        now,
-                        code,
-                        &mut found,
-                    );
+                    block.scan_cell(&me, head[row + cx], code, found);
                 }
             }
         }
-        let Found {
-            best,
-            partner,
-            code,
-        } = found;
-        // Without a branch (a pair or a boundary event comes first about equally
-        // often); with no partner, the count read is of a disc in memory and unused.
-        let pair = partner != NONE;
-        let partner_count = self.bodies[(partner as usize).min(self.bodies.len() - 1)].count;
-        self.bodies[i].pending = Pending {
-            partner,
-            partner_count: std::hint::select_unpredictable(pair, partner_count, 0),
-            kind: std::hint::select_unpredictable(pair, KIND_PAIR, pend.kind),
-            aux: std::hint::select_unpredictable(pair, code, pend.aux),
-        };
-        self.queue.set(i as u32, time_key(now + best));
     }
 
     /// Disc `i`'s earliest cell crossing or wall collision from now: (time from now,
-    /// event). `ri` is its position now.
-    #[inline]
-    fn boundary_event(&self, i: usize, ri: DVec2, v: DVec2, radius: f64) -> (f64, Pending) {
+    /// kind, aux as in [`Body`]). `ri` is its position now, `v` its velocity.
+    #[inline(always)]
+    fn boundary_event(&self, i: usize, ri: DVec2, v: DVec2) -> (f64, u8, u8) {
         let mut best = f64::INFINITY;
         let (mut kind, mut aux) = (KIND_NONE, 0u8);
         let c = self.grid.cell[i];
+        let radius = self.species[self.bodies[i].species as usize].radius;
         for k in 0..2 {
             // Without branches: which axis is crossed first is a coin toss.
             let (dt, up) = self.grid.crossing_time(k, c[k], ri[k], v[k]);
@@ -796,12 +871,6 @@ impl Engine {
                 }
             }
         }
-        let pend = Pending {
-            partner: NONE,
-            partner_count: 0,
-            kind,
-            aux,
-        };
-        (best, pend)
+        (best, kind, aux)
     }
 }

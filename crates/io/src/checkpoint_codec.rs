@@ -14,7 +14,7 @@ use carom_events::{Checkpoint, EngineParams, Stats};
 pub const CHECKPOINT_MSG: &str = "\
 # The complete state of a carom run, from which it resumes bit-identically.
 # Per-disc arrays have one entry per disc; units are the run's.
-uint32 format_version             # 1
+uint32 format_version             # 2
 # --- run driver ---
 float64 run_start_time            # simulated time at which the run started (time)
 uint64 logged_collisions          # collisions written to /collisions so far
@@ -54,9 +54,10 @@ float64[] t                       # last update time (time)
 uint32[] collision_count
 float64[] last_collision          # time of last pair collision (-inf if none or TC off)
 float64[] event_time              # time of the pending event (+inf if none)
-uint32[] pending_partner
-uint32[] pending_partner_count
-uint32[] pending_kind             # kind | aux << 8
+float64[] pair_time               # time of the pair candidate (+inf if none; may be after event_time)
+uint32[] pending_partner          # the pair candidate's partner (4294967295 = none)
+uint32[] pending_partner_count    # the partner's collision_count when the candidate was found
+uint32[] pending_kind             # kind | aux << 8; kind 0 none, 1 pair candidate, 2 wall, 3 cell crossing
 # --- neighbour grid ---
 uint32[] cell_head                # first disc per cell (4294967295 = none)
 uint32[] cell_next
@@ -74,7 +75,7 @@ uint64 next_reorder               # pair-collision count at which the engine nex
 ";
 
 /// Format version written in `format_version`.
-pub const CHECKPOINT_FORMAT_VERSION: u32 = 1;
+pub const CHECKPOINT_FORMAT_VERSION: u32 = 2;
 
 /// The run driver's state at a checkpoint (what it needs, beyond the engine, to
 /// continue the log exactly as the uninterrupted run would have).
@@ -158,6 +159,7 @@ impl LogCheckpoint {
         w.seq(&c.counts);
         w.seq(&c.last_collision);
         w.seq(&c.event_times);
+        w.seq(&c.pair_times);
         w.seq_iter(c.pending.iter().map(|p| p[0]));
         w.seq_iter(c.pending.iter().map(|p| p[1]));
         w.seq_iter(c.pending.iter().map(|p| p[2]));
@@ -286,6 +288,7 @@ impl LogCheckpoint {
         let counts = r.seq("collision_count")?;
         let last_collision = r.seq("last_collision")?;
         let event_times = r.seq("event_time")?;
+        let pair_times = r.seq("pair_time")?;
         let p0: Vec<u32> = r.seq("pending_partner")?;
         let p1: Vec<u32> = r.seq("pending_partner_count")?;
         let p2: Vec<u32> = r.seq("pending_kind")?;
@@ -337,6 +340,7 @@ impl LogCheckpoint {
                 counts,
                 last_collision,
                 event_times,
+                pair_times,
                 pending,
                 cell_head,
                 cell_next,
