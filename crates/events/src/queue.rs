@@ -314,15 +314,51 @@ impl EventQueue {
         let s = (self.cur & self.mask) as usize;
         let mut k = self.slot_head[s];
         self.slot_head[s] = NIL;
+        let before = self.heap.len();
         while k != NIL {
             let (item, next) = self.release(k);
             self.in_slots -= 1;
-            // Stale entries are dropped here rather than sorted first.
-            if self.is_current(&item) {
-                self.heap_push(item);
-            }
+            // Stale entries are dropped here rather than sorted first, without a
+            // branch (whether an entry is stale is a coin toss): every entry is
+            // appended, and a stale one is cut off again.
+            let keep = self.is_current(&item);
+            self.heap.push(item);
+            let len = self.heap.len() - 1 + keep as usize;
+            self.heap.truncate(len);
             k = next;
         }
+        if self.heap.len() > before {
+            self.heapify();
+        }
+    }
+
+    /// Restore the heap order of the whole heap array (Floyd's construction).
+    fn heapify(&mut self) {
+        for pos in (0..self.heap.len() / 2).rev() {
+            let item = self.heap[pos];
+            self.sift_down(pos, item);
+        }
+    }
+
+    /// Put `item` at `pos` or below, moving smaller children up.
+    #[inline]
+    fn sift_down(&mut self, mut pos: usize, item: Item) {
+        let len = self.heap.len();
+        loop {
+            let mut child = 2 * pos + 1;
+            if child >= len {
+                break;
+            }
+            if child + 1 < len && Self::less(&self.heap[child + 1], &self.heap[child]) {
+                child += 1;
+            }
+            if !Self::less(&self.heap[child], &item) {
+                break;
+            }
+            self.heap[pos] = self.heap[child];
+            pos = child;
+        }
+        self.heap[pos] = item;
     }
 
     fn redistribute_overflow(&mut self) {
@@ -358,26 +394,9 @@ impl EventQueue {
 
     fn heap_pop(&mut self) {
         let last = self.heap.pop().expect("heap is not empty");
-        let len = self.heap.len();
-        if len == 0 {
-            return;
+        if !self.heap.is_empty() {
+            self.sift_down(0, last);
         }
-        let mut pos = 0;
-        loop {
-            let mut child = 2 * pos + 1;
-            if child >= len {
-                break;
-            }
-            if child + 1 < len && Self::less(&self.heap[child + 1], &self.heap[child]) {
-                child += 1;
-            }
-            if !Self::less(&self.heap[child], &last) {
-                break;
-            }
-            self.heap[pos] = self.heap[child];
-            pos = child;
-        }
-        self.heap[pos] = last;
     }
 }
 
