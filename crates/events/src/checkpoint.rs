@@ -23,8 +23,14 @@ pub struct Checkpoint {
     pub species_of: Vec<u16>,
     /// Dynamics parameters.
     pub params: EngineParams,
-    /// Current simulation time (time).
+    /// Current simulation time, as reported to the caller (time).
     pub now: f64,
+    /// Time of the internal clock's zero (time).
+    pub epoch: f64,
+    /// The internal clock now (time since `epoch`). Every per-disc time below
+    /// (`times`, `event_times`, `pair_times`, `last_collision`) is on this clock;
+    /// `scheduled` times are the caller's.
+    pub clock: f64,
     /// Collisions processed at the current instant (for the runaway guard).
     pub same_time_collisions: u64,
     /// Running totals.
@@ -86,7 +92,9 @@ impl Engine {
             species: self.species.clone(),
             species_of: self.bodies.iter().map(|b| b.species).collect(),
             params: self.params,
-            now: self.now,
+            now: self.reported,
+            epoch: self.epoch,
+            clock: self.clock,
             same_time_collisions: self.same_time_collisions,
             stats: self.stats,
             positions: self.bodies.iter().map(|b| b.r).collect(),
@@ -150,6 +158,11 @@ impl Engine {
         {
             return Err(bad(format!("species index {s} out of range")));
         }
+        for (name, t) in [("now", cp.now), ("epoch", cp.epoch), ("clock", cp.clock)] {
+            if !t.is_finite() {
+                return Err(bad(format!("{name} is {t}, not a finite time")));
+            }
+        }
         let mut index_of = vec![u32::MAX; n];
         for (k, &l) in cp.labels.iter().enumerate() {
             if l as usize >= n || index_of[l as usize] != u32::MAX {
@@ -210,7 +223,7 @@ impl Engine {
             }
         }
 
-        queue.retune(cp.now);
+        queue.retune(cp.clock);
         let bodies = memory::collect(
             n,
             (0..n).map(|i| Body {
@@ -244,7 +257,9 @@ impl Engine {
             scheduled,
             next_seq: cp.next_seq,
             params: cp.params,
-            now: cp.now,
+            clock: cp.clock,
+            epoch: cp.epoch,
+            reported: cp.now,
             same_time_collisions: cp.same_time_collisions,
             stats: cp.stats,
             label: cp.labels,

@@ -155,6 +155,17 @@ impl EventQueue {
         self.retune(now);
     }
 
+    /// Move the time origin: every stored time t becomes t − `shift` (+∞ stays),
+    /// and the calendar is rebuilt at the new time 0. Subtracting one number is
+    /// monotone, so the order is kept (two times may round to one, and then go by
+    /// disc index).
+    pub fn shift_origin(&mut self, shift: f64) {
+        for t in self.time_of.iter_mut() {
+            *t -= shift;
+        }
+        self.retune(0.0);
+    }
+
     /// The earliest event: (time, disc). With every time +∞ the time is +∞.
     #[inline]
     pub fn peek(&mut self) -> (Time, u32) {

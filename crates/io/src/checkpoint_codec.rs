@@ -37,6 +37,8 @@ float64 tc                        # TC-model duration (time)
 uint64 max_events_without_time_advance
 # --- clock and running totals ---
 float64 now                       # current time (time)
+float64 epoch                     # time of the internal clock's zero (time)
+float64 clock                     # internal clock now (time since epoch); per-disc times below are on it
 uint64 same_time_collisions
 uint64 pair_collisions
 uint64 wall_collisions
@@ -137,6 +139,8 @@ impl LogCheckpoint {
         w.put(c.params.tc);
         w.put(c.params.max_events_without_time_advance);
         w.put(c.now);
+        w.put(c.epoch);
+        w.put(c.clock);
         w.put(c.same_time_collisions);
         let s = &c.stats;
         w.put(s.pair_collisions);
@@ -249,6 +253,8 @@ impl LogCheckpoint {
             max_events_without_time_advance: r.get("max_events_without_time_advance")?,
         };
         let now = r.get("now")?;
+        let epoch = r.get("epoch")?;
+        let clock = r.get("clock")?;
         let same_time_collisions = r.get("same_time_collisions")?;
         let pair_collisions = r.get("pair_collisions")?;
         let wall_collisions = r.get("wall_collisions")?;
@@ -332,6 +338,8 @@ impl LogCheckpoint {
                 species_of,
                 params,
                 now,
+                epoch,
+                clock,
                 same_time_collisions,
                 stats,
                 positions,
