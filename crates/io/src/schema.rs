@@ -32,7 +32,11 @@ pub const METADATA_SUMMARY: &str = "carom.summary";
 
 /// Version of the log layout described here; stored in the `carom.run` metadata as
 /// `log_format`. Readers reject files with a different major version.
-pub const LOG_FORMAT_VERSION: &str = "1";
+///
+/// 1.1: `/checkpoint` format 2 (each disc's pair candidate time; the engine's
+/// internal clock and its epoch). The other channels are unchanged; a log 1.0
+/// checkpoint cannot be resumed (its reader reports the format).
+pub const LOG_FORMAT_VERSION: &str = "1.1";
 
 /// Schema name of [`CollisionBatch`].
 pub const SCHEMA_COLLISION_BATCH: &str = "carom_msgs/msg/CollisionBatch";
