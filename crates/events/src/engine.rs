@@ -193,6 +193,15 @@ struct Found {
     code: u8,
 }
 
+impl Found {
+    /// Nothing found yet: no partner, time +∞.
+    const NOTHING: Found = Found {
+        best: f64::INFINITY,
+        partner: NONE,
+        code: 0,
+    };
+}
+
 /// Disc `i` as a scan sees it: its record, its radius (length) and its position
 /// now (length), shifted to see the scanned cell through the right image.
 struct Scanner<'a> {
@@ -431,7 +440,8 @@ impl Engine {
             // also touching their partners' records was slower.)
             for d in self.queue.upcoming() {
                 if let Some(b) = self.bodies.get(d as usize) {
-                    std::hint::black_box(b.count);
+                    memory::prefetch(b);
+                    memory::prefetch(&self.grid.cell[d as usize]);
                 }
             }
             if let Some(&Reverse((ts, _, tag))) = self.scheduled.peek() {
@@ -756,11 +766,7 @@ impl Engine {
         let now = self.clock;
         let bi = self.bodies[i];
         let ri = bi.r + bi.v * (now - bi.t);
-        let mut found = Found {
-            best: f64::INFINITY,
-            partner: NONE,
-            code: 0,
-        };
+        let mut found = Found::NOTHING;
         self.scan(i, ri, [-1, 1], [-1, 1], &mut found);
         let (boundary, kind, aux) = self.boundary_event(i, ri, bi.v);
         // Without branches (a pair or a boundary event comes first about equally
@@ -785,11 +791,7 @@ impl Engine {
         let now = self.clock;
         let bi = self.bodies[i];
         let ri = bi.r + bi.v * (now - bi.t);
-        let mut found = Found {
-            best: f64::INFINITY,
-            partner: NONE,
-            code: 0,
-        };
+        let mut found = Found::NOTHING;
         let o = if up { 1 } else { -1 };
         let (xs, ys) = if k == 0 {
             ([o, o], [-1, 1])
