@@ -10,6 +10,9 @@
 //! here and marked before they are first written.
 //!
 //! Nothing about the values changes: this is a hint about how to map memory.
+//!
+//! [`prefetch`] is the other memory hint: start loading a cache line that the next
+//! events will need.
 
 /// Arrays smaller than this are left alone (they cannot fill a huge page).
 const HUGE_PAGE: usize = 2 << 20;
