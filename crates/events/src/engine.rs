@@ -907,7 +907,6 @@ impl Engine {
         let mut best = f64::INFINITY;
         let (mut kind, mut aux) = (KIND_NONE, 0u8);
         let c = self.grid.cell[i];
-        let radius = self.species[self.bodies[i].species as usize].radius;
         for k in 0..2 {
             // Without branches: which axis is crossed first is a coin toss.
             let (dt, up) = self.grid.crossing_time(k, c[k], ri[k], v[k]);
@@ -916,6 +915,7 @@ impl Engine {
             kind = std::hint::select_unpredictable(hit, KIND_CELL, kind);
             aux = std::hint::select_unpredictable(hit, (2 * k) as u8 + up as u8, aux);
             if let Boundary::Walls { .. } = self.sim_box.boundary[k] {
+                let radius = self.species[self.bodies[i].species as usize].radius;
                 if let Some((dt, side)) = wall_time(ri[k], v[k], radius, self.sim_box.size[k]) {
                     if dt < best {
                         best = dt;
