@@ -2,26 +2,34 @@
 //!
 //! Every disc owns exactly one current event time (`+∞` for none). Times are sorted
 //! into buckets of width Δ (bucket b = ⌊(t − t₀)/Δ⌋, a monotone function of t):
-//! buckets ahead of the current one are unsorted singly linked lists in a circular
-//! calendar of M buckets, events beyond the calendar wait in an overflow list, and
-//! only the current bucket is kept sorted, in a small binary heap. Inserting is O(1);
-//! popping is O(log k) for k events per bucket (G. Paul, J. Comput. Phys. 221, 615
-//! (2007); Smallenburg's EDMD).
+//! buckets ahead of the current one are unsorted slots of a circular calendar of M
+//! buckets, events beyond the calendar wait in an overflow list, and only the
+//! current bucket is kept sorted, in a small binary heap. Inserting is O(1); popping
+//! is O(log k) for k events per bucket (G. Paul, J. Comput. Phys. 221, 615 (2007);
+//! Smallenburg's EDMD).
 //!
-//! Deletion is lazy: setting a disc's time files a new entry (time, disc) and leaves
-//! the old one where it is; an entry whose time is no longer its disc's current time
-//! is dropped when it reaches the front. A change of a disc's time therefore touches
-//! no other disc's entry — at large N each such touch was a cache miss. An entry
-//! whose time equals its disc's current time always tells the truth ("disc i has an
-//! event at t"), so a second entry with the same time (a time set, changed and set
-//! back) is harmless: whichever comes first is the disc's current event, and the
-//! other is dropped as soon as the time changes. Entries live in a pool with a free
-//! list; when stale entries pile up beyond a fixed multiple of N the calendar is
-//! rebuilt from the current times.
+//! A calendar slot is 32 bytes: the indices of up to seven discs, and a chain of
+//! further 32-byte chunks for a crowded bucket (rare: a bucket holds about two
+//! events). Slots lie in bucket order, so pouring the next bucket reads memory
+//! sequentially, and the discs of the buckets ahead are known early enough to fetch
+//! their records before they are needed ([`EventQueue::ahead`]). At large N a linked
+//! list of entries scattered over a pool cost a cache miss per entry instead.
+//!
+//! Deletion is lazy: setting a disc's time files the disc in the bucket of its new
+//! time and leaves the old entry where it is. When a bucket is poured, an entry is
+//! kept only if its disc's current time falls in that bucket, so an entry left
+//! behind by a change of time is dropped there. A disc can be filed twice in one
+//! bucket (a time changed within the bucket, or set away and back); both copies then
+//! enter the heap with the same, current, time: whichever comes first is the disc's
+//! current event, and the other is dropped as soon as the time changes (an item of
+//! the heap is dropped when its time is no longer its disc's current time). A change
+//! of a disc's time therefore touches no other disc's entry. When stale entries pile
+//! up beyond a fixed bound the calendar is rebuilt from the current times.
 //!
 //! The order is exactly lexicographic in (time, disc index): ties are broken by disc
-//! index, and Δ only affects speed, never the order. Keys are
-//! [`NotNan<f64>`](ordered_float::NotNan): a NaN cannot enter.
+//! index, and Δ and the order of entries in a slot only affect speed, never the
+//! order of events. Keys are [`NotNan<f64>`](ordered_float::NotNan): a NaN cannot
+//! enter.
 
 use crate::memory;
 use ordered_float::NotNan;
@@ -29,9 +37,13 @@ use ordered_float::NotNan;
 /// Event time in the queue's key type (time unit of the simulation, never NaN).
 pub type Time = NotNan<f64>;
 
-const NIL: u32 = u32::MAX;
+/// "No disc" / "no chunk".
+pub const NIL: u32 = u32::MAX;
 
-/// A filed event: the disc and its time when filed.
+/// Discs held in one slot or chunk.
+pub const SLOT_DISCS: usize = 7;
+
+/// An event of the heap or the overflow list: the disc and its time.
 #[derive(Debug, Clone, Copy, PartialEq)]
 struct Item {
     /// Event time (time).
@@ -40,34 +52,53 @@ struct Item {
     disc: u32,
 }
 
-/// An entry of a bucket or overflow list.
+/// A calendar slot, or a chunk of a slot's chain: up to [`SLOT_DISCS`] disc indices
+/// (filled from the front, [`NIL`] after the last) and the next chunk.
 #[derive(Debug, Clone, Copy, PartialEq)]
-struct Node {
-    /// Event time (time).
-    time: f64,
-    /// Disc index.
-    disc: u32,
-    /// Next node of the list (or of the free list).
-    next: u32,
+#[repr(C, align(32))]
+struct Slot {
+    /// Discs filed in this bucket (current or stale entries).
+    disc: [u32; SLOT_DISCS],
+    /// Next chunk of the chain (or of the free list), or [`NIL`].
+    more: u32,
 }
 
-const _: () = assert!(std::mem::size_of::<Node>() == 16);
+const _: () = assert!(std::mem::size_of::<Slot>() == 32);
+
+impl Slot {
+    const EMPTY: Slot = Slot {
+        disc: [NIL; SLOT_DISCS],
+        more: NIL,
+    };
+
+    /// Put `d` in the first free place; false if the slot is full.
+    #[inline]
+    fn add(&mut self, d: u32) -> bool {
+        match self.disc.iter().position(|&x| x == NIL) {
+            Some(k) => {
+                self.disc[k] = d;
+                true
+            }
+            None => false,
+        }
+    }
+}
 
 /// An event calendar of per-disc event times.
 #[derive(Debug, Clone)]
 pub struct EventQueue {
     /// Per-disc current event time (+∞ for none).
     time_of: Vec<f64>,
-    /// Pool of list nodes.
-    nodes: Vec<Node>,
-    /// First free node of the pool.
+    /// The calendar: slot `b mod M` holds the discs filed in bucket b.
+    slots: Vec<Slot>,
+    /// Pool of chunks for crowded slots.
+    chunks: Vec<Slot>,
+    /// First free chunk of the pool.
     free: u32,
-    /// Nodes in use (in slots or overflow).
-    used: usize,
-    /// First node of each calendar slot.
-    slot_head: Vec<u32>,
-    /// First node of the overflow list.
-    overflow_head: u32,
+    /// Chunks in use.
+    chunks_used: usize,
+    /// Events beyond the calendar's span.
+    overflow: Vec<Item>,
     /// Items of the current bucket, a binary heap on (time, disc).
     heap: Vec<Item>,
     /// The current bucket (absolute number).
@@ -80,9 +111,19 @@ pub struct EventQueue {
     mask: u64,
     /// Discs with a finite time.
     finite: usize,
-    /// Nodes (current or stale) in calendar slots.
+    /// Entries (current or stale) in calendar slots, their chunks and `pending`.
     in_slots: usize,
+    /// Entries on their way into calendar slots: (slot, disc). Filing into a slot
+    /// far ahead is a cache miss at large N; the slot is fetched when the entry is
+    /// made and written a little later, when the next bucket is poured or this
+    /// buffer is full.
+    pending: [(u32, u32); PENDING],
+    /// Entries in `pending`.
+    pending_len: usize,
 }
+
+/// Capacity of the buffer of entries on their way into slots.
+const PENDING: usize = 16;
 
 impl EventQueue {
     /// A queue for `n` discs, every time +∞, buckets of width 1.
@@ -90,11 +131,11 @@ impl EventQueue {
         let m = n.max(2).next_power_of_two();
         EventQueue {
             time_of: memory::filled(n, f64::INFINITY),
-            nodes: memory::with_capacity(Self::pool_limit_for(n)),
+            slots: memory::filled(m, Slot::EMPTY),
+            chunks: memory::with_capacity(Self::chunk_limit_for(n)),
             free: NIL,
-            used: 0,
-            slot_head: memory::filled(m, NIL),
-            overflow_head: NIL,
+            chunks_used: 0,
+            overflow: Vec::new(),
             heap: Vec::new(),
             cur: 0,
             t0: 0.0,
@@ -102,6 +143,8 @@ impl EventQueue {
             mask: m as u64 - 1,
             finite: 0,
             in_slots: 0,
+            pending: [(0, 0); PENDING],
+            pending_len: 0,
         }
     }
 
@@ -124,19 +167,20 @@ impl EventQueue {
         } else {
             1.0
         };
-        self.nodes.clear();
+        self.slots.fill(Slot::EMPTY);
+        self.chunks.clear();
+        self.free = NIL;
+        self.chunks_used = 0;
+        self.overflow.clear();
         // The heap can be large right after construction (every first prediction
         // lands in bucket 0 before the width is tuned); give that memory back.
         self.heap = Vec::new();
-        self.free = NIL;
-        self.used = 0;
-        self.slot_head.fill(NIL);
-        self.overflow_head = NIL;
         self.cur = 0;
         self.t0 = now;
         self.inv_width = 1.0 / width;
         self.finite = 0;
         self.in_slots = 0;
+        self.pending_len = 0;
         for i in 0..self.time_of.len() {
             if self.time_of[i].is_finite() {
                 self.finite += 1;
@@ -193,6 +237,21 @@ impl EventQueue {
         [at(1), at(2)]
     }
 
+    /// The current bucket's number; it changes whenever the queue moves on to the
+    /// next bucket (a hint for when to look [`ahead`](Self::ahead)).
+    #[inline]
+    pub fn bucket_number(&self) -> u64 {
+        self.cur
+    }
+
+    /// Discs filed in the bucket `k` ≥ 1 places after the current one (the first
+    /// [`SLOT_DISCS`] of them, [`NIL`] after the last; some may be stale). A hint
+    /// for fetching their records before they are needed.
+    #[inline]
+    pub fn ahead(&self, k: u64) -> &[u32; SLOT_DISCS] {
+        &self.slots[((self.cur + k) & self.mask) as usize].disc
+    }
+
     /// The time currently stored for disc `i`.
     #[inline]
     pub fn get(&self, i: u32) -> Time {
@@ -211,109 +270,127 @@ impl EventQueue {
         }
         if t.is_finite() {
             self.file(i);
+            if self.chunks_used >= self.chunk_limit()
+                || self.overflow.len() >= self.overflow_limit()
+            {
+                self.rebuild();
+            }
         }
-        if self.used >= self.pool_limit() {
-            // Stale entries have piled up (times changed many times within the
-            // calendar's span): start afresh from the current times.
-            self.retune(self.t0 + self.cur as f64 / self.inv_width);
-        }
+    }
+
+    /// Stale entries have piled up (times changed many times within the calendar's
+    /// span): start afresh from the current times.
+    fn rebuild(&mut self) {
+        self.retune(self.t0 + self.cur as f64 / self.inv_width);
     }
 
     /// Bytes of heap memory used (for the memory report).
     pub fn heap_bytes(&self) -> usize {
         self.time_of.capacity() * 8
-            + self.nodes.capacity() * std::mem::size_of::<Node>()
-            + self.slot_head.capacity() * 4
-            + self.heap.capacity() * std::mem::size_of::<Item>()
+            + (self.slots.capacity() + self.chunks.capacity()) * std::mem::size_of::<Slot>()
+            + (self.overflow.capacity() + self.heap.capacity()) * std::mem::size_of::<Item>()
     }
 
     #[inline]
     fn bucket(&self, t: f64) -> u64 {
-        // Saturating float-to-int cast; monotone in t.
+        // Saturating float-to-int cast; monotone in t (+∞ maps to u64::MAX).
         ((t - self.t0) * self.inv_width) as u64
     }
 
     /// File disc `i`'s current time: into the heap, a calendar slot or overflow.
     #[inline]
     fn file(&mut self, i: u32) {
-        let item = Item {
-            time: self.time_of[i as usize],
-            disc: i,
-        };
-        let b = self.bucket(item.time);
+        let time = self.time_of[i as usize];
+        let b = self.bucket(time);
         if b <= self.cur {
-            self.heap_push(item);
+            self.heap_push(Item { time, disc: i });
         } else if b - self.cur <= self.mask {
             let s = (b & self.mask) as usize;
-            self.slot_head[s] = self.node(item, self.slot_head[s]);
+            memory::prefetch(&self.slots[s]);
+            self.pending[self.pending_len] = (s as u32, i);
+            self.pending_len += 1;
             self.in_slots += 1;
+            if self.pending_len == PENDING {
+                self.flush();
+            }
         } else {
-            self.overflow_head = self.node(item, self.overflow_head);
+            self.overflow.push(Item { time, disc: i });
         }
     }
 
-    /// Nodes the pool may hold before stale entries are collected: one current entry
-    /// per disc and as many again stale (about 0.3–0.4 N are seen at η = 0.5). The
-    /// pool is allocated at this size once and never grows.
-    fn pool_limit_for(n: usize) -> usize {
-        2 * n + 64
+    /// Write the pending entries into their slots.
+    fn flush(&mut self) {
+        for k in 0..std::mem::take(&mut self.pending_len) {
+            let (s, d) = self.pending[k];
+            self.add_to_slot(s as usize, d);
+        }
     }
 
-    fn pool_limit(&self) -> usize {
-        Self::pool_limit_for(self.time_of.len())
-    }
-
-    /// A node holding `item` in front of `next`, from the free list or the pool's end.
+    /// Put disc `d` into calendar slot `s`, or into its chain of chunks.
     #[inline]
-    fn node(&mut self, item: Item, next: u32) -> u32 {
-        self.used += 1;
-        let node = Node {
-            time: item.time,
-            disc: item.disc,
-            next,
-        };
+    fn add_to_slot(&mut self, s: usize, d: u32) {
+        if self.slots[s].add(d) {
+            return;
+        }
+        let c = self.slots[s].more;
+        if c != NIL && self.chunks[c as usize].add(d) {
+            return;
+        }
+        let mut chunk = Slot::EMPTY;
+        chunk.disc[0] = d;
+        chunk.more = c;
+        self.slots[s].more = self.chunk(chunk);
+    }
+
+    /// Chunks the pool may hold before the calendar is rebuilt; allocated at this
+    /// size once and never grown. A rebuild files at most N entries, which need at
+    /// most N/7 + 1 chunks, so a rebuild never fills the pool again.
+    fn chunk_limit_for(n: usize) -> usize {
+        n / 4 + 64
+    }
+
+    fn chunk_limit(&self) -> usize {
+        Self::chunk_limit_for(self.time_of.len())
+    }
+
+    /// Entries the overflow list may hold before the calendar is rebuilt.
+    fn overflow_limit(&self) -> usize {
+        2 * self.time_of.len() + 64
+    }
+
+    /// A chunk holding `chunk`, from the free list or the pool's end.
+    #[inline]
+    fn chunk(&mut self, chunk: Slot) -> u32 {
+        self.chunks_used += 1;
         let k = self.free;
         if k != NIL {
-            self.free = self.nodes[k as usize].next;
-            self.nodes[k as usize] = node;
+            self.free = self.chunks[k as usize].more;
+            self.chunks[k as usize] = chunk;
             k
         } else {
-            self.nodes.push(node);
-            (self.nodes.len() - 1) as u32
+            self.chunks.push(chunk);
+            (self.chunks.len() - 1) as u32
         }
-    }
-
-    /// Return node `k` to the free list: its item and its successor.
-    #[inline]
-    fn release(&mut self, k: u32) -> (Item, u32) {
-        let Node { time, disc, next } = self.nodes[k as usize];
-        let item = Item { time, disc };
-        self.nodes[k as usize].next = self.free;
-        self.free = k;
-        self.used -= 1;
-        (item, next)
-    }
-
-    /// Whether `item` still holds its disc's current time.
-    #[inline]
-    fn is_current(&self, item: &Item) -> bool {
-        self.time_of[item.disc as usize] == item.time
     }
 
     /// Move to the next bucket: pour its slot into the heap; at every full turn of
     /// the calendar, bring overflow events that are now within reach into slots.
     fn advance(&mut self) {
+        self.flush();
+        if self.chunks_used >= self.chunk_limit() {
+            // Rebuilt: the heap holds the current bucket again.
+            self.rebuild();
+            return;
+        }
         if self.in_slots == 0 {
             // Only overflow entries are left: jump straight to the earliest of them.
-            let mut b = u64::MAX;
-            let mut k = self.overflow_head;
-            while k != NIL {
-                let Node { time, disc, next } = self.nodes[k as usize];
-                if self.is_current(&Item { time, disc }) {
-                    b = b.min(self.bucket(time));
-                }
-                k = next;
-            }
+            let b = self
+                .overflow
+                .iter()
+                .filter(|item| self.is_current(item))
+                .map(|item| self.bucket(item.time))
+                .min()
+                .unwrap_or(u64::MAX);
             self.cur = b.max(self.cur + 1);
             self.redistribute_overflow();
         } else {
@@ -322,25 +399,55 @@ impl EventQueue {
                 self.redistribute_overflow();
             }
         }
+        // The times of the next bucket's discs are read when it is poured: start
+        // loading them now.
+        for &d in self.ahead(1) {
+            if let Some(t) = self.time_of.get(d as usize) {
+                memory::prefetch(t);
+            }
+        }
         let s = (self.cur & self.mask) as usize;
-        let mut k = self.slot_head[s];
-        self.slot_head[s] = NIL;
+        let slot = std::mem::replace(&mut self.slots[s], Slot::EMPTY);
         let before = self.heap.len();
-        while k != NIL {
-            let (item, next) = self.release(k);
-            self.in_slots -= 1;
-            // Stale entries are dropped here rather than sorted first, without a
-            // branch (whether an entry is stale is a coin toss): every entry is
-            // appended, and a stale one is cut off again.
-            let keep = self.is_current(&item);
-            self.heap.push(item);
-            let len = self.heap.len() - 1 + keep as usize;
-            self.heap.truncate(len);
-            k = next;
+        self.pour(&slot);
+        let mut c = slot.more;
+        while c != NIL {
+            let chunk = self.chunks[c as usize];
+            self.pour(&chunk);
+            self.chunks[c as usize].more = self.free;
+            self.free = c;
+            self.chunks_used -= 1;
+            c = chunk.more;
         }
         if self.heap.len() > before {
             self.heapify();
         }
+    }
+
+    /// Append the current entries of `slot` (filed in the current bucket) to the
+    /// heap array, unordered.
+    #[inline]
+    fn pour(&mut self, slot: &Slot) {
+        for &d in &slot.disc {
+            if d == NIL {
+                break;
+            }
+            self.in_slots -= 1;
+            let time = self.time_of[d as usize];
+            // Stale entries are dropped here rather than sorted first, without a
+            // branch (whether an entry is stale is a coin toss): every entry is
+            // appended, and a stale one is cut off again.
+            let keep = self.bucket(time) == self.cur;
+            self.heap.push(Item { time, disc: d });
+            let len = self.heap.len() - 1 + keep as usize;
+            self.heap.truncate(len);
+        }
+    }
+
+    /// Whether `item` still holds its disc's current time.
+    #[inline]
+    fn is_current(&self, item: &Item) -> bool {
+        self.time_of[item.disc as usize] == item.time
     }
 
     /// Restore the heap order of the whole heap array (Floyd's construction).
@@ -372,15 +479,23 @@ impl EventQueue {
         self.heap[pos] = item;
     }
 
+    /// Drop stale overflow entries and move those now within the calendar's reach
+    /// into their slots.
     fn redistribute_overflow(&mut self) {
-        let mut k = self.overflow_head;
-        self.overflow_head = NIL;
-        while k != NIL {
-            let (item, next) = self.release(k);
-            if self.is_current(&item) {
-                self.file(item.disc);
+        let mut k = 0;
+        while k < self.overflow.len() {
+            let item = self.overflow[k];
+            if !self.is_current(&item) {
+                self.overflow.swap_remove(k);
+                continue;
             }
-            k = next;
+            let b = self.bucket(item.time);
+            if b <= self.cur || b - self.cur <= self.mask {
+                self.overflow.swap_remove(k);
+                self.file(item.disc);
+                continue;
+            }
+            k += 1;
         }
     }
 
@@ -478,11 +593,52 @@ mod tests {
         for k in 0..100_000u32 {
             let i = k % n as u32;
             q.set(i, t(50.0 + (k % 977) as f64 * 0.1 + i as f64 * 1e-3));
-            assert!(q.used <= q.pool_limit());
+            assert!(q.chunks_used <= q.chunk_limit());
+            assert!(q.overflow.len() <= q.overflow_limit());
         }
         let (t0, i0) = q.peek();
         let best = (0..n as u32).map(|i| (q.get(i), i)).min().unwrap();
         assert_eq!((t0, i0), best);
+    }
+
+    #[test]
+    fn a_crowded_bucket_spills_into_chunks_and_keeps_the_order() {
+        // Every disc at one time: after the retune they all share one bucket, far
+        // more than a slot holds. The rebuild must not loop, and the events must come
+        // out in index order, each exactly once.
+        let n = 1000;
+        let mut q = EventQueue::new(n);
+        for i in 0..n as u32 {
+            q.set(i, t(5.0));
+        }
+        q.retune(0.0);
+        q.flush();
+        assert!(
+            q.chunks_used >= n / SLOT_DISCS - 1,
+            "{} chunks",
+            q.chunks_used
+        );
+        for i in 0..n as u32 {
+            assert_eq!(q.peek(), (t(5.0), i));
+            q.set(i, t(f64::INFINITY));
+        }
+        assert!(q.peek().0.is_infinite());
+    }
+
+    #[test]
+    fn entries_waiting_to_be_filed_are_found() {
+        // Fewer sets than the pending buffer holds, then more: both must be seen.
+        for k in [3usize, PENDING, 3 * PENDING + 1] {
+            let n = 64;
+            let mut q = EventQueue::new(n);
+            q.set(0, t(1.0));
+            q.retune(0.0);
+            for i in 1..=k as u32 {
+                q.set(i % n as u32, t(0.5 + 0.01 * i as f64));
+            }
+            let best = (0..n as u32).map(|i| (q.get(i), i)).min().unwrap();
+            assert_eq!(q.peek(), best, "k = {k}");
+        }
     }
 
     proptest! {
