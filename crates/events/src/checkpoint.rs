@@ -266,6 +266,7 @@ impl Engine {
             index_of,
             species_of: species_of_ext,
             next_reorder: cp.next_reorder,
+            look_ahead: crate::lookahead::worthwhile(n),
         })
     }
 }

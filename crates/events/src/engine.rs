@@ -26,6 +26,7 @@
 use crate::cells::{CellGrid, NONE};
 use crate::error::EngineError;
 use crate::event::{Event, PairCollision, WallCollision};
+use crate::lookahead;
 use crate::memory;
 use crate::queue::{EventQueue, Time};
 use crate::state::State;
@@ -152,6 +153,8 @@ pub struct Engine {
     pub(crate) species_of: Vec<u16>,
     /// Pair-collision count at which discs are next renumbered along the Z curve.
     pub(crate) next_reorder: u64,
+    /// Whether to fetch the next events' memory ahead (see [`crate::lookahead`]).
+    pub(crate) look_ahead: bool,
 }
 
 /// Pair collisions between two renumberings of the discs along the Z curve.
@@ -300,6 +303,7 @@ impl Engine {
             label: (0..n as u32).collect(),
             index_of: (0..n as u32).collect(),
             next_reorder: reorder_interval(n),
+            look_ahead: lookahead::worthwhile(n),
             bodies,
             last_collision: memory::filled(n, f64::NEG_INFINITY),
             queue: EventQueue::new(n),
@@ -359,6 +363,18 @@ impl Engine {
     /// Running totals since the start.
     pub fn stats(&self) -> &Stats {
         &self.stats
+    }
+
+    /// Turn fetching ahead on or off (a speed setting that never changes the
+    /// trajectory; by default on for N ≥ 170 000, where the state outgrows the
+    /// processor's caches; see [`crate::lookahead`]).
+    pub fn set_look_ahead(&mut self, on: bool) {
+        self.look_ahead = on;
+    }
+
+    /// Whether fetching ahead is on (see [`Engine::set_look_ahead`]).
+    pub fn look_ahead_enabled(&self) -> bool {
+        self.look_ahead
     }
 
     /// Cells per axis of the neighbour grid.
@@ -446,6 +462,9 @@ impl Engine {
                     memory::prefetch(b);
                     memory::prefetch(&self.grid.cell[d as usize]);
                 }
+            }
+            if self.queue.moved_on() && self.look_ahead {
+                self.look_ahead();
             }
             if let Some(&Reverse((ts, _, tag))) = self.scheduled.peek() {
                 // Scheduled times are the caller's; on the internal clock, never

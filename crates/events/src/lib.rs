@@ -22,6 +22,7 @@ pub mod error;
 pub mod event;
 pub mod init;
 pub mod invariants;
+pub mod lookahead;
 mod memory;
 pub mod queue;
 pub mod state;

@@ -115,11 +115,14 @@ pub struct EventQueue {
     in_slots: usize,
     /// Entries on their way into calendar slots: (slot, disc). Filing into a slot
     /// far ahead is a cache miss at large N; the slot is fetched when the entry is
-    /// made and written a little later, when the next bucket is poured or this
-    /// buffer is full.
+    /// made and written a few events later: when this buffer is full, or when the
+    /// slot's bucket is poured.
     pending: [(u32, u32); PENDING],
     /// Entries in `pending`.
     pending_len: usize,
+    /// Whether the queue moved to another bucket since [`EventQueue::moved_on`] was
+    /// last asked.
+    moved: bool,
 }
 
 /// Capacity of the buffer of entries on their way into slots.
@@ -145,6 +148,7 @@ impl EventQueue {
             in_slots: 0,
             pending: [(0, 0); PENDING],
             pending_len: 0,
+            moved: true,
         }
     }
 
@@ -181,6 +185,7 @@ impl EventQueue {
         self.finite = 0;
         self.in_slots = 0;
         self.pending_len = 0;
+        self.moved = true;
         for i in 0..self.time_of.len() {
             if self.time_of[i].is_finite() {
                 self.finite += 1;
@@ -237,11 +242,21 @@ impl EventQueue {
         [at(1), at(2)]
     }
 
-    /// The current bucket's number; it changes whenever the queue moves on to the
-    /// next bucket (a hint for when to look [`ahead`](Self::ahead)).
+    /// Whether the queue has moved on to another bucket since the last call (a hint
+    /// for when to look [`ahead`](Self::ahead) again).
     #[inline]
-    pub fn bucket_number(&self) -> u64 {
-        self.cur
+    pub fn moved_on(&mut self) -> bool {
+        std::mem::take(&mut self.moved)
+    }
+
+    /// Discs with events in the current bucket (stale items left out), in no
+    /// particular order. A hint for fetching their neighbours early.
+    #[inline]
+    pub fn in_current_bucket(&self) -> impl Iterator<Item = u32> + '_ {
+        self.heap
+            .iter()
+            .filter(|item| self.time_of[item.disc as usize] == item.time)
+            .map(|item| item.disc)
     }
 
     /// Discs filed in the bucket `k` ≥ 1 places after the current one (the first
@@ -250,6 +265,23 @@ impl EventQueue {
     #[inline]
     pub fn ahead(&self, k: u64) -> &[u32; SLOT_DISCS] {
         &self.slots[((self.cur + k) & self.mask) as usize].disc
+    }
+
+    /// Start loading disc `i`'s stored time (a hint: it is read when `i`'s next
+    /// event is popped and when its time is set).
+    #[inline]
+    pub fn prefetch(&self, i: u32) {
+        if let Some(t) = self.time_of.get(i as usize) {
+            memory::prefetch(t);
+        }
+    }
+
+    /// Whether disc `d`'s current time falls in the bucket `k` places after the
+    /// current one, i.e. whether an entry of `d` in [`ahead(k)`](Self::ahead) is
+    /// current rather than stale.
+    #[inline]
+    pub fn is_filed_ahead(&self, d: u32, k: u64) -> bool {
+        self.bucket(self.time_of[d as usize]) == self.cur + k
     }
 
     /// The time currently stored for disc `i`.
@@ -376,12 +408,7 @@ impl EventQueue {
     /// Move to the next bucket: pour its slot into the heap; at every full turn of
     /// the calendar, bring overflow events that are now within reach into slots.
     fn advance(&mut self) {
-        self.flush();
-        if self.chunks_used >= self.chunk_limit() {
-            // Rebuilt: the heap holds the current bucket again.
-            self.rebuild();
-            return;
-        }
+        self.moved = true;
         if self.in_slots == 0 {
             // Only overflow entries are left: jump straight to the earliest of them.
             let b = self
@@ -399,14 +426,27 @@ impl EventQueue {
                 self.redistribute_overflow();
             }
         }
-        // The times of the next bucket's discs are read when it is poured: start
-        // loading them now.
-        for &d in self.ahead(1) {
+        // The times of the discs three buckets ahead are read when the engine looks
+        // ahead ([`EventQueue::is_filed_ahead`]) and when their bucket is poured:
+        // start loading them now.
+        for &d in self.ahead(3) {
             if let Some(t) = self.time_of.get(d as usize) {
                 memory::prefetch(t);
             }
         }
         let s = (self.cur & self.mask) as usize;
+        // Entries still on their way into this slot go in now (the others wait, so
+        // that their slots have time to arrive in the cache).
+        let mut k = 0;
+        while k < self.pending_len {
+            if self.pending[k].0 as usize == s {
+                self.add_to_slot(s, self.pending[k].1);
+                self.pending_len -= 1;
+                self.pending[k] = self.pending[self.pending_len];
+            } else {
+                k += 1;
+            }
+        }
         let slot = std::mem::replace(&mut self.slots[s], Slot::EMPTY);
         let before = self.heap.len();
         self.pour(&slot);
@@ -421,6 +461,9 @@ impl EventQueue {
         }
         if self.heap.len() > before {
             self.heapify();
+        }
+        if self.chunks_used >= self.chunk_limit() {
+            self.rebuild();
         }
     }
 
