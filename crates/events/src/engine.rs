@@ -463,7 +463,7 @@ impl Engine {
                     memory::prefetch(&self.grid.cell[d as usize]);
                 }
             }
-            if self.queue.moved_on() && self.look_ahead {
+            if self.look_ahead && self.queue.moved_on() {
                 self.look_ahead();
             }
             if let Some(&Reverse((ts, _, tag))) = self.scheduled.peek() {

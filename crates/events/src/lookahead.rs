@@ -4,15 +4,18 @@
 //! events land at random places, so nearly every record, cell-list entry and row of
 //! cell heads an event reads is a cache miss, and each miss holds up the processor
 //! for a main-memory round trip. The calendar knows which discs have events in the
-//! next buckets (about one collision per bucket), so the loads are started early, in
+//! next buckets (about two collisions per bucket), so the loads are started early, in
 //! stages: a stage reads only what the previous stage, one bucket earlier, started
 //! to load, and starts loading what the next one will read.
 //!
-//! - two buckets ahead: each disc's record, cell coordinates and list links;
-//! - one bucket ahead: the partner's record and cell coordinates (for a pair event),
-//!   and the cell heads of the disc's 3 × 3 block;
-//! - the current bucket: the records and list links of the first disc of each cell
-//!   of that block, and the cell heads of the partner's block.
+//! - three buckets ahead: each disc's record, cell coordinates, list links and
+//!   label (and the queue fetches its event time);
+//! - two buckets ahead (entries already stale skipped from here on): the partner's
+//!   record, cell coordinates, label and event time, for a pair event, and the rows
+//!   of cell heads of the disc's 3 × 3 block;
+//! - one bucket ahead: the records and list links of the first disc of each cell
+//!   of that block, and the rows of cell heads of the partner's block;
+//! - the current bucket: the first discs of the partner's block.
 //!
 //! For a cell crossing the block is the one around the cell being entered, which
 //! holds the three cells the crossing scans. Only hints are issued here: nothing
