@@ -3,7 +3,9 @@
 //! Two discs can touch only if their centres lie in the same or adjacent cells, so a
 //! disc predicts collisions only with the discs of its 3 × 3 block. Crossing a cell
 //! wall is itself an event of the engine, which keeps every disc in the cell that
-//! contains its centre. Each cell holds an intrusive doubly linked list of its discs.
+//! contains its centre. Each cell holds an intrusive doubly linked list of its discs;
+//! a disc's cell and its two list links share one 16-byte record ([`Link`]), so that
+//! the event loop finds them in one cache line.
 //!
 //! On a periodic axis the block wraps around; a neighbour reached across the box edge
 //! is seen through its periodic image, shifted by ±L. Boxes narrower than three cells
@@ -15,6 +17,27 @@ use carom_core::{DVec2, SimBox};
 
 /// Marker for "no disc" in the linked lists.
 pub const NONE: u32 = u32::MAX;
+
+/// A disc's place in the grid: its cell and its neighbours in that cell's list.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[repr(C, align(16))]
+pub struct Link {
+    /// Cell coordinates (column, row).
+    pub cell: [u32; 2],
+    /// Next disc in the same cell, or [`NONE`].
+    pub next: u32,
+    /// Previous disc in the same cell, or [`NONE`].
+    pub prev: u32,
+}
+
+impl Link {
+    /// Not in any list, cell (0, 0).
+    pub const UNLINKED: Link = Link {
+        cell: [0, 0],
+        next: NONE,
+        prev: NONE,
+    };
+}
 
 /// The geometry and membership of the cell grid.
 #[derive(Debug, Clone)]
@@ -29,12 +52,8 @@ pub struct CellGrid {
     pub periodic: [bool; 2],
     /// First disc of each cell, or [`NONE`].
     pub head: Vec<u32>,
-    /// Next disc in the same cell, or [`NONE`].
-    pub next: Vec<u32>,
-    /// Previous disc in the same cell, or [`NONE`].
-    pub prev: Vec<u32>,
-    /// Cell coordinates (column, row) of each disc.
-    pub cell: Vec<[u32; 2]>,
+    /// Each disc's cell and list links.
+    pub link: Vec<Link>,
 }
 
 impl CellGrid {
@@ -56,9 +75,7 @@ impl CellGrid {
                 sim_box.boundary[1].is_periodic(),
             ],
             head: memory::filled(n[0] as usize * n[1] as usize, NONE),
-            next: memory::filled(n_discs, NONE),
-            prev: memory::filled(n_discs, NONE),
-            cell: memory::filled(n_discs, [0, 0]),
+            link: memory::filled(n_discs, Link::UNLINKED),
         }
     }
 
@@ -81,32 +98,40 @@ impl CellGrid {
         c[1] as usize * self.n[0] as usize + c[0] as usize
     }
 
+    /// Cell coordinates (column, row) of disc `i`.
+    #[inline]
+    pub fn cell_of(&self, i: usize) -> [u32; 2] {
+        self.link[i].cell
+    }
+
     /// Put disc `i` into cell `c` (at the head of its list).
     #[inline]
     pub fn insert(&mut self, i: u32, c: [u32; 2]) {
         let k = self.index(c);
         let h = self.head[k];
-        self.next[i as usize] = h;
-        self.prev[i as usize] = NONE;
+        self.link[i as usize] = Link {
+            cell: c,
+            next: h,
+            prev: NONE,
+        };
         if h != NONE {
-            self.prev[h as usize] = i;
+            self.link[h as usize].prev = i;
         }
         self.head[k] = i;
-        self.cell[i as usize] = c;
     }
 
     /// Take disc `i` out of its cell.
     #[inline]
     pub fn remove(&mut self, i: u32) {
-        let (p, n) = (self.prev[i as usize], self.next[i as usize]);
-        if p != NONE {
-            self.next[p as usize] = n;
+        let Link { cell, next, prev } = self.link[i as usize];
+        if prev != NONE {
+            self.link[prev as usize].next = next;
         } else {
-            let k = self.index(self.cell[i as usize]);
-            self.head[k] = n;
+            let k = self.index(cell);
+            self.head[k] = next;
         }
-        if n != NONE {
-            self.prev[n as usize] = p;
+        if next != NONE {
+            self.link[next as usize].prev = prev;
         }
     }
 
@@ -138,7 +163,7 @@ impl CellGrid {
                 std::iter::from_fn(move || {
                     let cur = j;
                     (cur != NONE).then(|| {
-                        j = self.next[cur as usize];
+                        j = self.link[cur as usize].next;
                         cur
                     })
                 })
@@ -179,7 +204,6 @@ impl CellGrid {
 
     /// Bytes of heap memory used (for the memory report).
     pub fn heap_bytes(&self) -> usize {
-        (self.head.capacity() + self.next.capacity() + self.prev.capacity()) * 4
-            + self.cell.capacity() * 8
+        self.head.capacity() * 4 + self.link.capacity() * std::mem::size_of::<Link>()
     }
 }

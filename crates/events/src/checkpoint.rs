@@ -118,9 +118,9 @@ impl Engine {
                 .collect(),
             pair_times: self.bodies.iter().map(|b| b.pair_time).collect(),
             cell_head: self.grid.head.clone(),
-            cell_next: self.grid.next.clone(),
-            cell_prev: self.grid.prev.clone(),
-            cell: self.grid.cell.clone(),
+            cell_next: self.grid.link.iter().map(|l| l.next).collect(),
+            cell_prev: self.grid.link.iter().map(|l| l.prev).collect(),
+            cell: self.grid.link.iter().map(|l| l.cell).collect(),
             scheduled,
             next_seq: self.next_seq,
             labels: self.label.clone(),
@@ -203,9 +203,13 @@ impl Engine {
         }
         // Copied into the grid's own arrays (allocated for huge pages).
         grid.head.copy_from_slice(&cp.cell_head);
-        grid.next.copy_from_slice(&cp.cell_next);
-        grid.prev.copy_from_slice(&cp.cell_prev);
-        grid.cell.copy_from_slice(&cp.cell);
+        for (i, link) in grid.link.iter_mut().enumerate() {
+            *link = crate::cells::Link {
+                cell: cp.cell[i],
+                next: cp.cell_next[i],
+                prev: cp.cell_prev[i],
+            };
+        }
         let mut queue = EventQueue::new(n);
         for (i, (&t, p)) in cp.event_times.iter().zip(&cp.pending).enumerate() {
             let t = NotNan::new(t).map_err(|_| bad(format!("event time of disc {i} is NaN")))?;

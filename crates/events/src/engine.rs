@@ -23,7 +23,7 @@
 //! when it comes up. A crossing through a periodic edge moves the disc by a box
 //! length and changes image shifts: it rescans the whole block.
 
-use crate::cells::{CellGrid, NONE};
+use crate::cells::{CellGrid, Link, NONE};
 use crate::error::EngineError;
 use crate::event::{Event, PairCollision, WallCollision};
 use crate::lookahead;
@@ -245,7 +245,7 @@ struct Block<'a> {
     bodies: &'a [Body],
     species: &'a [Species],
     head: &'a [u32],
-    next: &'a [u32],
+    links: &'a [Link],
     now: f64,
 }
 
@@ -259,7 +259,7 @@ impl Block<'_> {
         while j != NONE {
             let ju = j as usize;
             test_pair(me, self.species, j, &self.bodies[ju], self.now, code, found);
-            j = self.next[ju];
+            j = self.links[ju].next;
         }
     }
 }
@@ -460,7 +460,7 @@ impl Engine {
             for d in self.queue.upcoming() {
                 if let Some(b) = self.bodies.get(d as usize) {
                     memory::prefetch(b);
-                    memory::prefetch(&self.grid.cell[d as usize]);
+                    memory::prefetch(&self.grid.link[d as usize]);
                 }
             }
             if self.look_ahead && self.queue.moved_on() {
@@ -575,7 +575,7 @@ impl Engine {
         self.rebase_clock();
         let n = self.len();
         let mut keys: Vec<(u64, u32)> = (0..n)
-            .map(|i| (morton(self.grid.cell[i]), i as u32))
+            .map(|i| (morton(self.grid.cell_of(i)), i as u32))
             .collect();
         keys.sort_unstable();
         let perm: Vec<usize> = keys.iter().map(|k| k.1 as usize).collect();
@@ -594,8 +594,7 @@ impl Engine {
         permute(&mut self.bodies, &perm);
         permute(&mut self.last_collision, &perm);
         permute(&mut self.label, &perm);
-        let mut cells = self.grid.cell.clone();
-        permute(&mut cells, &perm);
+        let cells: Vec<[u32; 2]> = perm.iter().map(|&o| self.grid.cell_of(o)).collect();
         for b in self.bodies.iter_mut() {
             if b.partner != NONE {
                 b.partner = inv[b.partner as usize];
@@ -750,7 +749,7 @@ impl Engine {
     fn cross(&mut self, i: usize, aux: u8) {
         let k = (aux / 2) as usize;
         let up = aux % 2 == 1;
-        let mut c = self.grid.cell[i];
+        let mut c = self.grid.cell_of(i);
         let n = self.grid.n[k];
         self.grid.remove(i as u32);
         let mut wrapped = true;
@@ -851,12 +850,12 @@ impl Engine {
             bodies: &self.bodies,
             species: &self.species,
             head: &grid.head,
-            next: &grid.next,
+            links: &grid.link,
             now: self.clock,
         };
         let bi = &self.bodies[i];
         let radius = self.species[bi.species as usize].radius;
-        let c = grid.cell[i];
+        let c = grid.cell_of(i);
         let [nx, ny] = grid.n;
         let head = block.head;
         if c[0] >= 1 && c[0] + 1 < nx && c[1] >= 1 && c[1] + 1 < ny {
@@ -925,7 +924,7 @@ impl Engine {
     fn boundary_event(&self, i: usize, ri: DVec2, v: DVec2) -> (f64, u8, u8) {
         let mut best = f64::INFINITY;
         let (mut kind, mut aux) = (KIND_NONE, 0u8);
-        let c = self.grid.cell[i];
+        let c = self.grid.cell_of(i);
         for k in 0..2 {
             // Without branches: which axis is crossed first is a coin toss.
             let (dt, up) = self.grid.crossing_time(k, c[k], ri[k], v[k]);

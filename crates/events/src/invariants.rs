@@ -179,7 +179,7 @@ pub fn max_overlap(engine: &Engine) -> Option<(usize, usize, f64)> {
     let radius = |i: usize| engine.species()[engine.species_of()[i] as usize].radius;
     let mut worst: Option<(usize, usize, f64)> = None;
     for i in 0..n {
-        for j in grid.discs_near(grid.cell[i]).map(|j| j as usize) {
+        for j in grid.discs_near(grid.cell_of(i)).map(|j| j as usize) {
             if j > i {
                 let sigma = radius(i) + radius(j);
                 let d = sim_box.minimum_image(pos[j] - pos[i]).length();

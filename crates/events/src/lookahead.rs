@@ -52,9 +52,7 @@ impl Engine {
             }
             let d = d as usize;
             prefetch(&self.bodies[d]);
-            prefetch(&grid.cell[d]);
-            prefetch(&grid.next[d]);
-            prefetch(&grid.prev[d]);
+            prefetch(&grid.link[d]);
             prefetch(&self.label[d]);
         }
         for &d in self.queue.ahead(2) {
@@ -68,7 +66,7 @@ impl Engine {
             if b.kind == KIND_PAIR {
                 let p = b.partner as usize;
                 prefetch(&self.bodies[p]);
-                prefetch(&grid.cell[p]);
+                prefetch(&grid.link[p]);
                 prefetch(&self.label[p]);
                 self.queue.prefetch(p as u32);
             }
@@ -87,21 +85,21 @@ impl Engine {
             for_block(grid, event_cell(grid, d as usize, b), |k| {
                 let h = first_of(k);
                 prefetch(&self.bodies[h]);
-                prefetch(&grid.next[h]);
+                prefetch(&grid.link[h]);
             });
             if b.kind == KIND_PAIR {
                 let p = b.partner as usize;
-                for_rows(grid, grid.cell[p], |k| prefetch(&grid.head[k]));
+                for_rows(grid, grid.cell_of(p), |k| prefetch(&grid.head[k]));
             }
         }
         for d in self.queue.in_current_bucket() {
             let b = &self.bodies[d as usize];
             if b.kind == KIND_PAIR {
                 let p = b.partner as usize;
-                for_block(grid, grid.cell[p], |k| {
+                for_block(grid, grid.cell_of(p), |k| {
                     let h = first_of(k);
                     prefetch(&self.bodies[h]);
-                    prefetch(&grid.next[h]);
+                    prefetch(&grid.link[h]);
                 });
             }
         }
@@ -112,7 +110,7 @@ impl Engine {
 /// its own, or for a crossing the cell it enters (wrapped on a periodic axis).
 #[inline]
 fn event_cell(grid: &CellGrid, d: usize, b: &Body) -> [u32; 2] {
-    let mut c = grid.cell[d];
+    let mut c = grid.cell_of(d);
     if b.kind == KIND_CELL {
         let k = ((b.aux & 3) / 2) as usize;
         let n = grid.n[k];
