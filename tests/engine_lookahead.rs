@@ -7,7 +7,10 @@
 //! inelastic run with the TC model cover every event kind the look-ahead reads.
 
 use carom::core::{Boundary, Restitution, SimBox, Species};
-use carom::events::{Engine, EngineParams, Placement, SystemSpec, Velocities};
+use carom::events::{Engine, EngineParams, SystemSpec};
+
+mod engine_common;
+use engine_common::{lattice_spec, mono};
 
 /// Run `events` events of `spec` with the look-ahead off and on; panic at the first
 /// difference.
@@ -46,25 +49,6 @@ fn same_with_and_without(name: &str, spec: SystemSpec, params: EngineParams, eve
     );
 }
 
-fn spec(species: Vec<Species>, sim_box: SimBox, seed: u64) -> SystemSpec {
-    SystemSpec {
-        species,
-        sim_box,
-        temperature: 1.0,
-        seed,
-        placement: Placement::Lattice,
-        velocities: Velocities::MaxwellBoltzmann,
-    }
-}
-
-fn mono(n: usize) -> Vec<Species> {
-    vec![Species {
-        count: n,
-        radius: 0.5,
-        mass: 1.0,
-    }]
-}
-
 #[test]
 fn periodic_fluids_are_unchanged() {
     for (n, eta, seed) in [(2000, 0.5, 11), (1500, 0.7, 12), (400, 0.2, 13)] {
@@ -91,7 +75,7 @@ fn walled_mixture_is_unchanged() {
             mass: 3.0,
         },
     ];
-    let s = spec(species, SimBox::walled(40.0, 25.0, 0.95), 14);
+    let s = lattice_spec(species, SimBox::walled(40.0, 25.0, 0.95), 14);
     same_with_and_without("walled mixture", s, EngineParams::default(), 60_000);
 }
 
@@ -102,7 +86,7 @@ fn narrow_periodic_channel_is_unchanged() {
     b.boundary[0] = Boundary::Periodic;
     same_with_and_without(
         "channel 2.4 wide",
-        spec(mono(40), b, 15),
+        lattice_spec(mono(40), b, 15),
         EngineParams::default(),
         60_000,
     );

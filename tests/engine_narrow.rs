@@ -12,7 +12,10 @@
 //! checker's 1e-12. 10⁵ collisions per system.
 
 use carom::core::{SimBox, Species};
-use carom::events::{Engine, EngineParams, InvariantChecker, Placement, SystemSpec, Velocities};
+use carom::events::{Engine, EngineParams, InvariantChecker, SystemSpec};
+
+mod engine_common;
+use engine_common::{lattice_spec, mono};
 
 fn run_checked(name: &str, spec: SystemSpec, expect_cells_across: u32) {
     let state = spec
@@ -44,30 +47,11 @@ fn run_checked(name: &str, spec: SystemSpec, expect_cells_across: u32) {
     );
 }
 
-fn spec(species: Vec<Species>, sim_box: SimBox, seed: u64) -> SystemSpec {
-    SystemSpec {
-        species,
-        sim_box,
-        temperature: 1.0,
-        seed,
-        placement: Placement::Lattice,
-        velocities: Velocities::MaxwellBoltzmann,
-    }
-}
-
-fn mono(n: usize) -> Vec<Species> {
-    vec![Species {
-        count: n,
-        radius: 0.5,
-        mass: 1.0,
-    }]
-}
-
 #[test]
 fn periodic_box_two_cells_across() {
     run_checked(
         "periodic 2.4 x 30, N = 30",
-        spec(mono(30), SimBox::periodic(2.4, 30.0), 1),
+        lattice_spec(mono(30), SimBox::periodic(2.4, 30.0), 1),
         2,
     );
 }
@@ -76,7 +60,7 @@ fn periodic_box_two_cells_across() {
 fn periodic_box_three_cells_across() {
     run_checked(
         "periodic 3.3 x 25, N = 40",
-        spec(mono(40), SimBox::periodic(3.3, 25.0), 2),
+        lattice_spec(mono(40), SimBox::periodic(3.3, 25.0), 2),
         3,
     );
 }
@@ -98,7 +82,7 @@ fn periodic_mixture_two_cells_across() {
     ];
     run_checked(
         "periodic mixture 2.9 x 24",
-        spec(species, SimBox::periodic(2.9, 24.0), 3),
+        lattice_spec(species, SimBox::periodic(2.9, 24.0), 3),
         2,
     );
 }
@@ -108,5 +92,5 @@ fn narrow_walled_channel() {
     // Periodic along y, walls along x, two cells between the walls.
     let mut b = SimBox::walled(2.6, 30.0, 1.0);
     b.boundary[1] = carom::core::Boundary::Periodic;
-    run_checked("channel 2.6 wide, N = 30", spec(mono(30), b, 4), 2);
+    run_checked("channel 2.6 wide, N = 30", lattice_spec(mono(30), b, 4), 2);
 }

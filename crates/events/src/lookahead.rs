@@ -55,13 +55,7 @@ impl Engine {
             prefetch(&grid.link[d]);
             prefetch(&self.label[d]);
         }
-        for &d in self.queue.ahead(2) {
-            if d == NIL {
-                break;
-            }
-            if !self.queue.is_filed_ahead(d, 2) {
-                continue;
-            }
+        for d in self.queue.filed_ahead(2) {
             let b = &self.bodies[d as usize];
             if b.kind == KIND_PAIR {
                 let p = b.partner as usize;
@@ -74,13 +68,7 @@ impl Engine {
                 prefetch(&grid.head[k])
             });
         }
-        for &d in self.queue.ahead(1) {
-            if d == NIL {
-                break;
-            }
-            if !self.queue.is_filed_ahead(d, 1) {
-                continue;
-            }
+        for d in self.queue.filed_ahead(1) {
             let b = &self.bodies[d as usize];
             for_block(grid, event_cell(grid, d as usize, b), |k| {
                 let h = first_of(k);

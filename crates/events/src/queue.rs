@@ -282,12 +282,15 @@ impl EventQueue {
         }
     }
 
-    /// Whether disc `d`'s current time falls in the bucket `k` places after the
-    /// current one, i.e. whether an entry of `d` in [`ahead(k)`](Self::ahead) is
-    /// current rather than stale.
+    /// The discs of [`ahead(k)`](Self::ahead) whose current time is still in that
+    /// bucket (stale entries left out; this reads their times).
     #[inline]
-    pub fn is_filed_ahead(&self, d: u32, k: u64) -> bool {
-        self.bucket(self.time_of[d as usize]) == self.cur + k
+    pub fn filed_ahead(&self, k: u64) -> impl Iterator<Item = u32> + '_ {
+        self.ahead(k)
+            .iter()
+            .take_while(|&&d| d != NIL)
+            .copied()
+            .filter(move |&d| self.bucket(self.time_of[d as usize]) == self.cur + k)
     }
 
     /// The time currently stored for disc `i`.
@@ -437,7 +440,7 @@ impl EventQueue {
         // stream: fetch the slots a few cache lines ahead.
         memory::prefetch(&self.slots[((self.cur + 8) & self.mask) as usize]);
         // The times of the discs three buckets ahead are read when the engine looks
-        // ahead ([`EventQueue::is_filed_ahead`]) and when their bucket is poured:
+        // ahead ([`EventQueue::filed_ahead`]) and when their bucket is poured:
         // start loading them now.
         for &d in self.ahead(3) {
             if let Some(t) = self.time_of.get(d as usize) {
