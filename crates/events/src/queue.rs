@@ -435,10 +435,6 @@ impl EventQueue {
                 self.redistribute_overflow();
             }
         }
-        // Slots are read in order, a few buckets ahead of the current one (here and
-        // by the engine's look-ahead), but too slowly for the hardware to notice the
-        // stream: fetch the slots a few cache lines ahead.
-        memory::prefetch(&self.slots[((self.cur + 8) & self.mask) as usize]);
         // The times of the discs three buckets ahead are read when the engine looks
         // ahead ([`EventQueue::filed_ahead`]) and when their bucket is poured:
         // start loading them now.
