@@ -21,8 +21,7 @@
 //! Each logged case prints the bytes per logged collision of the files it wrote.
 //! Run: `cargo bench --bench logging -- --warm-up-time 1 --measurement-time 5`.
 
-use carom::core::{SimBox, Species};
-use carom::events::{box_size_for, Engine, EngineParams, Event, Placement, SystemSpec, Velocities};
+use carom::events::{Engine, EngineParams, Event, SystemSpec};
 use carom::io::log_writer::{LogWriter, WriterOptions, WriterPosition};
 use carom::io::{Compression, LogOptions, RunSpec, Stop};
 use criterion::{criterion_group, Criterion, Throughput};
@@ -35,20 +34,7 @@ const ETA: f64 = 0.5;
 const BATCH: u64 = 100_000;
 
 fn system() -> SystemSpec {
-    let species = vec![Species {
-        count: N,
-        radius: 0.5,
-        mass: 1.0,
-    }];
-    let size = box_size_for(&species, ETA, 1.0);
-    SystemSpec {
-        species,
-        sim_box: SimBox::periodic(size.x, size.y),
-        temperature: 1.0,
-        seed: 42,
-        placement: Placement::Lattice,
-        velocities: Velocities::MaxwellBoltzmann,
-    }
+    SystemSpec::periodic_fluid(N, ETA, 42)
 }
 
 fn engine() -> Engine {
@@ -56,6 +42,21 @@ fn engine() -> Engine {
         .expect("engine starts");
     e.run_collisions(10 * N as u64).expect("equilibrates");
     e
+}
+
+/// Process the engine's next event and log it; 1 if it was a collision.
+fn log_next(e: &mut Engine, w: &mut LogWriter) -> u64 {
+    match e.next_event().expect("elastic").expect("events") {
+        Event::Pair(p) => {
+            w.observe_pair(&p).expect("write");
+            1
+        }
+        Event::Wall(wc) => {
+            w.observe_wall(&wc).expect("write");
+            1
+        }
+        Event::Scheduled { .. } => 0,
+    }
 }
 
 fn out_path(name: &str) -> PathBuf {
@@ -104,17 +105,7 @@ fn bench(c: &mut Criterion) {
                 for _ in 0..iters {
                     let mut done = 0;
                     while done < BATCH {
-                        match e.next_event().expect("elastic").expect("events") {
-                            Event::Pair(p) => {
-                                done += 1;
-                                w.observe_pair(&p).expect("write")
-                            }
-                            Event::Wall(wc) => {
-                                done += 1;
-                                w.observe_wall(&wc).expect("write")
-                            }
-                            Event::Scheduled { .. } => {}
-                        }
+                        done += log_next(e, &mut w);
                         tick = tick.wrapping_add(1);
                         if tick.is_multiple_of(1024) {
                             w.maybe_flush().expect("flush");
@@ -218,17 +209,7 @@ fn interleaved(label: &str, level: i32, background: bool, rounds: usize) {
             .expect("log opens");
         let mut done = 0;
         while done < BLOCK {
-            match logged.next_event().expect("elastic").expect("events") {
-                Event::Pair(p) => {
-                    done += 1;
-                    w.observe_pair(&p).expect("write")
-                }
-                Event::Wall(wc) => {
-                    done += 1;
-                    w.observe_wall(&wc).expect("write")
-                }
-                Event::Scheduled { .. } => {}
-            }
+            done += log_next(&mut logged, &mut w);
         }
         bytes += w.finish(&BTreeMap::new()).expect("finish");
         t_logged += start.elapsed();

@@ -24,10 +24,7 @@
 
 use std::time::Instant;
 
-use carom::core::{SimBox, Species};
-use carom::events::{
-    box_size_for, Engine, EngineParams, Event, InvariantChecker, Placement, SystemSpec, Velocities,
-};
+use carom::events::{Engine, EngineParams, Event, InvariantChecker, SystemSpec};
 
 fn main() {
     let args: Vec<String> = std::env::args().collect();
@@ -40,22 +37,9 @@ fn main() {
     let every = parse(2, 1e7).max(1);
     let n = 10_000;
     let eta = 0.5;
-    let species = vec![Species {
-        count: n,
-        radius: 0.5,
-        mass: 1.0,
-    }];
-    let size = box_size_for(&species, eta, 1.0);
-    let state = SystemSpec {
-        species,
-        sim_box: SimBox::periodic(size.x, size.y),
-        temperature: 1.0,
-        seed: 1,
-        placement: Placement::Lattice,
-        velocities: Velocities::MaxwellBoltzmann,
-    }
-    .build()
-    .expect("a valid system");
+    let state = SystemSpec::periodic_fluid(n, eta, 1)
+        .build()
+        .expect("a valid system");
     let mut engine = Engine::new(state, EngineParams::default()).expect("engine");
     let mut checker = InvariantChecker::new(&engine);
     checker.energy_tolerance = f64::INFINITY;

@@ -24,12 +24,11 @@
 //!   one, reports the impulse m (1 + e_w)|v_n| and dissipates exactly
 //!   ½ m (1 − e_w²) v_n², which is also the engine's kinetic-energy change.
 
-use carom::core::boundary::{Boundary, SimBox};
+use carom::core::boundary::Boundary;
 use carom::core::collision::reduced_mass;
 use carom::core::{DVec2, Restitution, Species};
 use carom::events::{
-    box_size_for, Engine, EngineError, EngineParams, Event, InvariantChecker, Placement, State,
-    SystemSpec, Velocities,
+    Engine, EngineError, EngineParams, Event, InvariantChecker, State, SystemSpec,
 };
 
 fn state(n: usize, eta: f64, boundary: [Boundary; 2], seed: u64) -> State {
@@ -38,17 +37,9 @@ fn state(n: usize, eta: f64, boundary: [Boundary; 2], seed: u64) -> State {
         radius: 0.5,
         mass: 1.0,
     }];
-    let size = box_size_for(&species, eta, 1.0);
-    SystemSpec {
-        species,
-        sim_box: SimBox { size, boundary },
-        temperature: 1.0,
-        seed,
-        placement: Placement::Lattice,
-        velocities: Velocities::MaxwellBoltzmann,
-    }
-    .build()
-    .expect("valid system")
+    SystemSpec::square_box(species, eta, boundary, seed)
+        .build()
+        .expect("valid system")
 }
 
 /// A binary mixture, so that the reduced mass differs between pairs.
@@ -65,17 +56,9 @@ fn mixture_state(eta: f64, seed: u64) -> State {
             mass: 2.0,
         },
     ];
-    let size = box_size_for(&species, eta, 1.0);
-    SystemSpec {
-        species,
-        sim_box: SimBox::periodic(size.x, size.y),
-        temperature: 1.0,
-        seed,
-        placement: Placement::Lattice,
-        velocities: Velocities::MaxwellBoltzmann,
-    }
-    .build()
-    .expect("valid system")
+    SystemSpec::square_box(species, eta, [Boundary::Periodic; 2], seed)
+        .build()
+        .expect("valid system")
 }
 
 fn momentum(e: &Engine) -> (DVec2, f64) {

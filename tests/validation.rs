@@ -65,11 +65,8 @@ use std::time::Instant;
 use carom::analysis::stats::{
     blocking, chi_square_histogram, ks_test, mb_speed_test, Histogram, MaxwellBoltzmann2d,
 };
-use carom::core::{Axis, DVec2, Restitution, SimBox, Species, WallSide};
-use carom::events::{
-    box_size_for, Engine, EngineError, EngineParams, Event, Placement, State, SystemSpec,
-    Velocities,
-};
+use carom::core::{Axis, Boundary, DVec2, Restitution, Species, WallSide};
+use carom::events::{Engine, EngineError, EngineParams, Event, State, SystemSpec, Velocities};
 
 // ===========================================================================
 // The results table
@@ -386,14 +383,9 @@ fn mono(n: usize) -> Vec<Species> {
 }
 
 fn periodic_spec(species: Vec<Species>, eta: f64, seed: u64, velocities: Velocities) -> SystemSpec {
-    let size = box_size_for(&species, eta, 1.0);
     SystemSpec {
-        species,
-        sim_box: SimBox::periodic(size.x, size.y),
-        temperature: 1.0,
-        seed,
-        placement: Placement::Lattice,
         velocities,
+        ..SystemSpec::square_box(species, eta, [Boundary::Periodic; 2], seed)
     }
 }
 
@@ -1460,16 +1452,9 @@ fn g_virial(s: &State) -> f64 {
 
 fn walled_run(n: usize, eta: f64, seed: u64, t_eq: f64, bins: usize, bin: f64) -> WallRun {
     let wall = Instant::now();
-    let species = mono(n);
-    let size = box_size_for(&species, eta, 1.0);
-    let spec = SystemSpec {
-        species,
-        sim_box: SimBox::walled(size.x, size.y, 1.0),
-        temperature: 1.0,
-        seed,
-        placement: Placement::Lattice,
-        velocities: Velocities::MaxwellBoltzmann,
-    };
+    let walls = Boundary::Walls { restitution: 1.0 };
+    let spec = SystemSpec::square_box(mono(n), eta, [walls; 2], seed);
+    let size = spec.sim_box.size;
     let mut e = engine(&spec, EngineParams::default());
     e.run_until(t_eq).expect("equilibrate");
     let a = 0.5;

@@ -2,8 +2,8 @@
 //! bare-engine reference trajectory.
 #![allow(dead_code)]
 
-use carom::core::{Boundary, DVec2, SimBox, Species};
-use carom::events::{box_size_for, Engine, EngineParams, Event, Placement, SystemSpec, Velocities};
+use carom::core::{Boundary, DVec2, Species};
+use carom::events::{Engine, EngineParams, Event, SystemSpec};
 use carom::io::{LogOptions, RunSpec, Stop};
 use serde_json::Value;
 use std::path::{Path, PathBuf};
@@ -37,25 +37,12 @@ pub fn system(n: usize, eta: f64, walls: bool, mixture: bool, seed: u64) -> Syst
             mass: 3.0,
         });
     }
-    let size = box_size_for(&species, eta, 1.0);
-    SystemSpec {
-        species,
-        sim_box: SimBox {
-            size,
-            boundary: [
-                Boundary::Periodic,
-                if walls {
-                    Boundary::Walls { restitution: 1.0 }
-                } else {
-                    Boundary::Periodic
-                },
-            ],
-        },
-        temperature: 1.0,
-        seed,
-        placement: Placement::Lattice,
-        velocities: Velocities::MaxwellBoltzmann,
-    }
+    let y = if walls {
+        Boundary::Walls { restitution: 1.0 }
+    } else {
+        Boundary::Periodic
+    };
+    SystemSpec::square_box(species, eta, [Boundary::Periodic, y], seed)
 }
 
 /// A run description around `system`.

@@ -92,10 +92,22 @@ impl SystemSpec {
             radius: 0.5,
             mass: 1.0,
         }];
+        SystemSpec::square_box(species, eta, [Boundary::Periodic; 2], seed)
+    }
+
+    /// `species` on a lattice in a square box sized for packing fraction `eta`, with
+    /// the boundaries `boundary` (x, y), and Maxwell–Boltzmann velocities at kT = 1
+    /// drawn from `seed`.
+    pub fn square_box(
+        species: Vec<Species>,
+        eta: f64,
+        boundary: [Boundary; 2],
+        seed: u64,
+    ) -> SystemSpec {
         let size = box_size_for(&species, eta, 1.0);
         SystemSpec {
             species,
-            sim_box: SimBox::periodic(size.x, size.y),
+            sim_box: SimBox { size, boundary },
             temperature: 1.0,
             seed,
             placement: Placement::Lattice,
