@@ -1,6 +1,8 @@
 //! Profiling driver: `cargo run --release -p carom-events --example profile -- N ETA COLLISIONS`.
 //! Equilibrates 5 collisions per disc, then runs COLLISIONS more and prints event
 //! counts per collision (for use under `valgrind --tool=cachegrind` or `perf`).
+//! An optional fourth argument `on` or `off` forces fetching ahead on or off
+//! (default: the engine's own choice for N).
 use carom_events::{Engine, EngineParams, SystemSpec};
 
 fn main() {
@@ -15,6 +17,11 @@ fn main() {
     let count = arg(3, 1e6) as u64;
     let spec = SystemSpec::periodic_fluid(n, eta, 42);
     let mut e = Engine::new(spec.build().unwrap(), EngineParams::default()).unwrap();
+    match std::env::args().nth(4).as_deref() {
+        Some("on") => e.set_look_ahead(true),
+        Some("off") => e.set_look_ahead(false),
+        _ => {}
+    }
     e.run_collisions(5 * n as u64).unwrap();
     let s0 = *e.stats();
     let (t, cpu) = (std::time::Instant::now(), cpu_seconds());
