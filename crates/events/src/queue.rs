@@ -277,9 +277,7 @@ impl EventQueue {
     /// event is popped and when its time is set).
     #[inline]
     pub fn prefetch(&self, i: u32) {
-        if let Some(t) = self.time_of.get(i as usize) {
-            memory::prefetch(t);
-        }
+        memory::prefetch_at(&self.time_of, i as usize);
     }
 
     /// The discs of [`ahead(k)`](Self::ahead) whose current time is still in that
