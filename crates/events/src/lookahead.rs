@@ -8,9 +8,11 @@
 //! stages: a stage reads only what the previous stage, one bucket earlier, started
 //! to load, and starts loading what the next one will read.
 //!
-//! - three buckets ahead: each disc's record, cell coordinates, list links and
-//!   label (and the queue fetches its event time);
-//! - two buckets ahead (entries already stale skipped from here on): the partner's
+//! - four buckets ahead (done by the queue when it moves on): each entry's event
+//!   time, which tells whether the entry is still current;
+//! - three buckets ahead (entries already stale skipped from here on): each disc's
+//!   record, cell coordinates, list links and label;
+//! - two buckets ahead: the partner's
 //!   record, cell coordinates, label and event time, for a pair event, and the rows
 //!   of cell heads of the disc's 3 × 3 block;
 //! - one bucket ahead: the records and list links of the first disc of each cell
@@ -30,10 +32,9 @@
 //! look-ahead's own reads, 2.0 filing into calendar slots, 1.9 in `next_event`,
 //! 1.3 in the rest.
 
-use crate::cells::CellGrid;
+use crate::cells::{CellGrid, NONE};
 use crate::engine::{Body, Engine, KIND_CELL, KIND_PAIR};
 use crate::memory::prefetch_at;
-use crate::queue::NIL;
 
 /// Whether fetching ahead pays for N discs: only once the state (about 160 bytes
 /// per disc) outgrows the processor's last-level cache; below that the loads hit
@@ -55,16 +56,20 @@ impl Engine {
         let grid = &self.grid;
         let last = self.bodies.len() - 1;
         // The first disc of a cell, or (for an empty cell) the last disc: a needless
-        // but harmless load, cheaper than a branch on emptiness.
+        // but harmless load, cheaper than a branch on emptiness. (Chosen with
+        // `select_unpredictable`: `min` compiled to a branch, and whether a cell is
+        // empty is a coin toss; cachegrind at N = 10⁴, look-ahead forced on: 7 fewer
+        // mispredicted branches per collision, 1.38 → 1.66 M/s median of 9.)
         let fetch_first = |head: u32| {
-            let h = (head as usize).min(last);
+            let h = std::hint::select_unpredictable(head == NONE, last, head as usize);
             prefetch_at(&self.bodies, h);
             prefetch_at(&grid.link, h);
         };
-        for &d in self.queue.ahead(3) {
-            if d == NIL {
-                break;
-            }
+        // Stale entries (about 4 in 10: every collision leaves the partner's old
+        // entry behind) are skipped already here: their three loads would only
+        // compete with the useful ones for the processor's miss buffers (N = 10⁶:
+        // 1.06 → 1.16 M/s, median of 7 alternating runs).
+        for d in self.queue.filed_ahead(3) {
             let d = d as usize;
             prefetch_at(&self.bodies, d);
             prefetch_at(&grid.link, d);

@@ -433,10 +433,10 @@ impl EventQueue {
                 self.redistribute_overflow();
             }
         }
-        // The times of the discs three buckets ahead are read when the engine looks
-        // ahead ([`EventQueue::filed_ahead`]) and when their bucket is poured:
-        // start loading them now.
-        for &d in self.ahead(3) {
+        // The times of the discs four buckets ahead are read when the engine looks
+        // ahead ([`EventQueue::filed_ahead`], from three buckets ahead) and when
+        // their bucket is poured: start loading them now.
+        for &d in self.ahead(4) {
             if let Some(t) = self.time_of.get(d as usize) {
                 memory::prefetch(t);
             }
