@@ -12,9 +12,8 @@
 //!   time, which tells whether the entry is still current;
 //! - three buckets ahead (entries already stale skipped from here on): each disc's
 //!   record, cell coordinates, list links and label;
-//! - two buckets ahead: the partner's
-//!   record, cell coordinates, label and event time, for a pair event, and the rows
-//!   of cell heads of the disc's 3 × 3 block;
+//! - two buckets ahead: the partner's record, cell coordinates, label and event
+//!   time, for a pair event, and the rows of cell heads of the disc's 3 × 3 block;
 //! - one bucket ahead: the records and list links of the first disc of each cell
 //!   of that block, and the rows of cell heads of the partner's block;
 //! - the current bucket: the first discs of the partner's block.
