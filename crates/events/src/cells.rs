@@ -3,9 +3,13 @@
 //! Two discs can touch only if their centres lie in the same or adjacent cells, so a
 //! disc predicts collisions only with the discs of its 3 × 3 block. Crossing a cell
 //! wall is itself an event of the engine, which keeps every disc in the cell that
-//! contains its centre. Each cell holds an intrusive doubly linked list of its discs;
-//! a disc's cell and its two list links share one 16-byte record ([`Link`]), so that
-//! the event loop finds them in one cache line.
+//! contains its centre. Each cell holds an intrusive singly linked list of its discs;
+//! a disc's cell and its list link share one 8-byte record ([`Link`]), so that the
+//! event loop finds them in one cache line, together with those of the discs next
+//! to it in memory (eight to a line; the discs are kept in space-filling-curve
+//! order, so these are mostly its neighbours). Taking a disc out of its cell walks
+//! the cell's list to its predecessor, a walk through the few discs ahead of it in a
+//! list the event has just scanned; a back link would double the record for that.
 //!
 //! On a periodic axis the block wraps around; a neighbour reached across the box edge
 //! is seen through its periodic image, shifted by ±L. Boxes narrower than three cells
@@ -20,14 +24,12 @@ pub const NONE: u32 = u32::MAX;
 
 /// A disc's place in the grid: its cell and its neighbours in that cell's list.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
-#[repr(C, align(16))]
+#[repr(C, align(8))]
 pub struct Link {
-    /// Cell coordinates (column, row).
-    pub cell: [u32; 2],
+    /// Cell coordinates (column, row); at most 2¹⁵ cells per axis.
+    pub cell: [u16; 2],
     /// Next disc in the same cell, or [`NONE`].
     pub next: u32,
-    /// Previous disc in the same cell, or [`NONE`].
-    pub prev: u32,
 }
 
 impl Link {
@@ -35,7 +37,6 @@ impl Link {
     pub const UNLINKED: Link = Link {
         cell: [0, 0],
         next: NONE,
-        prev: NONE,
     };
 }
 
@@ -101,38 +102,34 @@ impl CellGrid {
     /// Cell coordinates (column, row) of disc `i`.
     #[inline]
     pub fn cell_of(&self, i: usize) -> [u32; 2] {
-        self.link[i].cell
+        self.link[i].cell.map(u32::from)
     }
 
     /// Put disc `i` into cell `c` (at the head of its list).
     #[inline]
     pub fn insert(&mut self, i: u32, c: [u32; 2]) {
         let k = self.index(c);
-        let h = self.head[k];
         self.link[i as usize] = Link {
-            cell: c,
-            next: h,
-            prev: NONE,
+            cell: c.map(|x| x as u16),
+            next: self.head[k],
         };
-        if h != NONE {
-            self.link[h as usize].prev = i;
-        }
         self.head[k] = i;
     }
 
-    /// Take disc `i` out of its cell.
+    /// Take disc `i` out of its cell (walking the cell's list to its predecessor).
     #[inline]
     pub fn remove(&mut self, i: u32) {
-        let Link { cell, next, prev } = self.link[i as usize];
-        if prev != NONE {
-            self.link[prev as usize].next = next;
-        } else {
-            let k = self.index(cell);
+        let Link { cell, next } = self.link[i as usize];
+        let k = self.index(cell.map(u32::from));
+        if self.head[k] == i {
             self.head[k] = next;
+            return;
         }
-        if next != NONE {
-            self.link[next as usize].prev = prev;
+        let mut j = self.head[k] as usize;
+        while self.link[j].next != i {
+            j = self.link[j].next as usize;
         }
+        self.link[j].next = next;
     }
 
     /// Every disc in the 3 × 3 block of cells around cell `c`: cells beyond a wall
@@ -202,8 +199,150 @@ impl CellGrid {
         )
     }
 
+    /// The previous disc in its cell's list of each disc, or [`NONE`] for the first
+    /// (the back links checkpoints store). The lists must pass
+    /// [`CellGrid::check_lists`].
+    pub fn prev_links(&self) -> Vec<u32> {
+        let mut prev = vec![NONE; self.link.len()];
+        for &h in &self.head {
+            let mut j = h;
+            while j != NONE {
+                let next = self.link[j as usize].next;
+                if next != NONE {
+                    prev[next as usize] = j;
+                }
+                j = next;
+            }
+        }
+        prev
+    }
+
+    /// Check that the lists describe a partition of the discs: every disc is listed
+    /// exactly once, in the list of the cell its record names. Returns what is wrong
+    /// otherwise (for checkpoints read from disk, and the tests).
+    pub fn check_lists(&self) -> Result<(), String> {
+        let n = self.link.len();
+        let mut seen = vec![false; n];
+        for cy in 0..self.n[1] {
+            for cx in 0..self.n[0] {
+                let mut j = self.head[self.index([cx, cy])];
+                while j != NONE {
+                    let Some(link) = self.link.get(j as usize) else {
+                        return Err(format!(
+                            "cell ({cx}, {cy}) lists disc {j}, beyond {n} discs"
+                        ));
+                    };
+                    if std::mem::replace(&mut seen[j as usize], true) {
+                        return Err(format!("disc {j} is listed twice"));
+                    }
+                    if link.cell != [cx as u16, cy as u16] {
+                        return Err(format!(
+                            "disc {j} is listed in cell ({cx}, {cy}) but its record says {:?}",
+                            link.cell
+                        ));
+                    }
+                    j = link.next;
+                }
+            }
+        }
+        match seen.iter().position(|&s| !s) {
+            Some(i) => Err(format!("disc {i} is in no cell's list")),
+            None => Ok(()),
+        }
+    }
+
     /// Bytes of heap memory used (for the memory report).
     pub fn heap_bytes(&self) -> usize {
         self.head.capacity() * 4 + self.link.capacity() * std::mem::size_of::<Link>()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use carom_core::Boundary;
+    use proptest::prelude::*;
+
+    fn grid(n_discs: usize) -> CellGrid {
+        let sim_box = SimBox {
+            size: DVec2::new(4.5, 3.5),
+            boundary: [Boundary::Periodic, Boundary::Walls { restitution: 1.0 }],
+        };
+        let g = CellGrid::new(&sim_box, 1.0, n_discs);
+        assert_eq!(g.n, [4, 3]);
+        g
+    }
+
+    /// The discs of cell `c` in list order.
+    fn list(g: &CellGrid, c: [u32; 2]) -> Vec<u32> {
+        let mut out = vec![];
+        let mut j = g.head[g.index(c)];
+        while j != NONE {
+            out.push(j);
+            j = g.link[j as usize].next;
+        }
+        out
+    }
+
+    proptest! {
+        /// Random moves between cells keep every list equal to a model (a vector per
+        /// cell, new discs in front, removals keeping the order of the rest), and the
+        /// back links are those of the model.
+        #[test]
+        fn moves_keep_lists_in_model_order(moves in prop::collection::vec((0u32..10, 0u32..4, 0u32..3), 0..200)) {
+            let n = 10;
+            let mut g = grid(n);
+            let mut model: Vec<Vec<u32>> = vec![vec![]; 12];
+            let cell = |k: usize| [(k % 4) as u32, (k / 4) as u32];
+            for i in 0..n as u32 {
+                g.insert(i, [0, 0]);
+                model[0].insert(0, i);
+            }
+            for (i, cx, cy) in moves {
+                let from = model.iter().position(|l| l.contains(&i)).unwrap();
+                model[from].retain(|&d| d != i);
+                g.remove(i);
+                g.insert(i, [cx, cy]);
+                model[(cy * 4 + cx) as usize].insert(0, i);
+                prop_assert_eq!(g.check_lists(), Ok(()));
+            }
+            let prev = g.prev_links();
+            for (k, l) in model.iter().enumerate() {
+                prop_assert_eq!(&list(&g, cell(k)), l);
+                for w in l.windows(2) {
+                    prop_assert_eq!(prev[w[1] as usize], w[0]);
+                }
+                if let Some(&first) = l.first() {
+                    prop_assert_eq!(prev[first as usize], NONE);
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn broken_lists_are_named() {
+        let mut g = grid(3);
+        for i in 0..3 {
+            g.insert(i, [1, 1]);
+        }
+        assert_eq!(g.check_lists(), Ok(()));
+        // A cycle: the last disc points back to the first.
+        let mut cyc = g.clone();
+        cyc.link[0].next = 2;
+        assert_eq!(cyc.check_lists(), Err("disc 2 is listed twice".into()));
+        // A disc left out of every list.
+        let mut lost = g.clone();
+        lost.link[1].next = NONE;
+        assert_eq!(
+            lost.check_lists(),
+            Err("disc 0 is in no cell's list".into())
+        );
+        // A record naming another cell than the list it is in.
+        let mut moved = g.clone();
+        moved.link[1].cell = [2, 1];
+        assert!(moved
+            .check_lists()
+            .unwrap_err()
+            .contains("disc 1 is listed in cell (1, 1)"));
     }
 }

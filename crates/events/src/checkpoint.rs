@@ -119,8 +119,13 @@ impl Engine {
             pair_times: self.bodies.iter().map(|b| b.pair_time).collect(),
             cell_head: self.grid.head.clone(),
             cell_next: self.grid.link.iter().map(|l| l.next).collect(),
-            cell_prev: self.grid.link.iter().map(|l| l.prev).collect(),
-            cell: self.grid.link.iter().map(|l| l.cell).collect(),
+            cell_prev: self.grid.prev_links(),
+            cell: self
+                .grid
+                .link
+                .iter()
+                .map(|l| l.cell.map(u32::from))
+                .collect(),
             scheduled,
             next_seq: self.next_seq,
             labels: self.label.clone(),
@@ -205,10 +210,15 @@ impl Engine {
         grid.head.copy_from_slice(&cp.cell_head);
         for (i, link) in grid.link.iter_mut().enumerate() {
             *link = crate::cells::Link {
-                cell: cp.cell[i],
+                cell: cp.cell[i].map(|x| x as u16),
                 next: cp.cell_next[i],
-                prev: cp.cell_prev[i],
             };
+        }
+        grid.check_lists()
+            .map_err(|e| bad(format!("cell lists: {e}")))?;
+        // The lists are singly linked; the stored back links are only checked.
+        if grid.prev_links() != cp.cell_prev {
+            return Err(bad("cell lists: back links do not match the lists".into()));
         }
         let mut queue = EventQueue::new(n);
         for (i, (&t, p)) in cp.event_times.iter().zip(&cp.pending).enumerate() {
