@@ -22,7 +22,7 @@ use carom_core::{DVec2, SimBox};
 /// Marker for "no disc" in the linked lists.
 pub const NONE: u32 = u32::MAX;
 
-/// A disc's place in the grid: its cell and its neighbours in that cell's list.
+/// A disc's place in the grid: its cell and the next disc in that cell's list.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 #[repr(C, align(8))]
 pub struct Link {

@@ -364,5 +364,17 @@ mod tests {
             Engine::from_checkpoint(cp),
             Err(EngineError::BadCheckpoint(_))
         ));
+        // A list that loops back on itself (the event loop would never leave it).
+        let mut cp = a.checkpoint();
+        let first = cp.cell_head.iter().position(|&h| h != u32::MAX).unwrap();
+        let d = cp.cell_head[first];
+        cp.cell_next[d as usize] = d;
+        let err = Engine::from_checkpoint(cp).unwrap_err().to_string();
+        assert!(err.contains(&format!("disc {d} is listed twice")), "{err}");
+        // Back links that do not match the forward links.
+        let mut cp = a.checkpoint();
+        cp.cell_prev[d as usize] = (d + 1) % cp.cell_prev.len() as u32;
+        let err = Engine::from_checkpoint(cp).unwrap_err().to_string();
+        assert!(err.contains("back links"), "{err}");
     }
 }
