@@ -108,6 +108,8 @@ impl CellGrid {
     /// Put disc `i` into cell `c` (at the head of its list).
     #[inline]
     pub fn insert(&mut self, i: u32, c: [u32; 2]) {
+        // At most 2¹⁵ cells per axis (see `new`), so the coordinates fit in u16.
+        debug_assert!(c[0] < self.n[0] && c[1] < self.n[1]);
         let k = self.index(c);
         self.link[i as usize] = Link {
             cell: c.map(|x| x as u16),
