@@ -190,21 +190,14 @@ impl Engine {
                 grid.head.len()
             )));
         }
-        let in_range = |v: u32| v == u32::MAX || (v as usize) < n;
-        if !cp
-            .cell_head
+        // Disc indices in the lists are checked by `check_lists` below; the cells
+        // must exist before they are stored (as u16).
+        if cp
+            .cell
             .iter()
-            .chain(&cp.cell_next)
-            .chain(&cp.cell_prev)
-            .all(|&v| in_range(v))
-            || cp
-                .cell
-                .iter()
-                .any(|c| c[0] >= grid.n[0] || c[1] >= grid.n[1])
+            .any(|c| c[0] >= grid.n[0] || c[1] >= grid.n[1])
         {
-            return Err(bad(
-                "cell lists refer to discs or cells that do not exist".into()
-            ));
+            return Err(bad("cell lists refer to cells that do not exist".into()));
         }
         // Copied into the grid's own arrays (allocated for huge pages).
         grid.head.copy_from_slice(&cp.cell_head);
