@@ -274,6 +274,7 @@ impl Engine {
             species_of: species_of_ext,
             next_reorder: cp.next_reorder,
             look_ahead: crate::lookahead::worthwhile(n),
+            tuner: crate::lookahead::Tuner::new(n),
         })
     }
 }

@@ -162,6 +162,8 @@ pub struct Engine {
     pub(crate) next_reorder: u64,
     /// Whether to fetch the next events' memory ahead (see [`crate::lookahead`]).
     pub(crate) look_ahead: bool,
+    /// Times fetching ahead on and off and keeps the faster.
+    pub(crate) tuner: lookahead::Tuner,
 }
 
 /// Pair collisions between two renumberings of the discs along the Z curve.
@@ -311,6 +313,7 @@ impl Engine {
             index_of: (0..n as u32).collect(),
             next_reorder: reorder_interval(n),
             look_ahead: lookahead::worthwhile(n),
+            tuner: lookahead::Tuner::new(n),
             bodies,
             last_collision: memory::filled(n, f64::NEG_INFINITY),
             queue: EventQueue::new(n),
@@ -372,11 +375,13 @@ impl Engine {
         &self.stats
     }
 
-    /// Turn fetching ahead on or off (a speed setting that never changes the
-    /// trajectory; by default on for N ≥ 170 000, where the state outgrows the
-    /// processor's caches; see [`crate::lookahead`]).
+    /// Turn fetching ahead on or off for good (a speed setting that never changes
+    /// the trajectory). By default it is off below 20 000 discs, and from there on
+    /// chosen by timing both settings from time to time, starting on from 170 000
+    /// discs (see [`crate::lookahead`]).
     pub fn set_look_ahead(&mut self, on: bool) {
         self.look_ahead = on;
+        self.tuner = lookahead::Tuner::off();
     }
 
     /// Whether fetching ahead is on (see [`Engine::set_look_ahead`]).
@@ -451,6 +456,10 @@ impl Engine {
     /// nothing will ever happen again (all discs at rest and nothing scheduled).
     pub fn next_event(&mut self) -> Result<Option<Event>, EngineError> {
         loop {
+            self.tuner.left -= 1;
+            if self.tuner.left == 0 {
+                self.tune_look_ahead();
+            }
             if self.stats.pair_collisions >= self.next_reorder {
                 self.reorder();
                 self.next_reorder += reorder_interval(self.len());
@@ -549,6 +558,15 @@ impl Engine {
             }
         }
         Ok(done)
+    }
+
+    /// A window of the look-ahead tuner ended: choose the setting for the next one.
+    #[cold]
+    #[inline(never)]
+    fn tune_look_ahead(&mut self) {
+        self.look_ahead = self
+            .tuner
+            .next_window(std::time::Instant::now(), self.look_ahead);
     }
 
     /// Move the clock to collision time `t`, counting collisions at one instant.

@@ -62,15 +62,125 @@ use crate::cells::{CellGrid, NONE};
 use crate::engine::{Body, Engine, KIND_CELL, KIND_PAIR};
 use crate::memory::prefetch_at;
 
-/// Whether fetching ahead pays for N discs: only once the state (about 160 bytes
-/// per disc) outgrows the processor's last-level cache; below that the loads hit
-/// the cache anyway and the extra work only costs time. Measured with
-/// `examples/profile` at η = 0.5 on the 2-core test machine (32 MB L3), in
+/// The first guess of whether fetching ahead pays for N discs: only once the state
+/// (about 160 bytes per disc) outgrows the cache the process gets; below that the
+/// loads hit the cache anyway and the extra work only costs time. Measured with
+/// `examples/profile` at η = 0.5 on the 2-core test machine on a quiet day, in
 /// collisions per second of CPU time, without → with:
 /// N = 10⁴ 2.09 → 1.50 M; 10⁵ 1.67 → 1.41 M; 1.5·10⁵ 1.40 → 1.33 M;
 /// 2·10⁵ 1.05 → 1.31 M; 3·10⁵ 0.97 → 1.27 M; 10⁶ 0.77 → 1.10 M.
+/// On a day when other tenants held most of the shared L3 (`examples/memlat`: 4–6 MB
+/// left) the crossover was near 3·10⁴ instead, and 10⁵ ran at 0.62 without against
+/// 1.17 M/s with (medians of 8 alternating pairs). So from [`TUNED_FROM`] discs on,
+/// a [`Tuner`] times both settings and keeps the faster.
 pub(crate) fn worthwhile(n: usize) -> bool {
     n >= 170_000
+}
+
+/// Systems of at least this many discs have fetching ahead chosen by timing
+/// ([`Tuner`]); smaller ones (under 3.2 MB of state, which any cache this engine
+/// runs on holds) never fetch ahead.
+pub(crate) const TUNED_FROM: usize = 20_000;
+
+/// Events per timed window (about 0.1 s at N = 10⁶).
+const WINDOW: u64 = 1 << 17;
+
+/// Windows kept with the chosen setting after a first trial, before both are timed
+/// again; doubled each time the same setting wins again, up to [`MAX_KEEP`]. (At
+/// N = 10⁶ the setting that loses is 2× slower, so one trial window in 33 would
+/// cost 3 %; after a few trials one in 259 costs 0.4 %.)
+const KEEP: u32 = 30;
+
+/// The longest run of kept windows (about 25 s at N = 10⁶).
+const MAX_KEEP: u32 = 256;
+
+/// Chooses whether to fetch ahead by timing it: one window of [`WINDOW`] events
+/// with it on, one with it off, then the faster for a while, and again. The
+/// setting only changes speed, never the trajectory, so the choice may depend on
+/// the clock. Wall-clock windows of equal event counts are compared; both see the
+/// same machine, a tenth of a second apart.
+#[derive(Debug, Clone)]
+pub(crate) struct Tuner {
+    /// Events left in the current window; `u64::MAX` when not tuning.
+    pub(crate) left: u64,
+    phase: Phase,
+    /// Start of the current window.
+    started: Option<std::time::Instant>,
+    /// Length (s) of the last window with fetching ahead on.
+    on_seconds: f64,
+    /// Windows to keep the winner of the next trial for.
+    keep: u32,
+    /// The winner of the last trial.
+    last_winner: Option<bool>,
+}
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Phase {
+    /// The first window: not timed (caches and calendar settle).
+    Warm,
+    TryOn,
+    TryOff,
+    /// Keeping the chosen setting for this many more windows.
+    Keep(u32),
+}
+
+impl Tuner {
+    /// A tuner for `n` discs: active from [`TUNED_FROM`] discs on.
+    pub(crate) fn new(n: usize) -> Tuner {
+        Tuner {
+            left: if n >= TUNED_FROM { WINDOW } else { u64::MAX },
+            phase: Phase::Warm,
+            started: None,
+            on_seconds: 0.0,
+            keep: KEEP,
+            last_winner: None,
+        }
+    }
+
+    /// A tuner that never changes the setting (the caller chose it).
+    pub(crate) fn off() -> Tuner {
+        Tuner {
+            left: u64::MAX,
+            ..Tuner::new(0)
+        }
+    }
+
+    /// The window just ended at `now` with setting `current`: the setting for the
+    /// next one.
+    pub(crate) fn next_window(&mut self, now: std::time::Instant, current: bool) -> bool {
+        let seconds = self
+            .started
+            .map_or(0.0, |t| now.duration_since(t).as_secs_f64());
+        self.started = Some(now);
+        self.left = WINDOW;
+        self.step(seconds, current)
+    }
+
+    /// The window just ended took `seconds` with setting `current`: the next
+    /// setting.
+    fn step(&mut self, seconds: f64, current: bool) -> bool {
+        let (phase, on) = match self.phase {
+            Phase::Warm => (Phase::TryOn, true),
+            Phase::TryOn => {
+                self.on_seconds = seconds;
+                (Phase::TryOff, false)
+            }
+            Phase::TryOff => {
+                let winner = self.on_seconds < seconds;
+                self.keep = if self.last_winner == Some(winner) {
+                    (2 * self.keep).min(MAX_KEEP)
+                } else {
+                    KEEP
+                };
+                self.last_winner = Some(winner);
+                (Phase::Keep(self.keep), winner)
+            }
+            Phase::Keep(0) => (Phase::TryOn, true),
+            Phase::Keep(k) => (Phase::Keep(k - 1), current),
+        };
+        self.phase = phase;
+        on
+    }
 }
 
 impl Engine {
@@ -206,5 +316,64 @@ fn for_rows(grid: &CellGrid, c: [u32; 2], mut f: impl FnMut(usize)) {
         let row = cy as usize * nx as usize;
         f(row + left as usize);
         f(row + right as usize);
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Feed `tuner` windows lasting `on` s with fetching ahead and `off` s without;
+    /// the settings it chose for each of `windows` windows.
+    fn run(tuner: &mut Tuner, on: f64, off: f64, windows: usize) -> Vec<bool> {
+        let mut setting = false;
+        let mut chosen = Vec::new();
+        for _ in 0..windows {
+            let seconds = if setting { on } else { off };
+            setting = tuner.step(seconds, setting);
+            chosen.push(setting);
+        }
+        chosen
+    }
+
+    #[test]
+    fn keeps_the_faster_setting_and_tries_both_again() {
+        // Warm, then on, off and KEEP + 1 windows of the winner, and again.
+        let period = KEEP as usize + 3;
+        let faster_on = run(&mut Tuner::new(TUNED_FROM), 0.1, 0.2, 3 * period);
+        assert_eq!(&faster_on[..2], &[true, false]);
+        assert!(faster_on[2..period].iter().all(|&s| s));
+        assert_eq!(&faster_on[period..period + 2], &[true, false]);
+        // The same winner again: kept twice as long before the next trial.
+        assert!(faster_on[period + 2..period + 3 + 2 * KEEP as usize]
+            .iter()
+            .all(|&s| s));
+        let faster_off = run(&mut Tuner::new(TUNED_FROM), 0.3, 0.2, 2 * period);
+        assert_eq!(&faster_off[..2], &[true, false]);
+        assert!(faster_off[2..period].iter().all(|&s| !s));
+        assert!(faster_off[period], "the next trial starts with it on");
+        assert!(faster_off[period + 1..].iter().all(|&s| !s));
+    }
+
+    #[test]
+    fn a_change_of_winner_shortens_the_keep_again() {
+        let mut tuner = Tuner::new(TUNED_FROM);
+        run(&mut tuner, 0.1, 0.2, 3 * KEEP as usize);
+        assert!(tuner.keep > KEEP);
+        // Off is now faster: at the first trial it wins, the keep starts over.
+        let mut windows = 0;
+        while tuner.last_winner != Some(false) {
+            run(&mut tuner, 0.3, 0.2, 1);
+            windows += 1;
+            assert!(windows <= MAX_KEEP as usize + 3, "no trial within a keep");
+        }
+        assert_eq!(tuner.keep, KEEP);
+    }
+
+    #[test]
+    fn small_systems_and_chosen_settings_are_not_tuned() {
+        assert_eq!(Tuner::new(TUNED_FROM - 1).left, u64::MAX);
+        assert_eq!(Tuner::off().left, u64::MAX);
+        assert_eq!(Tuner::new(TUNED_FROM).left, WINDOW);
     }
 }
