@@ -1,6 +1,7 @@
 //! Fetching ahead (`carom_events::lookahead`) is a speed setting: it only issues
-//! prefetch hints, so it must never change a trajectory. It is on by default only
-//! for N ≥ 170 000, so the systems here switch it on explicitly, and every event of
+//! prefetch hints, so it must never change a trajectory. By default it is off below
+//! 20 000 discs and chosen by timing above, so the systems here switch it on
+//! explicitly, and every event of
 //! the run (kind, discs, time, velocities, bit for bit) and the final state must be
 //! identical with and without it. Periodic and walled boxes, a narrow box (cells
 //! seen through two images, where the look-ahead's block wraps), a mixture and an
@@ -121,4 +122,37 @@ fn look_ahead_is_on_only_for_large_systems() {
     )
     .unwrap();
     assert!(large.look_ahead_enabled());
+}
+
+/// From 20 000 discs on the event loop times windows of 2¹⁷ events: the first
+/// window runs on the first guess (off below 170 000 discs), the second always with
+/// fetching ahead on, the third always off (the trial). A caller's choice is kept,
+/// and small systems are never switched.
+#[test]
+fn the_event_loop_tries_both_settings_unless_told() {
+    let build = |n| {
+        Engine::new(
+            SystemSpec::periodic_fluid(n, 0.5, 3).build().unwrap(),
+            EngineParams::default(),
+        )
+        .unwrap()
+    };
+    // Settings seen every 1000 collisions over about three windows.
+    let seen = |e: &mut Engine| {
+        (0..300)
+            .map(|_| {
+                e.run_collisions(1000).unwrap();
+                e.look_ahead_enabled()
+            })
+            .collect::<Vec<bool>>()
+    };
+    let tuned = seen(&mut build(20_000));
+    let first_on = tuned.iter().position(|&s| s).expect("a trial with it on");
+    assert!(first_on > 0, "the first window runs on the guess (off)");
+    let back_off = tuned[first_on..].iter().position(|&s| !s);
+    assert!(back_off.is_some(), "a trial with it off follows");
+    let mut told = build(20_000);
+    told.set_look_ahead(false);
+    assert!(seen(&mut told).iter().all(|&s| !s));
+    assert!(seen(&mut build(10_000)).iter().all(|&s| !s));
 }
