@@ -14,7 +14,8 @@
 //!   arrangement (a sheared lattice, found by enumerating all lattices with M ≥ N
 //!   points on the torus; two discs on a diagonal of a small walled box).
 //! * Walled and channel (periodic x, walls y) boxes at moderate η (0.3 for every N,
-//!   0.5 for N ≥ 4); random placement at low density.
+//!   0.5 for N ≥ 4); random placement at low density, and of a mixture of radius
+//!   ratio 4 at η = 0.3 (largest first).
 //! * Maxwell–Boltzmann velocities: zero total momentum (to 1e-12 of Σ m|v|) and kinetic
 //!   temperature 2K/f equal to the requested kT to 1e-12 relative, with
 //!   f = 2N − (number of periodic axes) (physics.md §5) computed here; per-species
@@ -505,6 +506,40 @@ fn random_placement_at_low_density() {
     let mean = s.positions.iter().copied().sum::<DVec2>() / s.len() as f64;
     let l = s.sim_box.size;
     assert!(((mean - l / 2.0) / l).abs().max_element() < 5.0 / (12.0f64 * 1000.0).sqrt());
+}
+
+/// Random placement of a size-asymmetric mixture (radius ratio 4, equal area
+/// fractions) at η = 0.3, with the small species listed first: the large discs go in
+/// first, while the box is still empty. (Inserted in the order listed, the small ones
+/// leave no hole for a large one: the build fails.)
+#[test]
+fn random_placement_of_an_asymmetric_mixture() {
+    let species = vec![
+        Species {
+            count: 2000,
+            radius: 0.5,
+            mass: 1.0,
+        },
+        Species {
+            count: 125,
+            radius: 2.0,
+            mass: 16.0,
+        },
+    ];
+    for kind in [Kind::Periodic, Kind::Walls, Kind::Channel] {
+        let sp = SystemSpec {
+            placement: Placement::Random,
+            ..spec(species.clone(), 0.3, 1.0, kind, 7)
+        };
+        let what = format!("random {kind:?} radius ratio 4, η = 0.3");
+        let s = build(&sp, &what).unwrap_or_else(|e| panic!("{what}: {e}"));
+        validate(&s, &sp, &what);
+        assert_eq!(
+            s,
+            build(&sp, &what).unwrap(),
+            "{what}: same seed, same state"
+        );
+    }
 }
 
 /// f = 2N − (number of periodic axes), physics.md §5.

@@ -9,7 +9,8 @@
 //!   edges exceed a diameter. With walls it uses square and triangular rows spread
 //!   to the walls.
 //! * Random placement inserts discs one by one at uniformly random non-overlapping
-//!   positions; meant for low density.
+//!   positions, largest first (so that size-asymmetric mixtures place too); meant
+//!   for low density.
 //! * Velocities are Maxwell–Boltzmann at temperature kT (each component Gaussian with
 //!   variance kT/m, physics.md §6), shifted to zero total momentum and scaled so that
 //!   the kinetic temperature 2K/f equals kT exactly; or all of one speed per species.
@@ -595,10 +596,20 @@ fn random(spec: &SystemSpec, species_of: &[u16], rng: &mut Pcg64) -> Result<Vec<
     let n = species_of.len();
     let a_max = spec.species.iter().map(|s| s.radius).fold(0.0, f64::max);
     let mut grid = CellGrid::new(&spec.sim_box, 2.0 * a_max, n);
-    let mut pos: Vec<DVec2> = Vec::with_capacity(n);
+    // Largest discs first: a large disc needs a hole its own size, which the small
+    // ones would already have filled (a radius ratio of 4 at η = 0.25 failed
+    // small-first). The discs keep their numbers; only the order of insertion (and
+    // with it the use of the seeded generator) follows the radius. Equal radii keep
+    // their order, so a monodisperse system is placed as before.
+    let radius = |i: usize| spec.species[species_of[i] as usize].radius;
+    let mut order: Vec<usize> = (0..n).collect();
+    order.sort_by(|&i, &j| radius(j).total_cmp(&radius(i)));
+    let mut pos = vec![DVec2::ZERO; n];
+    let mut placed_so_far = 0;
     const ATTEMPTS: usize = 100_000;
-    for (i, &s) in species_of.iter().enumerate() {
-        let a = spec.species[s as usize].radius;
+    for i in order {
+        let s = species_of[i];
+        let a = radius(i);
         let mut placed = false;
         for _ in 0..ATTEMPTS {
             let mut r = DVec2::ZERO;
@@ -613,7 +624,8 @@ fn random(spec: &SystemSpec, species_of: &[u16], rng: &mut Pcg64) -> Result<Vec<
             if !overlaps_any(&grid, &spec.sim_box, &pos, species_of, &spec.species, r, a) {
                 let c = grid.coords_of(r);
                 grid.insert(i as u32, c);
-                pos.push(r);
+                pos[i] = r;
+                placed_so_far += 1;
                 placed = true;
                 break;
             }
@@ -622,7 +634,9 @@ fn random(spec: &SystemSpec, species_of: &[u16], rng: &mut Pcg64) -> Result<Vec<
             return Err(InitError::invalid(
                 "placement",
                 format!(
-                    "random placement found no free spot for disc {i} after {ATTEMPTS} tries at η = {:.4}",
+                    "random placement found no free spot for disc {i} (species {s}, radius {a}) \
+                     after {ATTEMPTS} tries, with {placed_so_far} of {n} discs placed (largest \
+                     first), at η = {:.4}",
                     packing_fraction(&spec.species, &spec.sim_box)
                 ),
                 "\"random\" at low density (η ≲ 0.4); use \"lattice\" for dense systems",

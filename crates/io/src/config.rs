@@ -368,10 +368,12 @@ impl<'de> Deserialize<'de> for BoundaryConfig {
 #[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
 #[serde(rename_all = "kebab-case", deny_unknown_fields)]
 pub enum PlacementConfig {
-    /// `"lattice"`: the best-fitting square or triangular lattice (any η ≤ 0.72).
+    /// `"lattice"`: the best-fitting square or triangular lattice (any η ≤ 0.72; a
+    /// mixture's sites are spaced for its largest disc).
     #[default]
     Lattice,
-    /// `"random"`: uniformly random without overlap (low density, η ≲ 0.4).
+    /// `"random"`: uniformly random without overlap, largest discs first (low
+    /// density, η ≲ 0.4).
     Random,
     /// `{"explicit": [[x, y], ...]}`: one centre position per disc (length), in the
     /// order of the species; inside the box and not overlapping.
