@@ -124,10 +124,10 @@ fn look_ahead_is_on_only_for_large_systems() {
     assert!(large.look_ahead_enabled());
 }
 
-/// From 20 000 discs on the event loop times windows of 2¹⁷ events: the first
-/// window runs on the first guess (off below 170 000 discs), the second always with
-/// fetching ahead on, the third always off (the trial). A caller's choice is kept,
-/// and small systems are never switched.
+/// From 20 000 discs on the event loop times windows of 2¹⁶ events: the first
+/// window runs on the first guess (off below 170 000 discs), then the trial: one
+/// window with fetching ahead on, two off, one on. A caller's choice is kept, and
+/// small systems are never switched.
 #[test]
 fn the_event_loop_tries_both_settings_unless_told() {
     let build = |n| {
@@ -137,7 +137,7 @@ fn the_event_loop_tries_both_settings_unless_told() {
         )
         .unwrap()
     };
-    // Settings seen every 1000 collisions over about three windows.
+    // Settings seen every 1000 collisions over about seven windows.
     let seen = |e: &mut Engine| {
         (0..300)
             .map(|_| {

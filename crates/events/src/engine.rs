@@ -461,7 +461,13 @@ impl Engine {
                 self.tune_look_ahead();
             }
             if self.stats.pair_collisions >= self.next_reorder {
+                // The renumbering is not the look-ahead's doing: leave its time out
+                // of the tuner's window.
+                let started = self.tuner.active().then(std::time::Instant::now);
                 self.reorder();
+                if let Some(t) = started {
+                    self.tuner.exclude(t.elapsed());
+                }
                 self.next_reorder += reorder_interval(self.len());
             }
             let (t, who) = self.queue.peek();
