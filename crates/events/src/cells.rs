@@ -4,12 +4,13 @@
 //! disc predicts collisions only with the discs of its 3 × 3 block. Crossing a cell
 //! wall is itself an event of the engine, which keeps every disc in the cell that
 //! contains its centre. Each cell holds an intrusive singly linked list of its discs;
-//! a disc's cell and its list link share one 8-byte record ([`Link`]), so that the
-//! event loop finds them in one cache line, together with those of the discs next
-//! to it in memory (eight to a line; the discs are kept in space-filling-curve
-//! order, so these are mostly its neighbours). Taking a disc out of its cell walks
-//! the cell's list to its predecessor, a walk through the few discs ahead of it in a
-//! list the event has just scanned; a back link would double the record for that.
+//! a disc's cell and its list link share one 8-byte record ([`Link`]), which the
+//! grid does not own: it lives in whatever per-disc record the caller keeps (a
+//! [`Member`]). The engine keeps it inside each disc's 64-byte record, so that
+//! walking a cell's list reads only the records a scan needs anyway. Taking a disc
+//! out of its cell walks the cell's list to its predecessor, a walk through the few
+//! discs ahead of it in a list the event has just scanned; a back link would not fit
+//! in the record.
 //!
 //! On a periodic axis the block wraps around; a neighbour reached across the box edge
 //! is seen through its periodic image, shifted by ±L. Boxes narrower than three cells
@@ -38,9 +39,36 @@ impl Link {
         cell: [0, 0],
         next: NONE,
     };
+
+    /// The cell coordinates (column, row).
+    #[inline]
+    pub fn coords(&self) -> [u32; 2] {
+        self.cell.map(u32::from)
+    }
 }
 
-/// The geometry and membership of the cell grid.
+/// A per-disc record that carries the disc's [`Link`]: the cell lists are threaded
+/// through a slice of these, indexed by disc.
+pub trait Member {
+    /// The disc's cell and next disc.
+    fn link(&self) -> &Link;
+    /// The same, for changing.
+    fn link_mut(&mut self) -> &mut Link;
+}
+
+impl Member for Link {
+    #[inline]
+    fn link(&self) -> &Link {
+        self
+    }
+    #[inline]
+    fn link_mut(&mut self) -> &mut Link {
+        self
+    }
+}
+
+/// The geometry of the cell grid and the first disc of each cell's list (the rest
+/// of each list is in the discs' [`Link`]s, see [`Member`]).
 #[derive(Debug, Clone)]
 pub struct CellGrid {
     /// Number of cells along x and y.
@@ -53,14 +81,12 @@ pub struct CellGrid {
     pub periodic: [bool; 2],
     /// First disc of each cell, or [`NONE`].
     pub head: Vec<u32>,
-    /// Each disc's cell and list links.
-    pub link: Vec<Link>,
 }
 
 impl CellGrid {
-    /// An empty grid for `n_discs` discs in `sim_box`, with cells at least
-    /// `min_width` wide (the largest contact distance, 2 a_max).
-    pub fn new(sim_box: &SimBox, min_width: f64, n_discs: usize) -> Self {
+    /// An empty grid in `sim_box`, with cells at least `min_width` wide (the largest
+    /// contact distance, 2 a_max).
+    pub fn new(sim_box: &SimBox, min_width: f64) -> Self {
         let size = sim_box.size;
         // A hair of margin so that rounding at a cell edge never hides a contact.
         let w = min_width * (1.0 + 1e-9);
@@ -76,7 +102,6 @@ impl CellGrid {
                 sim_box.boundary[1].is_periodic(),
             ],
             head: memory::filled(n[0] as usize * n[1] as usize, NONE),
-            link: memory::filled(n_discs, Link::UNLINKED),
         }
     }
 
@@ -99,19 +124,14 @@ impl CellGrid {
         c[1] as usize * self.n[0] as usize + c[0] as usize
     }
 
-    /// Cell coordinates (column, row) of disc `i`.
+    /// Put disc `i` (of the records `members`) into cell `c`, at the head of its
+    /// list.
     #[inline]
-    pub fn cell_of(&self, i: usize) -> [u32; 2] {
-        self.link[i].cell.map(u32::from)
-    }
-
-    /// Put disc `i` into cell `c` (at the head of its list).
-    #[inline]
-    pub fn insert(&mut self, i: u32, c: [u32; 2]) {
+    pub fn insert<M: Member>(&mut self, members: &mut [M], i: u32, c: [u32; 2]) {
         // At most 2¹⁵ cells per axis (see `new`), so the coordinates fit in u16.
         debug_assert!(c[0] < self.n[0] && c[1] < self.n[1]);
         let k = self.index(c);
-        self.link[i as usize] = Link {
+        *members[i as usize].link_mut() = Link {
             cell: c.map(|x| x as u16),
             next: self.head[k],
         };
@@ -120,25 +140,29 @@ impl CellGrid {
 
     /// Take disc `i` out of its cell (walking the cell's list to its predecessor).
     #[inline]
-    pub fn remove(&mut self, i: u32) {
-        let Link { cell, next } = self.link[i as usize];
+    pub fn remove<M: Member>(&mut self, members: &mut [M], i: u32) {
+        let Link { cell, next } = *members[i as usize].link();
         let k = self.index(cell.map(u32::from));
         if self.head[k] == i {
             self.head[k] = next;
             return;
         }
         let mut j = self.head[k] as usize;
-        while self.link[j].next != i {
-            j = self.link[j].next as usize;
+        while members[j].link().next != i {
+            j = members[j].link().next as usize;
         }
-        self.link[j].next = next;
+        members[j].link_mut().next = next;
     }
 
     /// Every disc in the 3 × 3 block of cells around cell `c`: cells beyond a wall
     /// are dropped, and on a periodic axis narrower than three cells a disc may come
     /// more than once. For setup and checks that use minimum images; the event loop
     /// walks the block itself because it tracks each cell's image shift.
-    pub fn discs_near(&self, c: [u32; 2]) -> impl Iterator<Item = u32> + '_ {
+    pub fn discs_near<'a, M: Member>(
+        &'a self,
+        members: &'a [M],
+        c: [u32; 2],
+    ) -> impl Iterator<Item = u32> + 'a {
         let cell = move |o: [i64; 2]| -> Option<usize> {
             let mut cc = [0u32; 2];
             for k in 0..2 {
@@ -162,7 +186,7 @@ impl CellGrid {
                 std::iter::from_fn(move || {
                     let cur = j;
                     (cur != NONE).then(|| {
-                        j = self.link[cur as usize].next;
+                        j = members[cur as usize].link().next;
                         cur
                     })
                 })
@@ -204,12 +228,12 @@ impl CellGrid {
     /// The previous disc in its cell's list of each disc, or [`NONE`] for the first
     /// (the back links checkpoints store). The lists must pass
     /// [`CellGrid::check_lists`].
-    pub fn prev_links(&self) -> Vec<u32> {
-        let mut prev = vec![NONE; self.link.len()];
+    pub fn prev_links<M: Member>(&self, members: &[M]) -> Vec<u32> {
+        let mut prev = vec![NONE; members.len()];
         for &h in &self.head {
             let mut j = h;
             while j != NONE {
-                let next = self.link[j as usize].next;
+                let next = members[j as usize].link().next;
                 if next != NONE {
                     prev[next as usize] = j;
                 }
@@ -222,14 +246,14 @@ impl CellGrid {
     /// Check that the lists describe a partition of the discs: every disc is listed
     /// exactly once, in the list of the cell its record names. Returns what is wrong
     /// otherwise (for checkpoints read from disk, and the tests).
-    pub fn check_lists(&self) -> Result<(), String> {
-        let n = self.link.len();
+    pub fn check_lists<M: Member>(&self, members: &[M]) -> Result<(), String> {
+        let n = members.len();
         let mut seen = vec![false; n];
         for cy in 0..self.n[1] {
             for cx in 0..self.n[0] {
                 let mut j = self.head[self.index([cx, cy])];
                 while j != NONE {
-                    let Some(link) = self.link.get(j as usize) else {
+                    let Some(link) = members.get(j as usize).map(Member::link) else {
                         return Err(format!(
                             "cell ({cx}, {cy}) lists disc {j}, beyond {n} discs"
                         ));
@@ -255,7 +279,7 @@ impl CellGrid {
 
     /// Bytes of heap memory used (for the memory report).
     pub fn heap_bytes(&self) -> usize {
-        self.head.capacity() * 4 + self.link.capacity() * std::mem::size_of::<Link>()
+        self.head.capacity() * 4
     }
 }
 
@@ -265,23 +289,24 @@ mod tests {
     use carom_core::Boundary;
     use proptest::prelude::*;
 
-    fn grid(n_discs: usize) -> CellGrid {
+    /// A 4 × 3 grid and the links of `n_discs` discs, in no list yet.
+    fn grid(n_discs: usize) -> (CellGrid, Vec<Link>) {
         let sim_box = SimBox {
             size: DVec2::new(4.5, 3.5),
             boundary: [Boundary::Periodic, Boundary::Walls { restitution: 1.0 }],
         };
-        let g = CellGrid::new(&sim_box, 1.0, n_discs);
+        let g = CellGrid::new(&sim_box, 1.0);
         assert_eq!(g.n, [4, 3]);
-        g
+        (g, vec![Link::UNLINKED; n_discs])
     }
 
     /// The discs of cell `c` in list order.
-    fn list(g: &CellGrid, c: [u32; 2]) -> Vec<u32> {
+    fn list(g: &CellGrid, links: &[Link], c: [u32; 2]) -> Vec<u32> {
         let mut out = vec![];
         let mut j = g.head[g.index(c)];
         while j != NONE {
             out.push(j);
-            j = g.link[j as usize].next;
+            j = links[j as usize].next;
         }
         out
     }
@@ -293,24 +318,24 @@ mod tests {
         #[test]
         fn moves_keep_lists_in_model_order(moves in prop::collection::vec((0u32..10, 0u32..4, 0u32..3), 0..200)) {
             let n = 10;
-            let mut g = grid(n);
+            let (mut g, mut links) = grid(n);
             let mut model: Vec<Vec<u32>> = vec![vec![]; 12];
             let cell = |k: usize| [(k % 4) as u32, (k / 4) as u32];
             for i in 0..n as u32 {
-                g.insert(i, [0, 0]);
+                g.insert(&mut links, i, [0, 0]);
                 model[0].insert(0, i);
             }
             for (i, cx, cy) in moves {
                 let from = model.iter().position(|l| l.contains(&i)).unwrap();
                 model[from].retain(|&d| d != i);
-                g.remove(i);
-                g.insert(i, [cx, cy]);
+                g.remove(&mut links, i);
+                g.insert(&mut links, i, [cx, cy]);
                 model[(cy * 4 + cx) as usize].insert(0, i);
-                prop_assert_eq!(g.check_lists(), Ok(()));
+                prop_assert_eq!(g.check_lists(&links), Ok(()));
             }
-            let prev = g.prev_links();
+            let prev = g.prev_links(&links);
             for (k, l) in model.iter().enumerate() {
-                prop_assert_eq!(&list(&g, cell(k)), l);
+                prop_assert_eq!(&list(&g, &links, cell(k)), l);
                 for w in l.windows(2) {
                     prop_assert_eq!(prev[w[1] as usize], w[0]);
                 }
@@ -323,27 +348,27 @@ mod tests {
 
     #[test]
     fn broken_lists_are_named() {
-        let mut g = grid(3);
+        let (mut g, mut links) = grid(3);
         for i in 0..3 {
-            g.insert(i, [1, 1]);
+            g.insert(&mut links, i, [1, 1]);
         }
-        assert_eq!(g.check_lists(), Ok(()));
+        assert_eq!(g.check_lists(&links), Ok(()));
         // A cycle: the last disc points back to the first.
-        let mut cyc = g.clone();
-        cyc.link[0].next = 2;
-        assert_eq!(cyc.check_lists(), Err("disc 2 is listed twice".into()));
+        let mut cyc = links.clone();
+        cyc[0].next = 2;
+        assert_eq!(g.check_lists(&cyc), Err("disc 2 is listed twice".into()));
         // A disc left out of every list.
-        let mut lost = g.clone();
-        lost.link[1].next = NONE;
+        let mut lost = links.clone();
+        lost[1].next = NONE;
         assert_eq!(
-            lost.check_lists(),
+            g.check_lists(&lost),
             Err("disc 0 is in no cell's list".into())
         );
         // A record naming another cell than the list it is in.
-        let mut moved = g.clone();
-        moved.link[1].cell = [2, 1];
-        assert!(moved
-            .check_lists()
+        let mut moved = links.clone();
+        moved[1].cell = [2, 1];
+        assert!(g
+            .check_lists(&moved)
             .unwrap_err()
             .contains("disc 1 is listed in cell (1, 1)"));
     }

@@ -3,7 +3,7 @@
 //! their times, the cell lists in their exact order, running totals and the
 //! caller's scheduled events. Plain data: the io crate decides how to store it.
 
-use crate::cells::CellGrid;
+use crate::cells::{CellGrid, Link};
 use crate::engine::{Body, Engine, EngineParams, Stats, KIND_CELL};
 use crate::error::EngineError;
 use crate::memory;
@@ -35,11 +35,15 @@ pub struct Checkpoint {
     pub same_time_collisions: u64,
     /// Running totals.
     pub stats: Stats,
-    /// Position of each disc at its own last-update time `times[i]` (length).
+    /// Position of each disc at time `times[i]` on its current straight path
+    /// (length). carom writes each path's origin, the position at internal time 0
+    /// (with `times` all 0), which may lie outside the box; any point of the path
+    /// with its time reads back the same path.
     pub positions: Vec<DVec2>,
     /// Velocities (length/time).
     pub velocities: Vec<DVec2>,
-    /// Last-update time of each disc (time).
+    /// The time at which each disc is at `positions[i]` (time; 0 in checkpoints
+    /// carom writes).
     pub times: Vec<f64>,
     /// Collision counters.
     pub counts: Vec<u32>,
@@ -97,9 +101,10 @@ impl Engine {
             clock: self.clock,
             same_time_collisions: self.same_time_collisions,
             stats: self.stats,
-            positions: self.bodies.iter().map(|b| b.r).collect(),
+            // The engine keeps each path's origin, its position at internal time 0.
+            positions: self.bodies.iter().map(|b| b.r0).collect(),
             velocities: self.bodies.iter().map(|b| b.v).collect(),
-            times: self.bodies.iter().map(|b| b.t).collect(),
+            times: vec![0.0; n],
             counts: self.bodies.iter().map(|b| b.count).collect(),
             last_collision: self.last_collision.clone(),
             event_times: (0..n)
@@ -118,14 +123,9 @@ impl Engine {
                 .collect(),
             pair_times: self.bodies.iter().map(|b| b.pair_time).collect(),
             cell_head: self.grid.head.clone(),
-            cell_next: self.grid.link.iter().map(|l| l.next).collect(),
-            cell_prev: self.grid.prev_links(),
-            cell: self
-                .grid
-                .link
-                .iter()
-                .map(|l| l.cell.map(u32::from))
-                .collect(),
+            cell_next: self.bodies.iter().map(|b| b.link.next).collect(),
+            cell_prev: self.grid.prev_links(&self.bodies),
+            cell: self.bodies.iter().map(|b| b.link.coords()).collect(),
             scheduled,
             next_seq: self.next_seq,
             labels: self.label.clone(),
@@ -182,7 +182,7 @@ impl Engine {
             species_of_ext[l as usize] = cp.species_of[k];
         }
         let a_max = cp.species.iter().map(|s| s.radius).fold(0.0, f64::max);
-        let mut grid = CellGrid::new(&cp.sim_box, 2.0 * a_max, n);
+        let mut grid = CellGrid::new(&cp.sim_box, 2.0 * a_max);
         if cp.cell_head.len() != grid.head.len() {
             return Err(bad(format!(
                 "{} cells stored, the box needs {}",
@@ -199,18 +199,32 @@ impl Engine {
         {
             return Err(bad("cell lists refer to cells that do not exist".into()));
         }
-        // Copied into the grid's own arrays (allocated for huge pages).
+        // Copied into the engine's own arrays (allocated for huge pages).
         grid.head.copy_from_slice(&cp.cell_head);
-        for (i, link) in grid.link.iter_mut().enumerate() {
-            *link = crate::cells::Link {
-                cell: cp.cell[i].map(|x| x as u16),
-                next: cp.cell_next[i],
-            };
-        }
-        grid.check_lists()
+        let bodies: Vec<Body> = memory::collect(
+            n,
+            (0..n).map(|i| Body {
+                // The path origin: the position at internal time 0 (carom writes
+                // origins, with times 0, so this is exact for its own checkpoints).
+                r0: cp.positions[i] - cp.velocities[i] * cp.times[i],
+                v: cp.velocities[i],
+                pair_time: cp.pair_times[i],
+                count: cp.counts[i],
+                partner: cp.pending[i][0],
+                partner_count: cp.pending[i][1],
+                kind: (cp.pending[i][2] & 0xff) as u8,
+                aux: (cp.pending[i][2] >> 8) as u8,
+                species: cp.species_of[i],
+                link: Link {
+                    cell: cp.cell[i].map(|x| x as u16),
+                    next: cp.cell_next[i],
+                },
+            }),
+        );
+        grid.check_lists(&bodies)
             .map_err(|e| bad(format!("cell lists: {e}")))?;
         // The lists are singly linked; the stored back links are only checked.
-        if grid.prev_links() != cp.cell_prev {
+        if grid.prev_links(&bodies) != cp.cell_prev {
             return Err(bad("cell lists: back links do not match the lists".into()));
         }
         let mut queue = EventQueue::new(n);
@@ -231,21 +245,6 @@ impl Engine {
         }
 
         queue.retune(cp.clock);
-        let bodies = memory::collect(
-            n,
-            (0..n).map(|i| Body {
-                r: cp.positions[i],
-                v: cp.velocities[i],
-                t: cp.times[i],
-                pair_time: cp.pair_times[i],
-                count: cp.counts[i],
-                partner: cp.pending[i][0],
-                partner_count: cp.pending[i][1],
-                kind: (cp.pending[i][2] & 0xff) as u8,
-                aux: (cp.pending[i][2] >> 8) as u8,
-                species: cp.species_of[i],
-            }),
-        );
         let scheduled = cp
             .scheduled
             .iter()

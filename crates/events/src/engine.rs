@@ -1,9 +1,13 @@
 //! The event loop.
 //!
-//! Each disc stores its position at its own last-update time ("delayed states",
-//! physics.md §1) and owns exactly one pending event: the earliest of its next pair
-//! collision, wall collision and cell crossing, found by scanning the 3 × 3 block of
-//! cells around it. An event moves only the discs it touches.
+//! Each disc keeps its state as of its own last update ("delayed states",
+//! physics.md §1), stored as its straight path r(t) = r0 + v t on the internal
+//! clock rather than as a position and a last-update time (see [`Body`]; the two
+//! are the same line), and owns exactly one pending event: the earliest of its next
+//! pair collision, wall collision and cell crossing, found by scanning the 3 × 3
+//! block of cells around it. An event moves only the discs it touches: a velocity
+//! change moves the path's origin so that the path passes through the disc's
+//! position at that instant.
 //!
 //! A pending pair event remembers the partner's collision counter at prediction
 //! time; every velocity change (and every periodic wrap) bumps a disc's counter, so
@@ -87,20 +91,28 @@ pub struct Stats {
     pub energy_lost: f64,
 }
 
-/// Everything the event loop touches for one disc, in one 64-byte cache line:
-/// position at time `t`, velocity, collision counter, pair candidate and pending
-/// event, species. At large N every event lands at a random place in memory, so
-/// keeping these together saves a cache miss per lookup (measured: see
-/// benches/engine.rs).
+/// Everything the event loop touches for one disc, in one 64-byte cache line: its
+/// straight path (origin and velocity), collision counter, pair candidate and
+/// pending event, species, and its place in the cell lists. At large N every event
+/// lands at a random place in memory, so keeping these together saves a cache miss
+/// per lookup (measured: see benches/engine.rs), and a scan walking a cell's list
+/// reads nothing but the records it tests.
+///
+/// The path is stored as its origin `r0`, the position the disc would have had at
+/// internal time 0 on its current velocity: its position at time t is
+/// `r0 + v t` (physics.md §1, with the last-update time folded into the origin).
+/// That saves the 8-byte last-update time that made room for the cell link. Its
+/// rounding is that of positions of the size of |r0| + |v t|, the same order as
+/// the rounding of event times (≈ ulp(t)·|v|) that the clock's restarts at each
+/// renumbering keep small.
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[repr(C, align(64))]
 pub(crate) struct Body {
-    /// Position at time `t` (length).
-    pub r: DVec2,
+    /// Path origin: the position at internal time 0 on the current velocity
+    /// (length; may lie outside the box).
+    pub r0: DVec2,
     /// Velocity (length/time).
     pub v: DVec2,
-    /// Last-update time (time).
-    pub t: f64,
     /// Time of the pair candidate, the earliest pair collision found by the scans
     /// since the last full one (time; +∞ if none).
     pub pair_time: f64,
@@ -117,6 +129,35 @@ pub(crate) struct Body {
     pub aux: u8,
     /// Species index.
     pub species: u16,
+    /// Cell and next disc of the cell's list (see [`crate::cells`]).
+    pub link: Link,
+}
+
+impl Body {
+    /// Position at internal time `t` (length), not wrapped into the box.
+    #[inline(always)]
+    pub fn at(&self, t: f64) -> DVec2 {
+        self.r0 + self.v * t
+    }
+
+    /// Set the velocity to `v` at internal time `now`, keeping the position there:
+    /// the path origin moves by (v_old − v) now.
+    #[inline]
+    pub fn set_velocity(&mut self, v: DVec2, now: f64) {
+        self.r0 += (self.v - v) * now;
+        self.v = v;
+    }
+}
+
+impl crate::cells::Member for Body {
+    #[inline(always)]
+    fn link(&self) -> &Link {
+        &self.link
+    }
+    #[inline(always)]
+    fn link_mut(&mut self) -> &mut Link {
+        &mut self.link
+    }
 }
 
 pub(crate) const KIND_NONE: u8 = 0;
@@ -238,7 +279,7 @@ fn test_pair(
     found: &mut Found,
 ) {
     let bi = me.bi;
-    let dr = bj.r + bj.v * (now - bj.t) - me.ri;
+    let dr = bj.at(now) - me.ri;
     let sigma = me.radius + species[bj.species as usize].radius;
     let dt = contact_time_or_inf(dr, bj.v - bi.v, sigma);
     // Kept without a branch: whether a neighbour beats the best so far is a coin
@@ -249,12 +290,12 @@ fn test_pair(
     found.code = std::hint::select_unpredictable(hit, code, found.code);
 }
 
-/// The neighbour search's view of the engine: disc records, species and cell lists.
+/// The neighbour search's view of the engine: disc records (with the cell lists'
+/// links), species and the first disc of each cell.
 struct Block<'a> {
     bodies: &'a [Body],
     species: &'a [Species],
     head: &'a [u32],
-    links: &'a [Link],
     now: f64,
 }
 
@@ -266,9 +307,9 @@ impl Block<'_> {
     fn scan_cell(&self, me: &Scanner, first: u32, code: u8, found: &mut Found) {
         let mut j = first;
         while j != NONE {
-            let ju = j as usize;
-            test_pair(me, self.species, j, &self.bodies[ju], self.now, code, found);
-            j = self.links[ju].next;
+            let bj = &self.bodies[j as usize];
+            test_pair(me, self.species, j, bj, self.now, code, found);
+            j = bj.link.next;
         }
     }
 }
@@ -286,13 +327,12 @@ impl Engine {
     pub fn new(state: State, params: EngineParams) -> Result<Engine, EngineError> {
         let n = state.len();
         let a_max = state.species.iter().map(|s| s.radius).fold(0.0, f64::max);
-        let mut grid = CellGrid::new(&state.sim_box, 2.0 * a_max, n);
-        let bodies: Vec<Body> = memory::collect(
+        let mut grid = CellGrid::new(&state.sim_box, 2.0 * a_max);
+        let mut bodies: Vec<Body> = memory::collect(
             n,
             (0..n).map(|i| Body {
-                r: state.sim_box.wrap(state.positions[i]),
+                r0: state.sim_box.wrap(state.positions[i]),
                 v: state.velocities[i],
-                t: 0.0,
                 pair_time: f64::INFINITY,
                 count: 0,
                 partner: NONE,
@@ -300,10 +340,12 @@ impl Engine {
                 kind: KIND_NONE,
                 aux: 0,
                 species: state.species_of[i],
+                link: Link::UNLINKED,
             }),
         );
-        for (i, b) in bodies.iter().enumerate() {
-            grid.insert(i as u32, grid.coords_of(b.r));
+        for i in 0..n {
+            let c = grid.coords_of(bodies[i].r0);
+            grid.insert(&mut bodies, i as u32, c);
         }
         let mut engine = Engine {
             sim_box: state.sim_box,
@@ -397,7 +439,7 @@ impl Engine {
     /// Position of disc `i` at the current time (length), inside the box.
     pub fn position(&self, i: usize) -> DVec2 {
         let b = &self.bodies[self.index_of[i] as usize];
-        self.sim_box.wrap(b.r + b.v * (self.clock - b.t))
+        self.sim_box.wrap(b.at(self.clock))
     }
 
     /// Velocity of disc `i` (length/time).
@@ -482,7 +524,6 @@ impl Engine {
             for d in self.queue.upcoming() {
                 if let Some(b) = self.bodies.get(d as usize) {
                     memory::prefetch(b);
-                    memory::prefetch(&self.grid.link[d as usize]);
                 }
             }
             if self.look_ahead && self.queue.moved_on() {
@@ -606,7 +647,7 @@ impl Engine {
         self.rebase_clock();
         let n = self.len();
         let mut keys: Vec<(u64, u32)> = (0..n)
-            .map(|i| (morton(self.grid.cell_of(i)), i as u32))
+            .map(|i| (morton(self.bodies[i].link.coords()), i as u32))
             .collect();
         keys.sort_unstable();
         let perm: Vec<usize> = keys.iter().map(|k| k.1 as usize).collect();
@@ -625,7 +666,6 @@ impl Engine {
         permute(&mut self.bodies, &perm);
         permute(&mut self.last_collision, &perm);
         permute(&mut self.label, &perm);
-        let cells: Vec<[u32; 2]> = perm.iter().map(|&o| self.grid.cell_of(o)).collect();
         for b in self.bodies.iter_mut() {
             if b.partner != NONE {
                 b.partner = inv[b.partner as usize];
@@ -637,7 +677,8 @@ impl Engine {
         }
         self.grid.head.fill(NONE);
         for k in (0..n).rev() {
-            self.grid.insert(k as u32, cells[k]);
+            let c = self.bodies[k].link.coords();
+            self.grid.insert(&mut self.bodies, k as u32, c);
         }
     }
 
@@ -659,8 +700,7 @@ impl Engine {
             return;
         }
         for b in self.bodies.iter_mut() {
-            b.r += b.v * (shift - b.t);
-            b.t = 0.0;
+            b.r0 = b.at(shift);
             b.pair_time -= shift;
         }
         for t in self.last_collision.iter_mut() {
@@ -669,15 +709,6 @@ impl Engine {
         self.queue.shift_origin(shift);
         self.epoch += shift;
         self.clock = 0.0;
-    }
-
-    /// Bring disc `i`'s stored state to the current time.
-    #[inline]
-    fn sync(&mut self, i: usize) {
-        let now = self.clock;
-        let b = &mut self.bodies[i];
-        b.r += b.v * (now - b.t);
-        b.t = now;
     }
 
     #[inline]
@@ -693,10 +724,8 @@ impl Engine {
     }
 
     fn collide(&mut self, i: usize, j: usize, shift_code: u8) -> PairCollision {
-        self.sync(i);
-        self.sync(j);
         let now = self.clock;
-        let dr = self.bodies[j].r + self.shift_of(shift_code) - self.bodies[i].r;
+        let dr = self.bodies[j].at(now) + self.shift_of(shift_code) - self.bodies[i].at(now);
         // The unnormalised contact vector goes to the collision rule (see
         // carom_core::collision: energy is then conserved without rounding bias).
         let (vi, vj) = (self.bodies[i].v, self.bodies[j].v);
@@ -712,8 +741,8 @@ impl Engine {
         let res = resolve(vi, vj, mi, mj, dr, rule);
         // r_ij = r_i − r_j = −dr.
         let virial = -dr.dot(res.impulse_i);
-        self.bodies[i].v = res.vi;
-        self.bodies[j].v = res.vj;
+        self.bodies[i].set_velocity(res.vi, now);
+        self.bodies[j].set_velocity(res.vj, now);
         self.bodies[i].count = self.bodies[i].count.wrapping_add(1);
         self.bodies[j].count = self.bodies[j].count.wrapping_add(1);
         if tc > 0.0 {
@@ -742,7 +771,6 @@ impl Engine {
     }
 
     fn hit_wall(&mut self, i: usize, aux: u8) -> WallCollision {
-        self.sync(i);
         let k = (aux / 2) as usize;
         let side = if aux % 2 == 1 {
             WallSide::High
@@ -757,7 +785,7 @@ impl Engine {
         let before = self.bodies[i].v;
         let mut after = before;
         after[k] = wall_reflect(before[k], e);
-        self.bodies[i].v = after;
+        self.bodies[i].set_velocity(after, self.clock);
         self.bodies[i].count = self.bodies[i].count.wrapping_add(1);
         let impulse = m * (before[k] - after[k]).abs();
         let energy_lost = 0.5 * m * (1.0 - e * e) * before[k] * before[k];
@@ -780,27 +808,27 @@ impl Engine {
     fn cross(&mut self, i: usize, aux: u8) {
         let k = (aux / 2) as usize;
         let up = aux % 2 == 1;
-        let mut c = self.grid.cell_of(i);
+        let mut c = self.bodies[i].link.coords();
         let n = self.grid.n[k];
-        self.grid.remove(i as u32);
+        self.grid.remove(&mut self.bodies, i as u32);
         let mut wrapped = true;
         if up {
             if c[k] + 1 == n {
                 // Leaving through the periodic edge at L: re-enter at 0.
                 c[k] = 0;
-                self.bodies[i].r[k] -= self.sim_box.size[k];
+                self.bodies[i].r0[k] -= self.sim_box.size[k];
             } else {
                 c[k] += 1;
                 wrapped = false;
             }
         } else if c[k] == 0 {
             c[k] = n - 1;
-            self.bodies[i].r[k] += self.sim_box.size[k];
+            self.bodies[i].r0[k] += self.sim_box.size[k];
         } else {
             c[k] -= 1;
             wrapped = false;
         }
-        self.grid.insert(i as u32, c);
+        self.grid.insert(&mut self.bodies, i as u32, c);
         self.stats.cell_crossings += 1;
         if wrapped {
             // The position moved by one box length: partners' image shifts change.
@@ -817,7 +845,7 @@ impl Engine {
     fn predict(&mut self, i: usize) {
         let now = self.clock;
         let bi = self.bodies[i];
-        let ri = bi.r + bi.v * (now - bi.t);
+        let ri = bi.at(now);
         let mut found = Found::NOTHING;
         self.scan(i, ri, [-1, 1], [-1, 1], &mut found);
         let (boundary, kind, aux) = self.boundary_event(i, ri, bi.v);
@@ -842,7 +870,7 @@ impl Engine {
     fn predict_after_crossing(&mut self, i: usize, k: usize, up: bool) {
         let now = self.clock;
         let bi = self.bodies[i];
-        let ri = bi.r + bi.v * (now - bi.t);
+        let ri = bi.at(now);
         let mut found = Found::NOTHING;
         let o = if up { 1 } else { -1 };
         let (xs, ys) = if k == 0 {
@@ -881,12 +909,11 @@ impl Engine {
             bodies: &self.bodies,
             species: &self.species,
             head: &grid.head,
-            links: &grid.link,
             now: self.clock,
         };
         let bi = &self.bodies[i];
         let radius = self.species[bi.species as usize].radius;
-        let c = grid.cell_of(i);
+        let c = bi.link.coords();
         let [nx, ny] = grid.n;
         let head = block.head;
         if c[0] >= 1 && c[0] + 1 < nx && c[1] >= 1 && c[1] + 1 < ny {
@@ -955,7 +982,7 @@ impl Engine {
     fn boundary_event(&self, i: usize, ri: DVec2, v: DVec2) -> (f64, u8, u8) {
         let mut best = f64::INFINITY;
         let (mut kind, mut aux) = (KIND_NONE, 0u8);
-        let c = self.grid.cell_of(i);
+        let c = self.bodies[i].link.coords();
         for k in 0..2 {
             // Without branches: which axis is crossed first is a coin toss.
             let (dt, up) = self.grid.crossing_time(k, c[k], ri[k], v[k]);

@@ -15,7 +15,7 @@
 //!   variance kT/m, physics.md §6), shifted to zero total momentum and scaled so that
 //!   the kinetic temperature 2K/f equals kT exactly; or all of one speed per species.
 
-use crate::cells::CellGrid;
+use crate::cells::{CellGrid, Link};
 use crate::error::InitError;
 use crate::state::{degrees_of_freedom, packing_fraction, State};
 use carom_core::{Boundary, DVec2, SimBox, Species};
@@ -595,7 +595,8 @@ fn lattice(
 fn random(spec: &SystemSpec, species_of: &[u16], rng: &mut Pcg64) -> Result<Vec<DVec2>, InitError> {
     let n = species_of.len();
     let a_max = spec.species.iter().map(|s| s.radius).fold(0.0, f64::max);
-    let mut grid = CellGrid::new(&spec.sim_box, 2.0 * a_max, n);
+    let mut grid = CellGrid::new(&spec.sim_box, 2.0 * a_max);
+    let mut links = vec![Link::UNLINKED; n];
     // Largest discs first: a large disc needs a hole its own size, which the small
     // ones would already have filled (a radius ratio of 4 at η = 0.25 failed
     // small-first). The discs keep their numbers; only the order of insertion (and
@@ -621,9 +622,18 @@ fn random(spec: &SystemSpec, species_of: &[u16], rng: &mut Pcg64) -> Result<Vec<
                     a + rng.random::<f64>() * (l - 2.0 * a)
                 };
             }
-            if !overlaps_any(&grid, &spec.sim_box, &pos, species_of, &spec.species, r, a) {
+            if !overlaps_any(
+                &grid,
+                &links,
+                &spec.sim_box,
+                &pos,
+                species_of,
+                &spec.species,
+                r,
+                a,
+            ) {
                 let c = grid.coords_of(r);
-                grid.insert(i as u32, c);
+                grid.insert(&mut links, i as u32, c);
                 pos[i] = r;
                 placed_so_far += 1;
                 placed = true;
@@ -646,8 +656,10 @@ fn random(spec: &SystemSpec, species_of: &[u16], rng: &mut Pcg64) -> Result<Vec<
     Ok(pos)
 }
 
+#[allow(clippy::too_many_arguments)]
 fn overlaps_any(
     grid: &CellGrid,
+    links: &[Link],
     sim_box: &SimBox,
     pos: &[DVec2],
     species_of: &[u16],
@@ -655,7 +667,7 @@ fn overlaps_any(
     r: DVec2,
     a: f64,
 ) -> bool {
-    grid.discs_near(grid.coords_of(r)).any(|j| {
+    grid.discs_near(links, grid.coords_of(r)).any(|j| {
         let sigma = a + species[species_of[j as usize] as usize].radius;
         sim_box.minimum_image(pos[j as usize] - r).length_squared() < sigma * sigma
     })
@@ -698,11 +710,13 @@ fn check_explicit(spec: &SystemSpec, species_of: &[u16], p: &[DVec2]) -> Result<
     }
     // Overlap check through a cell grid.
     let a_max = spec.species.iter().map(|s| s.radius).fold(0.0, f64::max);
-    let mut grid = CellGrid::new(&spec.sim_box, 2.0 * a_max, n);
+    let mut grid = CellGrid::new(&spec.sim_box, 2.0 * a_max);
+    let mut links = vec![Link::UNLINKED; n];
     for (i, &r) in p.iter().enumerate() {
         let a = spec.species[species_of[i] as usize].radius;
         if overlaps_any(
             &grid,
+            &links,
             &spec.sim_box,
             &p[..i],
             species_of,
@@ -724,7 +738,7 @@ fn check_explicit(spec: &SystemSpec, species_of: &[u16], p: &[DVec2]) -> Result<
                 }
             }
         }
-        grid.insert(i as u32, grid.coords_of(r));
+        grid.insert(&mut links, i as u32, grid.coords_of(r));
     }
     Ok(())
 }

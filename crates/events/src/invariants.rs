@@ -171,15 +171,19 @@ pub fn max_overlap(engine: &Engine) -> Option<(usize, usize, f64)> {
         .iter()
         .map(|s| s.radius)
         .fold(0.0, f64::max);
-    let mut grid = crate::cells::CellGrid::new(sim_box, 2.0 * a_max, n);
+    let mut grid = crate::cells::CellGrid::new(sim_box, 2.0 * a_max);
+    let mut links = vec![crate::cells::Link::UNLINKED; n];
     let pos: Vec<DVec2> = (0..n).map(|i| engine.position(i)).collect();
     for (i, r) in pos.iter().enumerate() {
-        grid.insert(i as u32, grid.coords_of(*r));
+        grid.insert(&mut links, i as u32, grid.coords_of(*r));
     }
     let radius = |i: usize| engine.species()[engine.species_of()[i] as usize].radius;
     let mut worst: Option<(usize, usize, f64)> = None;
     for i in 0..n {
-        for j in grid.discs_near(grid.cell_of(i)).map(|j| j as usize) {
+        for j in grid
+            .discs_near(&links, links[i].coords())
+            .map(|j| j as usize)
+        {
             if j > i {
                 let sigma = radius(i) + radius(j);
                 let d = sim_box.minimum_image(pos[j] - pos[i]).length();

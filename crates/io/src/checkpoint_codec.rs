@@ -48,11 +48,11 @@ float64 virial_sum                # sum r_ij . dp_i (length*momentum)
 float64[4] wall_impulse           # momentum given to walls x-low, x-high, y-low, y-high
 float64 energy_lost               # (energy)
 # --- per-disc delayed states ---
-float64[] x                       # position at the disc's own update time t (length)
+float64[] x                       # position at time t on the disc's straight path (length)
 float64[] y
 float64[] vx                      # velocity (length/time)
 float64[] vy
-float64[] t                       # last update time (time)
+float64[] t                       # time of that position (time); carom writes 0: x, y are the path's origin
 uint32[] collision_count
 float64[] last_collision          # time of last pair collision (-inf if none or TC off)
 float64[] event_time              # time of the pending event (+inf if none)
