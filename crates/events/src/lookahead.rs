@@ -52,8 +52,11 @@
 //! 1.2 lines of path writes per collision and was no faster.
 //! Moving the 8-byte link into the disc's own record (room made by storing the
 //! path's origin in place of a position and a last-update time) took them from
-//! 25.8 to 21.1 per collision (cachegrind, 8 MB LL, as below) and gave +10 % at
-//! N = 10⁶ and +4 % at 10⁴ (medians of 6 alternating pairs).
+//! 25.9 to 20.9 per collision (cachegrind, 8 MB LL, fetching ahead forced on, as
+//! below) and gave +10 % at N = 10⁶ and +4 % at 10⁴ (medians of 6 alternating
+//! pairs). With the link there, fetching the second disc of each cell (its number
+//! is in the first disc's record) was still slower: −6 % at N = 10⁶ (median of 8
+//! alternating pairs).
 //!
 //! The test machine's 32 MB last-level cache is shared: a pointer chase
 //! (`examples/memlat`) finds 16–22 ns per random load up to 4 MB, 35–55 ns at 5–6 MB
