@@ -343,6 +343,42 @@ mod tests {
     }
 
     #[test]
+    fn any_point_of_a_path_restores_it() {
+        // carom writes each path's origin with time 0; a checkpoint naming another
+        // point of the same line (the position at time t, as older checkpoints
+        // stored it) must restore the same paths, to rounding.
+        let mut a = channel_mixture();
+        a.run_collisions(5_000).unwrap();
+        let cp = a.checkpoint();
+        assert!(cp.times.iter().all(|&t| t == 0.0));
+        let mut moved = cp.clone();
+        for (k, (p, v)) in moved.positions.iter_mut().zip(&cp.velocities).enumerate() {
+            let t = cp.clock - 0.25 * (k % 4) as f64;
+            *p += *v * t;
+            moved.times[k] = t;
+        }
+        let b = Engine::from_checkpoint(moved).unwrap();
+        let (sa, sb) = (a.state(), b.state());
+        for (i, (pa, pb)) in sa.positions.iter().zip(&sb.positions).enumerate() {
+            let d = a.sim_box().minimum_image(*pb - *pa).length();
+            assert!(d < 1e-12, "disc {i}: restored {d} away from its path");
+        }
+        assert_eq!(sa.velocities, sb.velocities);
+        // The same position named at another time is another path: the disc is
+        // then displaced by v Δt (which shows the times are not ignored).
+        let mut off = cp.clone();
+        off.times[0] = 0.5;
+        let c = Engine::from_checkpoint(off).unwrap();
+        let ext = cp.labels[0] as usize;
+        let d = a
+            .sim_box()
+            .minimum_image(c.state().positions[ext] - sa.positions[ext])
+            .length();
+        let expected = 0.5 * cp.velocities[0].length();
+        assert!((d - expected).abs() < 1e-9, "{d} vs {expected}");
+    }
+
+    #[test]
     fn inconsistent_checkpoint_is_rejected() {
         let a = channel_mixture();
         let mut cp = a.checkpoint();
