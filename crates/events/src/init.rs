@@ -622,16 +622,7 @@ fn random(spec: &SystemSpec, species_of: &[u16], rng: &mut Pcg64) -> Result<Vec<
                     a + rng.random::<f64>() * (l - 2.0 * a)
                 };
             }
-            if !overlaps_any(
-                &grid,
-                &links,
-                &spec.sim_box,
-                &pos,
-                species_of,
-                &spec.species,
-                r,
-                a,
-            ) {
+            if !overlaps_any(&grid, &links, &spec.sim_box, &pos, radius, r, a) {
                 let c = grid.coords_of(r);
                 grid.insert(&mut links, i as u32, c);
                 pos[i] = r;
@@ -656,19 +647,19 @@ fn random(spec: &SystemSpec, species_of: &[u16], rng: &mut Pcg64) -> Result<Vec<
     Ok(pos)
 }
 
-#[allow(clippy::too_many_arguments)]
+/// Whether a disc of radius `a` at `r` would overlap one of the discs already in
+/// the grid's lists (`links`), at positions `pos` with radii `radius(j)`.
 fn overlaps_any(
     grid: &CellGrid,
     links: &[Link],
     sim_box: &SimBox,
     pos: &[DVec2],
-    species_of: &[u16],
-    species: &[Species],
+    radius: impl Fn(usize) -> f64,
     r: DVec2,
     a: f64,
 ) -> bool {
     grid.discs_near(links, grid.coords_of(r)).any(|j| {
-        let sigma = a + species[species_of[j as usize] as usize].radius;
+        let sigma = a + radius(j as usize);
         sim_box.minimum_image(pos[j as usize] - r).length_squared() < sigma * sigma
     })
 }
@@ -712,18 +703,10 @@ fn check_explicit(spec: &SystemSpec, species_of: &[u16], p: &[DVec2]) -> Result<
     let a_max = spec.species.iter().map(|s| s.radius).fold(0.0, f64::max);
     let mut grid = CellGrid::new(&spec.sim_box, 2.0 * a_max);
     let mut links = vec![Link::UNLINKED; n];
+    let radius = |j: usize| spec.species[species_of[j] as usize].radius;
     for (i, &r) in p.iter().enumerate() {
-        let a = spec.species[species_of[i] as usize].radius;
-        if overlaps_any(
-            &grid,
-            &links,
-            &spec.sim_box,
-            &p[..i],
-            species_of,
-            &spec.species,
-            r,
-            a,
-        ) {
+        let a = radius(i);
+        if overlaps_any(&grid, &links, &spec.sim_box, &p[..i], radius, r, a) {
             // Find the partner for the message.
             for (j, &q) in p[..i].iter().enumerate() {
                 let sigma = a + spec.species[species_of[j] as usize].radius;
