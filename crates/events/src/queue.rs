@@ -26,6 +26,14 @@
 //! of a disc's time therefore touches no other disc's entry. When stale entries pile
 //! up beyond a fixed bound the calendar is rebuilt from the current times.
 //!
+//! Filing into a slot far ahead costs a cache miss at large N (prefetched, through
+//! the `pending` buffer). A two-level calendar was measured against this one: far
+//! entries appended to one list per 2048 buckets and poured into a 4096-slot near
+//! calendar a list at a time, so that no write lands at a random place. At N = 10⁶
+//! it cut last-level misses from 20.9 to 18.7 per collision (cachegrind, 8 MB LL),
+//! yet ran no faster (median ratio 0.95 over 20 alternating pairs) and took 34 more
+//! bytes per disc: the writes it saved were prefetched and cost only bandwidth.
+//!
 //! The order is exactly lexicographic in (time, disc index): ties are broken by disc
 //! index, and Δ and the order of entries in a slot only affect speed, never the
 //! order of events. Keys are [`NotNan<f64>`](ordered_float::NotNan): a NaN cannot
