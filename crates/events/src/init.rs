@@ -709,7 +709,7 @@ fn check_explicit(spec: &SystemSpec, species_of: &[u16], p: &[DVec2]) -> Result<
         if overlaps_any(&grid, &links, &spec.sim_box, &p[..i], radius, r, a) {
             // Find the partner for the message.
             for (j, &q) in p[..i].iter().enumerate() {
-                let sigma = a + spec.species[species_of[j] as usize].radius;
+                let sigma = a + radius(j);
                 let d = spec.sim_box.minimum_image(q - r).length();
                 if d < sigma {
                     return Err(InitError::Overlap {
