@@ -168,6 +168,27 @@ impl Engine {
                 return Err(bad(format!("{name} is {t}, not a finite time")));
             }
         }
+        // A path is a point, a time and a velocity, all finite: anything else would
+        // put NaN into the predicted event times.
+        for (i, ((p, v), &t)) in cp
+            .positions
+            .iter()
+            .zip(&cp.velocities)
+            .zip(&cp.times)
+            .enumerate()
+        {
+            for (name, ok) in [
+                ("position", p.is_finite()),
+                ("velocity", v.is_finite()),
+                ("time", t.is_finite()),
+            ] {
+                if !ok {
+                    return Err(bad(format!(
+                        "{name} of disc {i} is not finite (position {p}, velocity {v}, time {t})"
+                    )));
+                }
+            }
+        }
         let mut index_of = vec![u32::MAX; n];
         for (k, &l) in cp.labels.iter().enumerate() {
             if l as usize >= n || index_of[l as usize] != u32::MAX {
@@ -405,5 +426,18 @@ mod tests {
         cp.cell_prev[d as usize] = (d + 1) % cp.cell_prev.len() as u32;
         let err = Engine::from_checkpoint(cp).unwrap_err().to_string();
         assert!(err.contains("back links"), "{err}");
+        // A path that is not finite: each of its three parts is named.
+        let mut cp = a.checkpoint();
+        cp.positions[2].x = f64::NAN;
+        let err = Engine::from_checkpoint(cp).unwrap_err().to_string();
+        assert!(err.contains("position of disc 2 is not finite"), "{err}");
+        let mut cp = a.checkpoint();
+        cp.velocities[4].y = f64::INFINITY;
+        let err = Engine::from_checkpoint(cp).unwrap_err().to_string();
+        assert!(err.contains("velocity of disc 4 is not finite"), "{err}");
+        let mut cp = a.checkpoint();
+        cp.times[1] = f64::NEG_INFINITY;
+        let err = Engine::from_checkpoint(cp).unwrap_err().to_string();
+        assert!(err.contains("time of disc 1 is not finite"), "{err}");
     }
 }
