@@ -16,6 +16,12 @@
 //! is seen through its periodic image, shifted by ±L. Boxes narrower than three cells
 //! work too: the same cell is then visited more than once, each time with a different
 //! image shift, which is exactly the set of images a disc can reach.
+//!
+//! The cells are as narrow as the contact distance allows: a scan's cost follows the
+//! area of its block, and wider cells save fewer crossings than they add tests.
+//! Widened by 15, 30 and 50 % (`examples/profile`, η = 0.5, one run each), cells
+//! cut crossings per collision from 0.455 to 0.39, 0.35 and 0.30, but slowed
+//! N = 10⁴ by 21, 17 and 35 % and N = 10⁶ by 16, 35 and 44 %.
 
 use crate::memory;
 use carom_core::{DVec2, SimBox};

@@ -2,7 +2,7 @@
 //!
 //! Each disc keeps its state as of its own last update ("delayed states",
 //! physics.md §1), stored as its straight path r(t) = r0 + v t on the internal
-//! clock rather than as a position and a last-update time (see [`Body`]; the two
+//! clock rather than as a position and a last-update time (see the `Body` record in the source; the two
 //! are the same line), and owns exactly one pending event: the earliest of its next
 //! pair collision, wall collision and cell crossing, found by scanning the 3 × 3
 //! block of cells around it. An event moves only the discs it touches: a velocity

@@ -34,6 +34,11 @@
 //! look-ahead from 16 to 9 mispredicted branches per collision under cachegrind's
 //! branch simulation.)
 //!
+//! All stages run at once, when the queue moves on. Spreading them over the
+//! events of a bucket instead (one stage per event, the current bucket's first, so
+//! that fewer loads are asked for at once) was slower: median 0.85 of 4
+//! alternating pairs at N = 10⁶, and 0.76 in one run with the farthest stage first.
+//!
 //! At N = 10⁶ what it loads counts more than what it computes: leaving out
 //! needless loads (the stale entries) gave +14 %, adding loads of the second disc
 //! of each cell cost 5 %, and the cheaper branches made no measurable difference
