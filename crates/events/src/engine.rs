@@ -2,12 +2,12 @@
 //!
 //! Each disc keeps its state as of its own last update ("delayed states",
 //! physics.md §1), stored as its straight path r(t) = r0 + v t on the internal
-//! clock rather than as a position and a last-update time (see the `Body` record in the source; the two
-//! are the same line), and owns exactly one pending event: the earliest of its next
-//! pair collision, wall collision and cell crossing, found by scanning the 3 × 3
-//! block of cells around it. An event moves only the discs it touches: a velocity
-//! change moves the path's origin so that the path passes through the disc's
-//! position at that instant.
+//! clock rather than as a position and a last-update time (see the `Body` record
+//! in the source; the two are the same line), and owns exactly one pending event:
+//! the earliest of its next pair collision, wall collision and cell crossing, found
+//! by scanning the 3 × 3 block of cells around it. An event moves only the discs it
+//! touches: a velocity change moves the path's origin so that the path passes
+//! through the disc's position at that instant.
 //!
 //! A pending pair event remembers the partner's collision counter at prediction
 //! time; every velocity change (and every periodic wrap) bumps a disc's counter, so
