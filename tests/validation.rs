@@ -606,13 +606,17 @@ fn eos_fluid(key: &'static str, title: &str, etas: &[f64], scale: f64) {
     frag.finish();
 }
 
+/// 10⁷ collisions: the collision-rate check's band (± 0.1 %) must be several standard
+/// errors wide. At 3·10⁶ collisions (SE 3.7·10⁻⁴) it was 2.7 SE, and a change of
+/// rounding alone moved the value from −0.0002 to −0.0011 (the long case, with its
+/// SE of 10⁻⁴, stayed at the expected NVE offset).
 #[test]
 fn case1_eos_fluid_short() {
     eos_fluid(
         "1a-eos-fluid-short",
         "1/2 EOS + Enskog, fluid (short)",
         &[0.4],
-        0.3,
+        1.0,
     );
 }
 
