@@ -22,6 +22,11 @@
 //! Widened by 15, 30 and 50 % (`examples/profile`, η = 0.5, one run each), cells
 //! cut crossings per collision from 0.455 to 0.39, 0.35 and 0.30, but slowed
 //! N = 10⁴ by 21, 17 and 35 % and N = 10⁶ by 16, 35 and 44 %.
+//!
+//! The heads lie row by row, so a block's heads span three rows (about 3.4 cache
+//! lines). Heads stored in tiles of 4 × 4 cells, one cache line each (2.25 lines
+//! per block on average), were slower: 0.91 at N = 10⁶ and 0.92 at N = 10⁴
+//! (η = 0.5, both builds side by side on the two cores, medians of 8 and 6 runs).
 
 use crate::memory;
 use carom_core::{DVec2, SimBox};

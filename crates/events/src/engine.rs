@@ -193,7 +193,10 @@ pub struct Engine {
     pub(crate) reported: f64,
     pub(crate) same_time_collisions: u64,
     pub(crate) stats: Stats,
-    /// External (user) index of each internal slot.
+    /// External (user) index of each internal slot. (Kept instead beside each
+    /// disc's event time in the queue, which every event reads anyway, it saved
+    /// no measurable time at N = 10⁶ — 0.98 and 1.03 in two series of runs — for
+    /// 4 more bytes per disc.)
     pub(crate) label: Vec<u32>,
     /// Internal slot of each external index.
     pub(crate) index_of: Vec<u32>,
