@@ -46,9 +46,9 @@
 //! nearest first instead of farthest first, 6 % (0.94); fetching for a crossing
 //! only the strip of three cells its scan reads, instead of the whole block around
 //! the cell it enters, 10 % (0.90: the disc's next events read the rest). Hints
-//! into L2 only for the stages two or more buckets ahead (1.01), the second disc of
-//! each cell of the current bucket's blocks (0.99) and renumbering every 4 N
-//! collisions instead of 16 N (1.02) made no measurable difference.
+//! into L2 only for the stages two or more buckets ahead (1.01) and the second
+//! disc of each cell of the current bucket's blocks (0.99) made no measurable
+//! difference.
 //!
 //! At N = 10⁶ what it loads counts more than what it computes: leaving out
 //! needless loads (the stale entries) gave +14 %, adding loads of the second disc
