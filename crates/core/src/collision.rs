@@ -100,7 +100,11 @@ pub fn normal_restitution(
 /// a fused multiply-add, and TwoSum; Ogita, Rump & Oishi, SIAM J. Sci. Comput. 26,
 /// 1955 (2005)), and the quotient is corrected by its remainder. A rounding error
 /// here changes the kinetic energy of the collision to first order, so it must not
-/// be biased (see the module docs).
+/// be biased (see the module docs). (On a baseline x86-64 build `mul_add` calls a
+/// library routine that picks the fma instruction at run time, about 20
+/// instructions per collision; Dekker's product with Veltkamp's splitting, which
+/// needs no fma, gave the same trajectory and was no faster: 0.996, median of 8
+/// runs side by side at N = 10⁴.)
 #[inline]
 pub fn normal_ratio(g: DVec2, n: DVec2) -> f64 {
     let (d, d_err) = dot_compensated(g, n);
