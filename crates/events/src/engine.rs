@@ -195,7 +195,7 @@ pub struct Engine {
     pub(crate) stats: Stats,
     /// External (user) index of each internal slot. (Kept instead beside each
     /// disc's event time in the queue, which every event reads anyway, in 16-byte
-    /// entries: +6 % at N = 10⁶ (+3 % with the release profile's fat LTO) but −4 %
+    /// entries: +6 % at N = 10⁶ (+3 % with the release profile's fat LTO) but −3 %
     /// at 10⁴ with fat LTO, where the event times then spread over twice the memory
     /// (+1.2 misses of a 512 KiB L2 per collision, cachegrind); in packed 12-byte
     /// entries: 1.00 at 10⁶ and 0.98 at 10⁴. Medians of 6–20 runs of both builds
