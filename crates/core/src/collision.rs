@@ -116,13 +116,21 @@ pub fn normal_ratio(g: DVec2, n: DVec2) -> f64 {
 }
 
 /// a·b as an unevaluated sum (value, error) accurate to about twice the working
-/// precision: the products split exactly by fma (TwoProduct), the sum by TwoSum.
+/// precision: the products split exactly by TwoProduct, the sum by TwoSum.
 #[inline]
 fn dot_compensated(a: DVec2, b: DVec2) -> (f64, f64) {
-    let (p, q) = (a.x * b.x, a.y * b.y);
-    let (p_err, q_err) = (a.x.mul_add(b.x, -p), a.y.mul_add(b.y, -q));
+    let (p, p_err) = two_product(a.x, b.x);
+    let (q, q_err) = two_product(a.y, b.y);
     let (s, s_err) = two_sum(p, q);
     (s, p_err + q_err + s_err)
+}
+
+/// a b as (rounded product, its exact rounding error), by one fused multiply-add
+/// (TwoProduct).
+#[inline]
+fn two_product(a: f64, b: f64) -> (f64, f64) {
+    let p = a * b;
+    (p, a.mul_add(b, -p))
 }
 
 /// a + b as (rounded sum, its exact rounding error) (Knuth's TwoSum).
@@ -248,15 +256,14 @@ mod tests {
 
     /// Σ m |v|²/2 over the given discs as an unevaluated sum (value, error), exact
     /// to about 10⁻³² relative: each square and its product with the mass split
-    /// exactly by fma, the terms added by TwoSum.
+    /// exactly by TwoProduct, the terms added by TwoSum.
     fn kinetic_exact(discs: &[(f64, DVec2)]) -> (f64, f64) {
         let (mut hi, mut lo) = (0.0f64, 0.0f64);
         for &(m, v) in discs {
             for x in [v.x, v.y] {
-                let sq = x * x;
-                let sq_err = x.mul_add(x, -sq);
-                let term = 0.5 * m * sq;
-                let term_err = (0.5 * m).mul_add(sq, -term) + 0.5 * m * sq_err;
+                let (sq, sq_err) = two_product(x, x);
+                let (term, term_err) = two_product(0.5 * m, sq);
+                let term_err = term_err + 0.5 * m * sq_err;
                 let (sum, sum_err) = two_sum(hi, term);
                 lo += sum_err + term_err;
                 hi = sum;
