@@ -188,6 +188,14 @@ impl Engine {
                     )));
                 }
             }
+            // The path origin p − v t, which the engine stores, must be finite too:
+            // finite parts can still overflow (a huge speed times a huge time).
+            if !(*p - *v * t).is_finite() {
+                return Err(bad(format!(
+                    "path of disc {i} overflows: position {p} − velocity {v} × time {t} \
+                     is not finite"
+                )));
+            }
         }
         let mut index_of = vec![u32::MAX; n];
         for (k, &l) in cp.labels.iter().enumerate() {
@@ -439,5 +447,11 @@ mod tests {
         cp.times[1] = f64::NEG_INFINITY;
         let err = Engine::from_checkpoint(cp).unwrap_err().to_string();
         assert!(err.contains("time of disc 1 is not finite"), "{err}");
+        // Finite parts whose path origin p − v t overflows.
+        let mut cp = a.checkpoint();
+        cp.velocities[3] = DVec2::new(1e300, 0.0);
+        cp.times[3] = 1e300;
+        let err = Engine::from_checkpoint(cp).unwrap_err().to_string();
+        assert!(err.contains("path of disc 3 overflows"), "{err}");
     }
 }
