@@ -413,3 +413,58 @@ fn lossy_walls_dissipate_half_m_one_minus_e2_vn2() {
         20_000,
     );
 }
+
+/// The runaway guard counts collisions at one instant, and nothing else: a clock
+/// moved on by a cell crossing, a recomputed prediction or an observation starts a
+/// new instant. With a limit of one collision per instant, a strongly inelastic
+/// system (where rounding leaves pairs in contact, meeting again at once) must only
+/// ever stop at an instant that really held a second collision.
+#[test]
+fn runaway_guard_counts_only_collisions_at_one_instant() {
+    let params = EngineParams {
+        restitution: Restitution::Normal(0.1),
+        tc: 0.0,
+        max_events_without_time_advance: 1,
+    };
+    let mut stops = 0;
+    for seed in 1..=8 {
+        let mut engine =
+            Engine::new(state(400, 0.3, [Boundary::Periodic; 2], seed), params).expect("engine");
+        // Collisions returned so far at the time of the last one.
+        let (mut last, mut at_instant) = (f64::NEG_INFINITY, 0u64);
+        for _ in 0..300_000 {
+            match engine.next_event() {
+                Ok(Some(Event::Scheduled { .. })) => {}
+                Ok(Some(ev)) => {
+                    if ev.time() == last {
+                        at_instant += 1;
+                    } else {
+                        (last, at_instant) = (ev.time(), 1);
+                    }
+                }
+                Ok(None) => break,
+                Err(EngineError::Stalled {
+                    time,
+                    events,
+                    limit,
+                }) => {
+                    assert_eq!(limit, 1);
+                    assert_eq!(
+                        (time, events),
+                        (last, at_instant + 1),
+                        "seed {seed}: stopped at t = {time} after {events} collisions there, \
+                         but the stream holds {at_instant} at its last collision time {last}"
+                    );
+                    stops += 1;
+                    break;
+                }
+                Err(e) => panic!("seed {seed}: {e}"),
+            }
+        }
+    }
+    // The scenario must actually exercise the guard.
+    assert!(
+        stops > 0,
+        "no seed reached a second collision at one instant"
+    );
+}

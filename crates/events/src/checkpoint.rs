@@ -31,7 +31,10 @@ pub struct Checkpoint {
     /// (`times`, `event_times`, `pair_times`, `last_collision`) is on this clock;
     /// `scheduled` times are the caller's.
     pub clock: f64,
-    /// Collisions processed at the current instant (for the runaway guard).
+    /// Collisions processed at the current instant, `clock` (for the runaway
+    /// guard; 0 if the clock last moved for another kind of event). Checkpoints
+    /// written before this counted the collisions after the first, so such a
+    /// checkpoint taken in the middle of a burst allows one more.
     pub same_time_collisions: u64,
     /// Running totals.
     pub stats: Stats,

@@ -191,6 +191,8 @@ pub struct Engine {
     /// The current time as reported to the caller (time): `epoch + clock` rounded, or
     /// a scheduled event's own time; never decreasing.
     pub(crate) reported: f64,
+    /// Collisions so far at the instant `clock` (0 when the clock last moved for
+    /// another kind of event).
     pub(crate) same_time_collisions: u64,
     pub(crate) stats: Stats,
     /// External (user) index of each internal slot. (Kept instead beside each
@@ -544,7 +546,7 @@ impl Engine {
                 let internal = (ts - self.epoch).max(self.clock);
                 if internal <= t.into_inner() {
                     self.scheduled.pop();
-                    self.clock = internal;
+                    self.move_clock(internal);
                     self.reported = self.reported.max(ts);
                     return Ok(Some(Event::Scheduled {
                         time: self.reported,
@@ -564,7 +566,7 @@ impl Engine {
                 KIND_PAIR => {
                     let j = b.partner as usize;
                     if self.bodies[j].count != b.partner_count {
-                        self.clock = t;
+                        self.move_clock(t);
                         self.stats.stale_events += 1;
                         self.predict(i);
                         continue;
@@ -577,7 +579,7 @@ impl Engine {
                     return Ok(Some(Event::Wall(self.hit_wall(i, aux & 3))));
                 }
                 KIND_CELL => {
-                    self.clock = t;
+                    self.move_clock(t);
                     self.cross(i, aux & 3);
                 }
                 _ => unreachable!("a disc with no event has time +∞"),
@@ -624,7 +626,19 @@ impl Engine {
             .next_window(std::time::Instant::now(), self.look_ahead);
     }
 
-    /// Move the clock to collision time `t`, counting collisions at one instant.
+    /// Move the clock to time `t` (≥ now) for an event that is not a collision (a
+    /// crossing, a recomputed prediction, a scheduled event): a later time is a new
+    /// instant, at which no collision has happened yet.
+    #[inline]
+    fn move_clock(&mut self, t: f64) {
+        if t > self.clock {
+            self.clock = t;
+            self.same_time_collisions = 0;
+        }
+    }
+
+    /// Move the clock to collision time `t`, counting the collisions at one instant;
+    /// more than `max_events_without_time_advance` of them is a runaway.
     #[inline]
     fn advance_clock(&mut self, t: f64) -> Result<(), EngineError> {
         // Crossings and stale predictions move the internal clock without being
@@ -632,7 +646,7 @@ impl Engine {
         self.reported = self.reported.max(self.epoch + t);
         if t > self.clock {
             self.clock = t;
-            self.same_time_collisions = 0;
+            self.same_time_collisions = 1;
         } else {
             self.same_time_collisions += 1;
             if self.same_time_collisions > self.params.max_events_without_time_advance {

@@ -51,17 +51,17 @@ impl InitError {
 /// A failure of the running engine.
 #[derive(Debug, Clone, PartialEq, Error)]
 pub enum EngineError {
-    /// Too many events happened without the clock advancing: an inelastic collapse
+    /// Too many collisions happened at one instant: an inelastic collapse
     /// (physics.md §4) or a degenerate configuration.
     #[error(
-        "runaway: {events} consecutive events at time {time} without time advancing \
+        "runaway: {events} collisions at time {time} without time advancing \
          (limit max_events_without_time_advance = {limit}); this is inelastic collapse — \
          enable the TC model (tc > 0), raise the restitution, or lower the density"
     )]
     Stalled {
         /// Simulation time at which the clock stopped (time).
         time: f64,
-        /// Events processed at that time.
+        /// Collisions processed at that time.
         events: u64,
         /// The configured limit.
         limit: u64,
