@@ -652,7 +652,13 @@ fn maxwell_boltzmann_equipartition_in_a_mixture() {
 #[test]
 fn equal_speed_gives_one_speed_per_species() {
     for kind in [Kind::Periodic, Kind::Walls, Kind::Channel] {
-        for species in [mono(100), mixture(60, 40), mixture(61, 39)] {
+        for species in [
+            mono(100),
+            mono(3),
+            mono(101),
+            mixture(60, 40),
+            mixture(61, 39),
+        ] {
             let sp = SystemSpec {
                 velocities: Velocities::EqualSpeed,
                 temperature: 1.3,
@@ -1026,4 +1032,57 @@ fn bad_boxes_are_errors_naming_the_field() {
         };
         assert_err_names(build(&sp, "size"), "box.size.x", &format!("L_x = {x}"));
     }
+}
+
+/// A species listed with no discs changes nothing: not the lattice, not the cell
+/// size, not the trajectory (bit for bit), even when it is far larger than the
+/// discs present.
+#[test]
+fn a_species_with_no_discs_changes_nothing() {
+    use carom::events::{Engine, EngineParams};
+    let with_empty = |extra: bool| {
+        let mut species = mono(400);
+        if extra {
+            species.push(Species {
+                count: 0,
+                radius: 30.0,
+                mass: 1.0,
+            });
+        }
+        let s = spec(species, 0.5, 1.0, Kind::Periodic, 11);
+        let mut e = Engine::new(
+            build(&s, "mono").expect("η = 0.5 lattice"),
+            EngineParams::default(),
+        )
+        .expect("engine");
+        let cells = e.cells();
+        e.run_collisions(20_000).expect("run");
+        (cells, e.state().positions, e.state().velocities, e.now())
+    };
+    let (plain, padded) = (with_empty(false), with_empty(true));
+    assert_eq!(plain.0, padded.0, "cells per axis");
+    assert!(plain.1 == padded.1 && plain.2 == padded.2 && plain.3 == padded.3);
+}
+
+/// Ten discs in a box 10⁵ diameters wide: a few cells, not 2³⁰ of them (4 GB), and
+/// the run is quick.
+#[test]
+fn a_dilute_gas_in_a_huge_box_gets_few_cells() {
+    use carom::events::{Engine, EngineParams};
+    let mut s = spec(mono(10), 0.5, 1.0, Kind::Periodic, 3);
+    s.sim_box.size = DVec2::new(1e5, 1e5);
+    s.placement = Placement::Random;
+    let mut e = Engine::new(
+        build(&s, "huge box").expect("random placement"),
+        EngineParams::default(),
+    )
+    .expect("engine");
+    let [nx, ny] = e.cells();
+    assert!(
+        nx as u64 * ny as u64 <= 40,
+        "{nx} × {ny} cells for 10 discs"
+    );
+    assert!(e.heap_bytes() < 1 << 20, "{} heap bytes", e.heap_bytes());
+    // Crossings are events too: a few thousand collisions' worth of flight.
+    e.run_until(1e5).expect("run");
 }

@@ -78,6 +78,30 @@ impl Member for Link {
     }
 }
 
+/// The most cells per disc a grid gets (see [`CellGrid::new`]). Cells narrower than
+/// this allows (packing fraction above π/16 ≈ 0.2 for cells one diameter wide) are
+/// never widened.
+pub const CELLS_PER_DISC: u64 = 4;
+
+/// Cells per axis: `n` (each axis as many as fit), reduced in the same proportion
+/// on both axes until there are at most `max` in all; an axis squeezed to one cell
+/// leaves its share to the other. Never more than `n` on either axis, so cells only
+/// get wider.
+fn cap_cells(n: [u32; 2], max: u64) -> [u32; 2] {
+    let total = n[0] as u64 * n[1] as u64;
+    if total <= max {
+        return n;
+    }
+    let f = (max as f64 / total as f64).sqrt();
+    let shrink = |k: u32| ((k as f64 * f).floor() as u64).max(1);
+    // Both at least one; then each as many as the other leaves room for (more than
+    // its proportional share only when the other was squeezed to one).
+    let y = shrink(n[1]);
+    let x = (max / y).clamp(1, n[0] as u64);
+    let y = (max / x).clamp(1, n[1] as u64);
+    [x as u32, y as u32]
+}
+
 /// The geometry of the cell grid and the first disc of each cell's list (the rest
 /// of each list is in the discs' [`Link`]s, see [`Member`]).
 #[derive(Debug, Clone)]
@@ -97,12 +121,20 @@ pub struct CellGrid {
 impl CellGrid {
     /// An empty grid in `sim_box`, with cells at least `min_width` wide (the largest
     /// contact distance, 2 a_max).
-    pub fn new(sim_box: &SimBox, min_width: f64) -> Self {
+    ///
+    /// At most [`CELLS_PER_DISC`] cells per disc for `discs` discs: in a dilute
+    /// system cells as narrow as the contact distance would number far more than the
+    /// discs (10 discs in a box of 10⁵ diameters would need 2³⁰ cells, 4 GB), while
+    /// wider cells cost a scan little there (few discs per cell) and save crossings.
+    pub fn new(sim_box: &SimBox, min_width: f64, discs: usize) -> Self {
         let size = sim_box.size;
         // A hair of margin so that rounding at a cell edge never hides a contact.
         let w = min_width * (1.0 + 1e-9);
         let count = |l: f64| ((l / w).floor() as u64).clamp(1, 1 << 15) as u32;
-        let n = [count(size.x), count(size.y)];
+        let n = cap_cells(
+            [count(size.x), count(size.y)],
+            (CELLS_PER_DISC * discs.max(1) as u64).max(1),
+        );
         let width = DVec2::new(size.x / n[0] as f64, size.y / n[1] as f64);
         CellGrid {
             n,
@@ -306,9 +338,56 @@ mod tests {
             size: DVec2::new(4.5, 3.5),
             boundary: [Boundary::Periodic, Boundary::Walls { restitution: 1.0 }],
         };
-        let g = CellGrid::new(&sim_box, 1.0);
+        let g = CellGrid::new(&sim_box, 1.0, 10);
         assert_eq!(g.n, [4, 3]);
         (g, vec![Link::UNLINKED; n_discs])
+    }
+
+    /// A sparse system gets at most [`CELLS_PER_DISC`] cells per disc, none narrower
+    /// than the contact distance; a dense one keeps cells one contact distance wide.
+    #[test]
+    fn dilute_systems_get_wider_cells_not_more_of_them() {
+        let square = |l: f64| SimBox {
+            size: DVec2::new(l, l),
+            boundary: [Boundary::Periodic; 2],
+        };
+        // 10 discs in a box of 10⁵ diameters: 2³⁰ cells uncapped.
+        let g = CellGrid::new(&square(1e5), 1.0, 10);
+        assert!(g.head.len() <= 40, "{:?}", g.n);
+        assert!(g.width.min_element() >= 1.0);
+        // A dense fluid (η = 0.5, 10⁴ discs of diameter 1): 125 cells of width ~1 per axis.
+        let l = (1e4 * std::f64::consts::PI / 4.0 / 0.5).sqrt();
+        let g = CellGrid::new(&square(l), 1.0, 10_000);
+        assert_eq!(g.n, [125, 125]);
+        // A long channel squeezed to one row gives the row all the cells allowed.
+        let channel = SimBox {
+            size: DVec2::new(1e6, 1.5),
+            boundary: [Boundary::Periodic, Boundary::Walls { restitution: 1.0 }],
+        };
+        let g = CellGrid::new(&channel, 1.0, 100);
+        assert_eq!(g.n, [400, 1]);
+    }
+
+    proptest! {
+        /// Whatever the box and the number of discs: cells are at least the
+        /// contact distance wide, and there are at most CELLS_PER_DISC per disc
+        /// unless the box fits no more than that many narrowest cells anyway.
+        #[test]
+        fn cell_counts_are_capped_and_wide_enough(
+            ex in -0.3f64..7.0, ey in -0.3f64..7.0, discs in 1usize..100_000,
+        ) {
+            // Edges from half a diameter to 10⁷, uniform in the exponent (so that
+            // long channels one cell wide come up as often as squares).
+            let (lx, ly) = (10f64.powf(ex), 10f64.powf(ey));
+            let sim_box = SimBox { size: DVec2::new(lx, ly), boundary: [Boundary::Periodic; 2] };
+            let g = CellGrid::new(&sim_box, 1.0, discs);
+            prop_assert!(g.width.x >= 1.0 || g.n[0] == 1);
+            prop_assert!(g.width.y >= 1.0 || g.n[1] == 1);
+            prop_assert!(g.head.len() as u64 <= CELLS_PER_DISC * discs as u64);
+            // Each axis has at most as many cells as fit.
+            prop_assert!(g.n[0] as f64 <= (lx / 1.0).floor().max(1.0));
+            prop_assert!(g.n[1] as f64 <= (ly / 1.0).floor().max(1.0));
+        }
     }
 
     /// The discs of cell `c` in list order.

@@ -4,7 +4,7 @@
 //! caller's scheduled events. Plain data: the io crate decides how to store it.
 
 use crate::cells::{CellGrid, Link};
-use crate::engine::{Body, Engine, EngineParams, Stats, KIND_CELL};
+use crate::engine::{largest_radius, Body, Engine, EngineParams, Stats, KIND_CELL};
 use crate::error::EngineError;
 use crate::memory;
 use crate::queue::EventQueue;
@@ -213,8 +213,19 @@ impl Engine {
         for (k, &l) in cp.labels.iter().enumerate() {
             species_of_ext[l as usize] = cp.species_of[k];
         }
-        let a_max = cp.species.iter().map(|s| s.radius).fold(0.0, f64::max);
-        let mut grid = CellGrid::new(&cp.sim_box, 2.0 * a_max);
+        // The grid the engine would build for this state; failing that, the one
+        // carom built before cells were capped per disc and sized by the species
+        // present (the grid decides when crossings move the clock, so a resumed run
+        // must keep the grid it was written with to continue bit for bit).
+        let a_max = largest_radius(&cp.species, &cp.species_of);
+        let mut grid = CellGrid::new(&cp.sim_box, 2.0 * a_max, n);
+        if cp.cell_head.len() != grid.head.len() {
+            let a_all = cp.species.iter().map(|s| s.radius).fold(0.0, f64::max);
+            let old = CellGrid::new(&cp.sim_box, 2.0 * a_all, usize::MAX / 4);
+            if old.head.len() == cp.cell_head.len() {
+                grid = old;
+            }
+        }
         if cp.cell_head.len() != grid.head.len() {
             return Err(bad(format!(
                 "{} cells stored, the box needs {}",

@@ -324,6 +324,21 @@ impl Block<'_> {
     }
 }
 
+/// The largest radius among the species that have discs (length; 0 for none): it
+/// sets the width of the cells, so a species listed with no discs must not.
+pub(crate) fn largest_radius(species: &[Species], species_of: &[u16]) -> f64 {
+    let mut present = vec![false; species.len()];
+    for &s in species_of {
+        present[s as usize] = true;
+    }
+    species
+        .iter()
+        .zip(present)
+        .filter(|(_, p)| *p)
+        .map(|(s, _)| s.radius)
+        .fold(0.0, f64::max)
+}
+
 #[inline]
 fn time_key(t: f64) -> Time {
     NotNan::new(t).expect("event times are never NaN: inputs are validated finite")
@@ -336,8 +351,8 @@ impl Engine {
     /// rules (finite values, discs inside the box, no overlap).
     pub fn new(state: State, params: EngineParams) -> Result<Engine, EngineError> {
         let n = state.len();
-        let a_max = state.species.iter().map(|s| s.radius).fold(0.0, f64::max);
-        let mut grid = CellGrid::new(&state.sim_box, 2.0 * a_max);
+        let a_max = largest_radius(&state.species, &state.species_of);
+        let mut grid = CellGrid::new(&state.sim_box, 2.0 * a_max, n);
         let mut bodies: Vec<Body> = memory::collect(
             n,
             (0..n).map(|i| Body {

@@ -164,6 +164,16 @@ impl SystemSpec {
         })
     }
 
+    /// The largest radius of the species that have discs (length): a species with
+    /// count 0 sets neither the lattice spacing nor the cell size.
+    fn largest_radius(&self) -> f64 {
+        self.species
+            .iter()
+            .filter(|s| s.count > 0)
+            .map(|s| s.radius)
+            .fold(0.0, f64::max)
+    }
+
     fn validate(&self) -> Result<(), InitError> {
         if self.species.is_empty() {
             return Err(InitError::invalid(
@@ -210,7 +220,7 @@ impl SystemSpec {
                     ));
                 }
             }
-            let a_max = self.species.iter().map(|s| s.radius).fold(0.0, f64::max);
+            let a_max = self.largest_radius();
             if self.sim_box.size[k] <= 2.0 * a_max {
                 return Err(InitError::invalid(
                     format!("box.size.{name}"),
@@ -544,7 +554,7 @@ fn best_lattice(sim_box: &SimBox, n: usize, a: f64) -> (Arrangement, f64) {
 /// box of this aspect ratio and these boundaries (by bisection on η; for messages).
 fn lattice_limit(spec: &SystemSpec) -> f64 {
     let n: usize = spec.species.iter().map(|s| s.count).sum();
-    let a = spec.species.iter().map(|s| s.radius).fold(0.0, f64::max);
+    let a = spec.largest_radius();
     let aspect = spec.sim_box.size.x / spec.sim_box.size.y;
     let (mut lo, mut hi) = (0.0, 0.9069);
     for _ in 0..40 {
@@ -566,7 +576,7 @@ fn lattice(
     rng: &mut Pcg64,
 ) -> Result<Vec<DVec2>, InitError> {
     let n = species_of.len();
-    let a = spec.species.iter().map(|s| s.radius).fold(0.0, f64::max);
+    let a = spec.largest_radius();
     let (lat, d) = best_lattice(&spec.sim_box, n, a);
     if d < 2.0 * a {
         return Err(InitError::invalid(
@@ -594,8 +604,8 @@ fn lattice(
 
 fn random(spec: &SystemSpec, species_of: &[u16], rng: &mut Pcg64) -> Result<Vec<DVec2>, InitError> {
     let n = species_of.len();
-    let a_max = spec.species.iter().map(|s| s.radius).fold(0.0, f64::max);
-    let mut grid = CellGrid::new(&spec.sim_box, 2.0 * a_max);
+    let a_max = spec.largest_radius();
+    let mut grid = CellGrid::new(&spec.sim_box, 2.0 * a_max, n);
     let mut links = vec![Link::UNLINKED; n];
     // Largest discs first: a large disc needs a hole its own size, which the small
     // ones would already have filled (a radius ratio of 4 at η = 0.25 failed
@@ -700,8 +710,8 @@ fn check_explicit(spec: &SystemSpec, species_of: &[u16], p: &[DVec2]) -> Result<
         }
     }
     // Overlap check through a cell grid.
-    let a_max = spec.species.iter().map(|s| s.radius).fold(0.0, f64::max);
-    let mut grid = CellGrid::new(&spec.sim_box, 2.0 * a_max);
+    let a_max = spec.largest_radius();
+    let mut grid = CellGrid::new(&spec.sim_box, 2.0 * a_max, n);
     let mut links = vec![Link::UNLINKED; n];
     let radius = |j: usize| spec.species[species_of[j] as usize].radius;
     for (i, &r) in p.iter().enumerate() {

@@ -166,12 +166,8 @@ fn momentum(engine: &Engine) -> (DVec2, f64) {
 pub fn max_overlap(engine: &Engine) -> Option<(usize, usize, f64)> {
     let sim_box = engine.sim_box();
     let n = engine.len();
-    let a_max = engine
-        .species()
-        .iter()
-        .map(|s| s.radius)
-        .fold(0.0, f64::max);
-    let mut grid = crate::cells::CellGrid::new(sim_box, 2.0 * a_max);
+    let a_max = crate::engine::largest_radius(engine.species(), engine.species_of());
+    let mut grid = crate::cells::CellGrid::new(sim_box, 2.0 * a_max, n);
     let mut links = vec![crate::cells::Link::UNLINKED; n];
     let pos: Vec<DVec2> = (0..n).map(|i| engine.position(i)).collect();
     for (i, r) in pos.iter().enumerate() {
