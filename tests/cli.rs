@@ -424,6 +424,42 @@ fn ctrl_c_finishes_the_log_and_resume_continues_it() {
     assert_eq!(j["summary"]["stop_reason"], "time");
     assert!((f(&j["summary"]["sim_time"]) - (t_stop + 1.0)).abs() < 1e-9);
     assert_eq!(j["run"]["resumed_from"], "long.mcap");
+    // Resuming into an existing other file needs --force, as `run` does; the file
+    // is left as it was.
+    let before = std::fs::read(dir.join("more.mcap")).unwrap();
+    let again = [
+        "resume",
+        "long.mcap",
+        "--out",
+        "more.mcap",
+        "--until",
+        &until,
+        "--quiet",
+    ];
+    let out = carom(&dir, &again);
+    assert_eq!(out.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("--force"));
+    let out = carom(
+        &dir,
+        &[
+            "run",
+            "--resume",
+            "long.mcap",
+            "--out",
+            "more.mcap",
+            "--quiet",
+        ],
+    );
+    assert_eq!(out.status.code(), Some(2));
+    assert_eq!(std::fs::read(dir.join("more.mcap")).unwrap(), before);
+    ok(&carom(&dir, &[&again[..], &["--force"]].concat()));
+    // --dry-run only prints a new run's configuration: with --resume it is a usage
+    // error, not a run.
+    let out = carom(
+        &dir,
+        &["run", "--resume", "more.mcap", "--dry-run", "--quiet"],
+    );
+    assert_eq!(out.status.code(), Some(2));
 }
 
 #[test]

@@ -61,7 +61,7 @@ pub struct RunArgs {
     #[arg(short, long)]
     pub force: bool,
     /// Instead of a new run, continue this log (same as `carom resume FILE`).
-    #[arg(long, value_name = "FILE", conflicts_with_all = ["config", "set"])]
+    #[arg(long, value_name = "FILE", conflicts_with_all = ["config", "set", "dry_run"])]
     pub resume: Option<PathBuf>,
     /// Print the resolved configuration and exit without running.
     #[arg(long)]
@@ -86,6 +86,10 @@ pub struct ResumeArgs {
     /// Run until this many collisions in total instead of the log's own stop.
     #[arg(long, value_name = "N")]
     pub collisions: Option<u64>,
+    /// Overwrite the --out file if it exists (continuing FILE in place needs no
+    /// --force).
+    #[arg(short, long)]
+    pub force: bool,
     /// No progress display.
     #[arg(short, long)]
     pub quiet: bool,

@@ -169,6 +169,7 @@ pub fn run(args: RunArgs) -> Result<ExitCode, CliError> {
             out: args.out,
             until: None,
             collisions: None,
+            force: args.force,
             quiet: args.quiet,
         });
     }
@@ -194,6 +195,14 @@ pub fn run(args: RunArgs) -> Result<ExitCode, CliError> {
     Ok(report(&summary.map_err(run_error)?))
 }
 
+/// Whether paths `a` and `b` name the same existing file.
+fn same_file(a: &Path, b: &Path) -> bool {
+    match (std::fs::canonicalize(a), std::fs::canonicalize(b)) {
+        (Ok(a), Ok(b)) => a == b,
+        _ => a == b,
+    }
+}
+
 /// `carom resume`.
 pub fn resume(args: ResumeArgs) -> Result<ExitCode, CliError> {
     let stop = match (args.until, args.collisions) {
@@ -207,6 +216,14 @@ pub fn resume(args: ResumeArgs) -> Result<ExitCode, CliError> {
         _ => None,
     };
     let out = args.out.unwrap_or_else(|| args.file.clone());
+    if !args.force && out.exists() && !same_file(&out, &args.file) {
+        return Err(CliError::Usage(format!(
+            "{} exists; use --force to overwrite it, choose another --out, or leave \
+             --out away to continue {} in place",
+            out.display(),
+            args.file.display()
+        )));
+    }
     install_ctrlc();
     let mut display = Display::new(args.quiet);
     let mut progress = |p: &Progress| display.update(p);
