@@ -689,7 +689,9 @@ fn equal_speed_gives_one_speed_per_species() {
             // The directions are random, not all the same.
             let dirs: Vec<DVec2> = s.velocities.iter().map(|v| v.normalize()).collect();
             assert!(dirs.iter().any(|d| d.dot(dirs[0]) < 0.5), "{what}");
-            if species.iter().all(|sp| sp.count % 2 == 0) {
+            // Odd counts end with three discs at 120°: only a species of one disc
+            // cannot balance its momentum.
+            if species.iter().all(|sp| sp.count >= 2) {
                 let (p, scale) = momentum(&s);
                 assert!(p.length() <= 1e-12 * scale, "{what}: momentum {p}");
             }

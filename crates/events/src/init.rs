@@ -752,23 +752,32 @@ fn maxwell_boltzmann(spec: &SystemSpec, species_of: &[u16], rng: &mut Pcg64) -> 
 }
 
 fn equal_speed(spec: &SystemSpec, species_of: &[u16], rng: &mut Pcg64) -> Vec<DVec2> {
-    // Discs of a species come in ± pairs so that momentum is zero and speeds equal.
+    // Discs of a species come in ± pairs, and an odd number of them ends with three
+    // at 120° to each other, so that momentum is zero and speeds equal. (A species
+    // of one disc cannot balance itself: its momentum is left as it is.)
     let n = species_of.len();
     let f = degrees_of_freedom(n, &spec.sim_box) as f64;
     let mut v = vec![DVec2::ZERO; n];
     let mut k = 0;
     while k < n {
         let s = species_of[k] as usize;
+        let left = species_of[k..]
+            .iter()
+            .take_while(|&&x| x as usize == s)
+            .count();
         let speed = (2.0 * spec.temperature * f / (2.0 * n as f64) / spec.species[s].mass).sqrt();
         let phi = rng.random::<f64>() * std::f64::consts::TAU;
         let u = DVec2::from_angle(phi) * speed;
-        v[k] = u;
-        if k + 1 < n && species_of[k + 1] as usize == s {
-            v[k + 1] = -u;
-            k += 2;
-        } else {
-            k += 1;
+        let group = if left == 3 { 3 } else { left.min(2) };
+        let third = std::f64::consts::TAU / 3.0;
+        for (m, vk) in v[k..k + group].iter_mut().enumerate() {
+            *vk = match (group, m) {
+                (2, 1) => -u,
+                (3, m) => DVec2::from_angle(phi + m as f64 * third) * speed,
+                _ => u,
+            };
         }
+        k += group;
     }
     v
 }
