@@ -80,7 +80,10 @@ impl Member for Link {
 
 /// The most cells per disc a grid gets (see [`CellGrid::new`]). Cells narrower than
 /// this allows (packing fraction above π/16 ≈ 0.2 for cells one diameter wide) are
-/// never widened.
+/// never widened. Below that the wider cells save crossings: `examples/profile`,
+/// N = 10⁴, both builds side by side (medians of 4): η = 0.02, 34.2 → 10.9 crossings
+/// per collision and 2.44× the collisions per second; η = 0.1, 5.99 → 4.27 and
+/// +8 %.
 pub const CELLS_PER_DISC: u64 = 4;
 
 /// Cells per axis: `n` (each axis as many as fit), reduced in the same proportion
