@@ -408,26 +408,7 @@ fn ctrl_c_finishes_the_log_and_resume_continues_it() {
     assert!(t_stop > 0.0);
     // Resume with a nearby stop time, into a new file.
     let until = format!("{}", t_stop + 1.0);
-    ok(&carom(
-        &dir,
-        &[
-            "resume",
-            "long.mcap",
-            "--out",
-            "more.mcap",
-            "--until",
-            &until,
-            "--quiet",
-        ],
-    ));
-    let j = json_of(&carom(&dir, &["info", "more.mcap", "--json"]));
-    assert_eq!(j["summary"]["stop_reason"], "time");
-    assert!((f(&j["summary"]["sim_time"]) - (t_stop + 1.0)).abs() < 1e-9);
-    assert_eq!(j["run"]["resumed_from"], "long.mcap");
-    // Resuming into an existing other file needs --force, as `run` does; the file
-    // is left as it was.
-    let before = std::fs::read(dir.join("more.mcap")).unwrap();
-    let again = [
+    let resume = [
         "resume",
         "long.mcap",
         "--out",
@@ -436,7 +417,15 @@ fn ctrl_c_finishes_the_log_and_resume_continues_it() {
         &until,
         "--quiet",
     ];
-    let out = carom(&dir, &again);
+    ok(&carom(&dir, &resume));
+    let j = json_of(&carom(&dir, &["info", "more.mcap", "--json"]));
+    assert_eq!(j["summary"]["stop_reason"], "time");
+    assert!((f(&j["summary"]["sim_time"]) - (t_stop + 1.0)).abs() < 1e-9);
+    assert_eq!(j["run"]["resumed_from"], "long.mcap");
+    // Resuming into an existing other file needs --force, as `run` does; the file
+    // is left as it was.
+    let before = std::fs::read(dir.join("more.mcap")).unwrap();
+    let out = carom(&dir, &resume);
     assert_eq!(out.status.code(), Some(2));
     assert!(String::from_utf8_lossy(&out.stderr).contains("--force"));
     let out = carom(
@@ -452,7 +441,7 @@ fn ctrl_c_finishes_the_log_and_resume_continues_it() {
     );
     assert_eq!(out.status.code(), Some(2));
     assert_eq!(std::fs::read(dir.join("more.mcap")).unwrap(), before);
-    ok(&carom(&dir, &[&again[..], &["--force"]].concat()));
+    ok(&carom(&dir, &[&resume[..], &["--force"]].concat()));
     // --dry-run only prints a new run's configuration: with --resume it is a usage
     // error, not a run.
     let out = carom(
