@@ -95,11 +95,10 @@ fn cap_cells(n: [u32; 2], max: u64) -> [u32; 2] {
     if total <= max {
         return n;
     }
+    // y in proportion (at least one); then each as many as the other leaves room
+    // for (more than its proportional share only when the other was squeezed to one).
     let f = (max as f64 / total as f64).sqrt();
-    let shrink = |k: u32| ((k as f64 * f).floor() as u64).max(1);
-    // Both at least one; then each as many as the other leaves room for (more than
-    // its proportional share only when the other was squeezed to one).
-    let y = shrink(n[1]);
+    let y = ((n[1] as f64 * f).floor() as u64).max(1);
     let x = (max / y).clamp(1, n[0] as u64);
     let y = (max / x).clamp(1, n[1] as u64);
     [x as u32, y as u32]
@@ -136,7 +135,7 @@ impl CellGrid {
         let count = |l: f64| ((l / w).floor() as u64).clamp(1, 1 << 15) as u32;
         let n = cap_cells(
             [count(size.x), count(size.y)],
-            (CELLS_PER_DISC * discs.max(1) as u64).max(1),
+            CELLS_PER_DISC * discs.max(1) as u64,
         );
         let width = DVec2::new(size.x / n[0] as f64, size.y / n[1] as f64);
         CellGrid {
@@ -373,8 +372,8 @@ mod tests {
 
     proptest! {
         /// Whatever the box and the number of discs: cells are at least the
-        /// contact distance wide, and there are at most CELLS_PER_DISC per disc
-        /// unless the box fits no more than that many narrowest cells anyway.
+        /// contact distance wide (or one spans the axis), there are at most
+        /// CELLS_PER_DISC per disc, and no axis has more cells than fit.
         #[test]
         fn cell_counts_are_capped_and_wide_enough(
             ex in -0.3f64..7.0, ey in -0.3f64..7.0, discs in 1usize..100_000,

@@ -213,24 +213,19 @@ impl Engine {
         for (k, &l) in cp.labels.iter().enumerate() {
             species_of_ext[l as usize] = cp.species_of[k];
         }
-        // The grid the engine would build for this state; failing that, the one
-        // carom built before cells were capped per disc and sized by the species
-        // present (the grid decides when crossings move the clock, so a resumed run
-        // must keep the grid it was written with to continue bit for bit).
+        // The grid the engine builds for this state (the grid decides when
+        // crossings move the clock, so a resumed run must have the grid it was
+        // written with to continue bit for bit).
         let a_max = largest_radius(&cp.species, &cp.species_of);
         let mut grid = CellGrid::new(&cp.sim_box, 2.0 * a_max, n);
         if cp.cell_head.len() != grid.head.len() {
-            let a_all = cp.species.iter().map(|s| s.radius).fold(0.0, f64::max);
-            let old = CellGrid::new(&cp.sim_box, 2.0 * a_all, usize::MAX / 4);
-            if old.head.len() == cp.cell_head.len() {
-                grid = old;
-            }
-        }
-        if cp.cell_head.len() != grid.head.len() {
             return Err(bad(format!(
-                "{} cells stored, the box needs {}",
+                "{} cells stored, the box needs {} (a checkpoint of a dilute system, or \
+                 of one with a species of no discs, written before carom capped the \
+                 cells at {} per disc)",
                 cp.cell_head.len(),
-                grid.head.len()
+                grid.head.len(),
+                crate::cells::CELLS_PER_DISC
             )));
         }
         // Disc indices in the lists are checked by `check_lists` below; the cells
