@@ -761,8 +761,11 @@ fn equal_speed(spec: &SystemSpec, species_of: &[u16], rng: &mut Pcg64) -> Vec<DV
     let mut k = 0;
     while k < n {
         let s = species_of[k] as usize;
+        // Discs of this species left, counted up to 4 (enough to tell a final three
+        // from a pair; counting them all made this O(N²)).
         let left = species_of[k..]
             .iter()
+            .take(4)
             .take_while(|&&x| x as usize == s)
             .count();
         let speed = (2.0 * spec.temperature * f / (2.0 * n as f64) / spec.species[s].mass).sqrt();
