@@ -4,7 +4,7 @@
 //! caller's scheduled events. Plain data: the io crate decides how to store it.
 
 use crate::cells::{CellGrid, Link};
-use crate::engine::{largest_radius, Body, Engine, EngineParams, Stats, KIND_CELL};
+use crate::engine::{largest_radius, Body, Engine, EngineParams, Stats, KIND_CELL, KIND_PAIR};
 use crate::error::EngineError;
 use crate::memory;
 use crate::queue::EventQueue;
@@ -61,8 +61,11 @@ pub struct Checkpoint {
     /// side (1 = high) or crossing 2·axis + (1 if upwards); bits 2–5: the candidate's
     /// image shift code (sx+1) + 3 (sy+1).
     pub pending: Vec<[u32; 3]>,
-    /// Time of each disc's pair candidate (+∞ if none; time). It can be later than
-    /// the pending event when a crossing or wall comes first.
+    /// Time of each disc's pair candidate where it is the pending event (time; +∞
+    /// otherwise). Not needed to resume: the engine keeps only the pending event's
+    /// time and computes a candidate's time again when a crossing needs it, so on
+    /// reading this is only checked for NaN. (Checkpoints written before that
+    /// stored the candidate's time also when a crossing or wall came first.)
     pub pair_times: Vec<f64>,
 
     /// First disc of each cell (u32::MAX for none), one entry per cell.
@@ -110,9 +113,7 @@ impl Engine {
             times: vec![0.0; n],
             counts: self.bodies.iter().map(|b| b.count).collect(),
             last_collision: self.last_collision.clone(),
-            event_times: (0..n)
-                .map(|i| self.queue.get(i as u32).into_inner())
-                .collect(),
+            event_times: self.bodies.iter().map(|b| b.event_time).collect(),
             pending: self
                 .bodies
                 .iter()
@@ -124,7 +125,17 @@ impl Engine {
                     ]
                 })
                 .collect(),
-            pair_times: self.bodies.iter().map(|b| b.pair_time).collect(),
+            pair_times: self
+                .bodies
+                .iter()
+                .map(|b| {
+                    if b.kind == KIND_PAIR {
+                        b.event_time
+                    } else {
+                        f64::INFINITY
+                    }
+                })
+                .collect(),
             cell_head: self.grid.head.clone(),
             cell_next: self.bodies.iter().map(|b| b.link.next).collect(),
             cell_prev: self.grid.prev_links(&self.bodies),
@@ -246,7 +257,7 @@ impl Engine {
                 // origins, with times 0, so this is exact for its own checkpoints).
                 r0: cp.positions[i] - cp.velocities[i] * cp.times[i],
                 v: cp.velocities[i],
-                pair_time: cp.pair_times[i],
+                event_time: cp.event_times[i],
                 count: cp.counts[i],
                 partner: cp.pending[i][0],
                 partner_count: cp.pending[i][1],
@@ -265,10 +276,10 @@ impl Engine {
         if grid.prev_links(&bodies) != cp.cell_prev {
             return Err(bad("cell lists: back links do not match the lists".into()));
         }
-        let mut queue = EventQueue::new(n);
         for (i, (&t, p)) in cp.event_times.iter().zip(&cp.pending).enumerate() {
-            let t = NotNan::new(t).map_err(|_| bad(format!("event time of disc {i} is NaN")))?;
-            queue.set(i as u32, t);
+            if t.is_nan() {
+                return Err(bad(format!("event time of disc {i} is NaN")));
+            }
             if p[0] != u32::MAX && p[0] as usize >= n {
                 return Err(bad(format!("pending partner of disc {i} out of range")));
             }
@@ -282,7 +293,9 @@ impl Engine {
             }
         }
 
-        queue.retune(cp.clock);
+        // The queue files every disc under the event time in its record.
+        let mut queue = EventQueue::new(n);
+        queue.retune(bodies.as_slice(), cp.clock);
         let scheduled = cp
             .scheduled
             .iter()

@@ -23,23 +23,33 @@
 //! of 0.19 recomputations at the head of the queue (`examples/profile`, η = 0.5;
 //! N = 10⁴ 28 % slower, median of four alternating pairs).
 //!
-//! Each disc also keeps its *pair candidate* — the earliest pair collision its last
-//! scan found, with its time — even while a cell crossing or wall comes first. A
-//! crossing changes no velocity, so after it only the three newly adjacent cells
+//! Each disc also keeps its *pair candidate* — the partner of the earliest pair
+//! collision its last scan found — even while a cell crossing or wall comes first.
+//! A crossing changes no velocity, so after it only the three newly adjacent cells
 //! need a scan: a disc of the six cells seen before either meets no earlier than the
 //! candidate (as that scan found, unless its velocity changed since), or changed
-//! velocity since and then scanned this disc itself. A candidate made obsolete by
-//! its partner's collisions still marks a time before which nothing else was found,
-//! so it stays in the queue as it would have without the crossing and is recomputed
-//! when it comes up. A crossing through a periodic edge moves the disc by a box
-//! length and changes image shifts: it rescans the whole block.
+//! velocity since and then scanned this disc itself. The candidate's time is not
+//! stored (its disc's record holds only the pending event's time): the crossing
+//! computes it again from the two paths, which have not changed if the partner's
+//! counter has not. A candidate made obsolete by its partner's collisions no longer
+//! tells when the six cells' discs can meet, so then the whole block is scanned. A
+//! crossing through a periodic edge moves the disc by a box length and changes image
+//! shifts: it rescans the whole block too.
+//!
+//! Keeping the pending event's time in the disc's record rather than in an array of
+//! the queue's (the queue reads it through [`EventTimes`]) saves a cache line per
+//! disc an event touches at large N: `examples/profile`, η = 0.5, both builds side
+//! by side on the two cores, medians of 6: 1.04 at N = 10⁶ (per-run ratios
+//! 1.03–1.18) and 1.08 at N = 10⁴; 8 fewer bytes per disc. The full scans after
+//! crossings with an obsolete candidate are outweighed by the recomputations they
+//! save at the head of the queue (0.191 → 0.176 per collision).
 
 use crate::cells::{CellGrid, Link, NONE};
 use crate::error::EngineError;
 use crate::event::{Event, PairCollision, WallCollision};
 use crate::lookahead;
 use crate::memory;
-use crate::queue::{EventQueue, Time};
+use crate::queue::{EventQueue, EventTimes, Time};
 use crate::state::State;
 use carom_core::boundary::{wall_reflect, wall_time};
 use carom_core::collision::resolve;
@@ -92,8 +102,8 @@ pub struct Stats {
 }
 
 /// Everything the event loop touches for one disc, in one 64-byte cache line: its
-/// straight path (origin and velocity), collision counter, pair candidate and
-/// pending event, species, and its place in the cell lists. At large N every event
+/// straight path (origin and velocity), collision counter, pair candidate,
+/// pending event and its time, species, and its place in the cell lists. At large N every event
 /// lands at a random place in memory, so keeping these together saves a cache miss
 /// per lookup (measured: see benches/engine.rs), and a scan walking a cell's list
 /// reads nothing but the records it tests.
@@ -113,9 +123,11 @@ pub(crate) struct Body {
     pub r0: DVec2,
     /// Velocity (length/time).
     pub v: DVec2,
-    /// Time of the pair candidate, the earliest pair collision found by the scans
-    /// since the last full one (time; +∞ if none).
-    pub pair_time: f64,
+    /// Time of the pending event, the queue's key (time; +∞ if none; changed only
+    /// through [`EventQueue::set`]). For a pair event it is the pair candidate's
+    /// time; when a crossing or wall comes first the candidate's time is not kept
+    /// (see [`Engine::predict_after_crossing`]).
+    pub event_time: f64,
     /// Collision counter: bumped on every velocity change and periodic wrap.
     pub count: u32,
     /// Partner of the pair candidate ([`NONE`] if none).
@@ -146,6 +158,28 @@ impl Body {
     pub fn set_velocity(&mut self, v: DVec2, now: f64) {
         self.r0 += (self.v - v) * now;
         self.v = v;
+    }
+}
+
+/// The queue reads each disc's event time from its record, which the event reads
+/// anyway: a separate array of times cost a cache miss per disc an event touches at
+/// large N.
+impl EventTimes for [Body] {
+    #[inline(always)]
+    fn discs(&self) -> usize {
+        self.len()
+    }
+    #[inline(always)]
+    fn time(&self, i: u32) -> f64 {
+        self[i as usize].event_time
+    }
+    #[inline(always)]
+    fn store(&mut self, i: u32, t: f64) {
+        self[i as usize].event_time = t;
+    }
+    #[inline(always)]
+    fn prefetch(&self, i: u32) {
+        memory::prefetch_at(self, i as usize);
     }
 }
 
@@ -196,7 +230,7 @@ pub struct Engine {
     pub(crate) same_time_collisions: u64,
     pub(crate) stats: Stats,
     /// External (user) index of each internal slot. (Kept instead beside each
-    /// disc's event time in the queue, which every event reads anyway, in 16-byte
+    /// disc's event time in the queue, when the queue held the times, in 16-byte
     /// entries: +6 % at N = 10⁶ (+3 % with the release profile's fat LTO) but −3 %
     /// at 10⁴ with fat LTO, where the event times then spread over twice the memory
     /// (+1.2 misses of a 512 KiB L2 per collision, cachegrind); in packed 12-byte
@@ -358,7 +392,7 @@ impl Engine {
             (0..n).map(|i| Body {
                 r0: state.sim_box.wrap(state.positions[i]),
                 v: state.velocities[i],
-                pair_time: f64::INFINITY,
+                event_time: f64::INFINITY,
                 count: 0,
                 partner: NONE,
                 partner_count: 0,
@@ -398,7 +432,7 @@ impl Engine {
         for i in 0..n {
             engine.predict(i);
         }
-        engine.queue.retune(engine.clock);
+        engine.queue.retune(engine.bodies.as_slice(), engine.clock);
         Ok(engine)
     }
 
@@ -537,7 +571,7 @@ impl Engine {
                 }
                 self.next_reorder += reorder_interval(self.len());
             }
-            let (t, who) = self.queue.peek();
+            let (t, who) = self.queue.peek(self.bodies.as_slice());
             // Start fetching the records (and cell coordinates) of the likely next
             // events while this one is processed: at large N each is a cache miss.
             // A prefetch hint only; nothing depends on it. (`examples/profile`,
@@ -708,7 +742,7 @@ impl Engine {
                 b.partner = inv[b.partner as usize];
             }
         }
-        self.queue.renumber(&perm, self.clock);
+        self.queue.retune(self.bodies.as_slice(), self.clock);
         for (k, &l) in self.label.iter().enumerate() {
             self.index_of[l as usize] = k as u32;
         }
@@ -720,8 +754,8 @@ impl Engine {
     }
 
     /// Move the internal clock's zero to now: every disc is brought to the current
-    /// time, and every stored time (last updates, pair candidates, queued events,
-    /// last collisions) is shifted by the same amount. Called at each renumbering.
+    /// time, and every stored time (pending events, last collisions) is shifted by
+    /// the same amount. Called at each renumbering, which refiles the queue.
     ///
     /// Event times are rounded to the precision of the times they are stored as, so
     /// with one clock for a whole run the contact distance at a collision would be
@@ -736,14 +770,15 @@ impl Engine {
         if shift == 0.0 {
             return;
         }
+        // The queue is refiled from the shifted times by the renumbering that
+        // follows.
         for b in self.bodies.iter_mut() {
             b.r0 = b.at(shift);
-            b.pair_time -= shift;
+            b.event_time -= shift;
         }
         for t in self.last_collision.iter_mut() {
             *t -= shift;
         }
-        self.queue.shift_origin(shift);
         self.epoch += shift;
         self.clock = 0.0;
     }
@@ -891,48 +926,80 @@ impl Engine {
         let partner_count = self.bodies[(found.partner as usize).min(self.bodies.len() - 1)].count;
         let pair = found.best < boundary;
         let b = &mut self.bodies[i];
-        b.pair_time = now + found.best;
         b.partner = found.partner;
         b.partner_count = std::hint::select_unpredictable(found.partner != NONE, partner_count, 0);
         b.kind = std::hint::select_unpredictable(pair, KIND_PAIR, kind);
         b.aux = aux | found.code << 2;
-        self.queue
-            .set(i as u32, time_key(now + found.best.min(boundary)));
+        self.queue.set(
+            self.bodies.as_mut_slice(),
+            i as u32,
+            time_key(now + found.best.min(boundary)),
+        );
     }
 
     /// Disc `i`'s events after it crossed into the next cell along axis `k` (upwards
     /// if `up`) without wrapping: only the three newly adjacent cells are scanned,
     /// and the pair candidate is kept unless one of their discs meets earlier (see
     /// the module documentation).
+    ///
+    /// The candidate's time is not stored (the record has no room beside the
+    /// pending event's time): when its partner has not changed velocity since, it is
+    /// computed again, from the two paths as they are now; when the partner has, the
+    /// candidate no longer says when the discs of the six cells seen before can
+    /// meet, and the whole block is scanned again instead.
     fn predict_after_crossing(&mut self, i: usize, k: usize, up: bool) {
         let now = self.clock;
         let bi = self.bodies[i];
         let ri = bi.at(now);
-        let mut found = Found::NOTHING;
+        let mut candidate = Found::NOTHING;
+        if bi.partner != NONE {
+            let bp = &self.bodies[bi.partner as usize];
+            if bp.count != bi.partner_count {
+                self.predict(i);
+                return;
+            }
+            // Seeing the partner's image at r_j + s L is seeing i at r_i − s L.
+            let code = bi.aux >> 2;
+            let me = Scanner {
+                bi: &bi,
+                radius: self.species[bi.species as usize].radius,
+                ri: ri - self.shift_of(code),
+            };
+            test_pair(
+                &me,
+                &self.species,
+                bi.partner,
+                bp,
+                now,
+                code,
+                &mut candidate,
+            );
+        }
         let o = if up { 1 } else { -1 };
         let (xs, ys) = if k == 0 {
             ([o, o], [-1, 1])
         } else {
             ([-1, 1], [o, o])
         };
-        self.scan(i, ri, xs, ys, &mut found);
-        let found_time = now + found.best;
+        // The strip's discs replace the candidate only when one meets earlier.
+        self.scan(i, ri, xs, ys, &mut candidate);
         let (boundary, kind, aux) = self.boundary_event(i, ri, bi.v);
-        let boundary_time = now + boundary;
-        if found_time < bi.pair_time {
-            let partner_count = self.bodies[found.partner as usize].count;
-            let b = &mut self.bodies[i];
-            b.pair_time = found_time;
-            b.partner = found.partner;
-            b.partner_count = partner_count;
-            b.aux = found.code << 2;
-        }
+        let partner_count = if candidate.partner == NONE {
+            0
+        } else {
+            self.bodies[candidate.partner as usize].count
+        };
+        let pair = candidate.best < boundary;
         let b = &mut self.bodies[i];
-        let pair = b.pair_time < boundary_time;
+        b.partner = candidate.partner;
+        b.partner_count = partner_count;
         b.kind = std::hint::select_unpredictable(pair, KIND_PAIR, kind);
-        b.aux = (b.aux & !3) | aux;
-        let t = std::hint::select_unpredictable(pair, b.pair_time, boundary_time);
-        self.queue.set(i as u32, time_key(t));
+        b.aux = aux | candidate.code << 2;
+        self.queue.set(
+            self.bodies.as_mut_slice(),
+            i as u32,
+            time_key(now + candidate.best.min(boundary)),
+        );
     }
 
     /// Look for disc `i`'s earliest pair collision (before `found.best`, time from

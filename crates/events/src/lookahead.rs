@@ -8,12 +8,13 @@
 //! stages: a stage reads only what the previous stage, one bucket earlier, started
 //! to load, and starts loading what the next one will read.
 //!
-//! - four buckets ahead (done by the queue when it moves on): each entry's event
-//!   time, which tells whether the entry is still current;
+//! - four buckets ahead (done by the queue when it moves on): each entry's disc
+//!   record, whose event time tells whether the entry is still current, and which
+//!   holds the disc's cell, list link and pair candidate;
 //! - three buckets ahead (entries already stale skipped from here on): each disc's
-//!   record (which holds its cell and list link) and label;
-//! - two buckets ahead: the partner's record, label and event time, for a pair
-//!   event, and the rows of cell heads of the disc's 3 × 3 block;
+//!   label;
+//! - two buckets ahead: the partner's record and label, for a pair event, and the
+//!   rows of cell heads of the disc's 3 × 3 block;
 //! - one bucket ahead: the records of the first disc of each cell of that block,
 //!   and the rows of cell heads of the partner's block;
 //! - the current bucket: the first discs of the partner's block.
@@ -244,6 +245,7 @@ impl Engine {
     #[inline(never)]
     pub(crate) fn look_ahead(&self) {
         let grid = &self.grid;
+        let bodies = self.bodies.as_slice();
         let last = self.bodies.len() - 1;
         // The first disc of a cell, or (for an empty cell) the last disc: a needless
         // but harmless load, cheaper than a branch on emptiness. (Chosen with
@@ -258,22 +260,19 @@ impl Engine {
         // entry behind) are skipped already here: their loads would only
         // compete with the useful ones for the processor's miss buffers (N = 10⁶:
         // 1.06 → 1.16 M/s, median of 7 alternating runs).
-        for d in self.queue.filed_ahead(3) {
-            let d = d as usize;
-            prefetch_at(&self.bodies, d);
-            prefetch_at(&self.label, d);
+        for d in self.queue.filed_ahead(bodies, 3) {
+            prefetch_at(&self.label, d as usize);
         }
-        for d in self.queue.filed_ahead(2) {
+        for d in self.queue.filed_ahead(bodies, 2) {
             let b = &self.bodies[d as usize];
             if b.kind == KIND_PAIR {
                 let p = b.partner as usize;
                 prefetch_at(&self.bodies, p);
                 prefetch_at(&self.label, p);
-                self.queue.prefetch(p as u32);
             }
             for_rows(grid, event_cell(grid, b), |k| prefetch_at(&grid.head, k));
         }
-        for d in self.queue.filed_ahead(1) {
+        for d in self.queue.filed_ahead(bodies, 1) {
             let b = &self.bodies[d as usize];
             for_block(grid, event_cell(grid, b), fetch_first);
             if b.kind == KIND_PAIR {
@@ -283,7 +282,7 @@ impl Engine {
                 });
             }
         }
-        for d in self.queue.in_current_bucket() {
+        for d in self.queue.in_current_bucket(bodies) {
             let b = &self.bodies[d as usize];
             if b.kind == KIND_PAIR {
                 let p = b.partner as usize;

@@ -1,6 +1,10 @@
 //! The event queue: one pending event time per disc, in an event calendar.
 //!
-//! Every disc owns exactly one current event time (`+∞` for none). Times are sorted
+//! Every disc owns exactly one current event time (`+∞` for none). The queue does
+//! not hold the times: it reads and writes them through [`EventTimes`], so that the
+//! engine keeps each disc's time in the disc's own record, which an event reads
+//! anyway (at large N a separate array of times cost a cache miss per disc an event
+//! touches). Times are sorted
 //! into buckets of width Δ (bucket b = ⌊(t − t₀)/Δ⌋, a monotone function of t):
 //! buckets ahead of the current one are unsorted slots of a circular calendar of M
 //! buckets, events beyond the calendar wait in an overflow list, and only the
@@ -51,6 +55,43 @@ pub const NIL: u32 = u32::MAX;
 /// Discs held in one slot or chunk.
 pub const SLOT_DISCS: usize = 7;
 
+/// Where the queue finds each disc's current event time (time; +∞ for none).
+///
+/// The queue files a disc under the time stored when [`EventQueue::set`] is called
+/// and later recognises its entries as current by reading the time again, so a
+/// stored time must change only through [`EventQueue::set`] (or be followed by
+/// [`EventQueue::retune`], which refiles every disc).
+pub trait EventTimes {
+    /// Number of discs.
+    fn discs(&self) -> usize;
+    /// The stored event time of disc `i`.
+    fn time(&self, i: u32) -> f64;
+    /// Store `t` as disc `i`'s event time.
+    fn store(&mut self, i: u32, t: f64);
+    /// Start loading disc `i`'s time (a hint; `i` may be out of range).
+    fn prefetch(&self, i: u32);
+}
+
+/// Plain arrays of times (for tests and simple callers).
+impl EventTimes for [f64] {
+    #[inline]
+    fn discs(&self) -> usize {
+        self.len()
+    }
+    #[inline]
+    fn time(&self, i: u32) -> f64 {
+        self[i as usize]
+    }
+    #[inline]
+    fn store(&mut self, i: u32, t: f64) {
+        self[i as usize] = t;
+    }
+    #[inline]
+    fn prefetch(&self, i: u32) {
+        memory::prefetch_at(self, i as usize);
+    }
+}
+
 /// An event of the heap or the overflow list: the disc and its time.
 #[derive(Debug, Clone, Copy, PartialEq)]
 struct Item {
@@ -97,11 +138,12 @@ impl Slot {
     }
 }
 
-/// An event calendar of per-disc event times.
+/// An event calendar of per-disc event times (kept by the caller, see
+/// [`EventTimes`]).
 #[derive(Debug, Clone)]
 pub struct EventQueue {
-    /// Per-disc current event time (+∞ for none).
-    time_of: Vec<f64>,
+    /// Number of discs.
+    n: usize,
     /// The calendar: slot `b mod M` holds the discs filed in bucket b.
     slots: Vec<Slot>,
     /// Pool of chunks for crowded slots.
@@ -142,11 +184,13 @@ pub struct EventQueue {
 const PENDING: usize = 16;
 
 impl EventQueue {
-    /// A queue for `n` discs, every time +∞, buckets of width 1.
+    /// An empty queue for `n` discs, buckets of width 1: every disc's stored time
+    /// must be +∞, or be filed by [`retune`](Self::retune) before the first
+    /// [`peek`](Self::peek).
     pub fn new(n: usize) -> Self {
         let m = n.max(2).next_power_of_two();
         EventQueue {
-            time_of: memory::filled(n, f64::INFINITY),
+            n,
             slots: memory::filled(m, Slot::EMPTY),
             chunks: memory::with_capacity(Self::chunk_limit_for(n)),
             free: NIL,
@@ -173,15 +217,16 @@ impl EventQueue {
     /// with `examples/profile` at N = 10⁴ and 10⁶; 4 and 1 were slower. Re-measured
     /// with the look-ahead as it is now, alternating pairs at N = 10⁶: factor 3
     /// −13 %, 1.5 and 1 within the noise; at N = 10⁴ factor 1 −5 %, 1.5 the same.)
-    pub fn retune(&mut self, now: f64) {
+    pub fn retune<T: EventTimes + ?Sized>(&mut self, times: &T, now: f64) {
         let (mut sum, mut k) = (0.0, 0usize);
-        for &t in &self.time_of {
+        for i in 0..self.n as u32 {
+            let t = times.time(i);
             if t.is_finite() {
                 sum += t - now;
                 k += 1;
             }
         }
-        let n = self.time_of.len().max(1);
+        let n = self.n.max(1);
         let width = if k > 0 && sum > 0.0 {
             2.0 * sum / k as f64 / n as f64
         } else {
@@ -202,41 +247,21 @@ impl EventQueue {
         self.in_slots = 0;
         self.pending_len = 0;
         self.moved = true;
-        for i in 0..self.time_of.len() {
-            if self.time_of[i].is_finite() {
+        for i in 0..self.n as u32 {
+            let t = times.time(i);
+            if t.is_finite() {
                 self.finite += 1;
-                self.file(i as u32);
+                self.file(i, t);
             }
         }
     }
 
-    /// Renumber the discs: disc k takes the time of old disc `perm[k]`; then
-    /// [`retune`](Self::retune) at `now`. Keeps the queue's allocations.
-    pub fn renumber(&mut self, perm: &[usize], now: f64) {
-        let old = self.time_of.clone();
-        for (t, &o) in self.time_of.iter_mut().zip(perm) {
-            *t = old[o];
-        }
-        self.retune(now);
-    }
-
-    /// Move the time origin: every stored time t becomes t − `shift` (+∞ stays),
-    /// and the calendar is rebuilt at the new time 0. Subtracting one number is
-    /// monotone, so the order is kept (two times may round to one, and then go by
-    /// disc index).
-    pub fn shift_origin(&mut self, shift: f64) {
-        for t in self.time_of.iter_mut() {
-            *t -= shift;
-        }
-        self.retune(0.0);
-    }
-
     /// The earliest event: (time, disc). With every time +∞ the time is +∞.
     #[inline]
-    pub fn peek(&mut self) -> (Time, u32) {
+    pub fn peek<T: EventTimes + ?Sized>(&mut self, times: &T) -> (Time, u32) {
         loop {
             if let Some(&top) = self.heap.first() {
-                if self.time_of[top.disc as usize] == top.time {
+                if times.time(top.disc) == top.time {
                     return (NotNan::new(top.time).expect("no NaN in queue"), top.disc);
                 }
                 self.heap_pop();
@@ -245,7 +270,7 @@ impl EventQueue {
             if self.finite == 0 {
                 return (NotNan::new(f64::INFINITY).expect("∞ is not NaN"), 0);
             }
-            self.advance();
+            self.advance(times);
         }
     }
 
@@ -268,10 +293,13 @@ impl EventQueue {
     /// Discs with events in the current bucket (stale items left out), in no
     /// particular order. A hint for fetching their neighbours early.
     #[inline]
-    pub fn in_current_bucket(&self) -> impl Iterator<Item = u32> + '_ {
+    pub fn in_current_bucket<'a, T: EventTimes + ?Sized>(
+        &'a self,
+        times: &'a T,
+    ) -> impl Iterator<Item = u32> + 'a {
         self.heap
             .iter()
-            .filter(|item| self.time_of[item.disc as usize] == item.time)
+            .filter(|item| times.time(item.disc) == item.time)
             .map(|item| item.disc)
     }
 
@@ -283,60 +311,51 @@ impl EventQueue {
         &self.slots[((self.cur + k) & self.mask) as usize].disc
     }
 
-    /// Start loading disc `i`'s stored time (a hint: it is read when `i`'s next
-    /// event is popped and when its time is set).
-    #[inline]
-    pub fn prefetch(&self, i: u32) {
-        memory::prefetch_at(&self.time_of, i as usize);
-    }
-
     /// The discs of [`ahead(k)`](Self::ahead) whose current time is still in that
     /// bucket (stale entries left out; this reads their times).
     #[inline]
-    pub fn filed_ahead(&self, k: u64) -> impl Iterator<Item = u32> + '_ {
+    pub fn filed_ahead<'a, T: EventTimes + ?Sized>(
+        &'a self,
+        times: &'a T,
+        k: u64,
+    ) -> impl Iterator<Item = u32> + 'a {
         self.ahead(k)
             .iter()
             .take_while(|&&d| d != NIL)
             .copied()
-            .filter(move |&d| self.bucket(self.time_of[d as usize]) == self.cur + k)
+            .filter(move |&d| self.bucket(times.time(d)) == self.cur + k)
     }
 
-    /// The time currently stored for disc `i`.
+    /// Set the event time of disc `i` to `t`: stored in `times` and filed.
     #[inline]
-    pub fn get(&self, i: u32) -> Time {
-        NotNan::new(self.time_of[i as usize]).expect("no NaN in queue")
-    }
-
-    /// Set the event time of disc `i`.
-    #[inline]
-    pub fn set(&mut self, i: u32, t: Time) {
-        let old = std::mem::replace(&mut self.time_of[i as usize], t.into_inner());
-        let was_finite = old.is_finite();
+    pub fn set<T: EventTimes + ?Sized>(&mut self, times: &mut T, i: u32, t: Time) {
+        let t = t.into_inner();
+        let was_finite = times.time(i).is_finite();
+        times.store(i, t);
         match (was_finite, t.is_finite()) {
             (false, true) => self.finite += 1,
             (true, false) => self.finite -= 1,
             _ => {}
         }
         if t.is_finite() {
-            self.file(i);
+            self.file(i, t);
             if self.chunks_used >= self.chunk_limit()
                 || self.overflow.len() >= self.overflow_limit()
             {
-                self.rebuild();
+                self.rebuild(times);
             }
         }
     }
 
     /// Stale entries have piled up (times changed many times within the calendar's
     /// span): start afresh from the current times.
-    fn rebuild(&mut self) {
-        self.retune(self.t0 + self.cur as f64 / self.inv_width);
+    fn rebuild<T: EventTimes + ?Sized>(&mut self, times: &T) {
+        self.retune(times, self.t0 + self.cur as f64 / self.inv_width);
     }
 
     /// Bytes of heap memory used (for the memory report).
     pub fn heap_bytes(&self) -> usize {
-        self.time_of.capacity() * 8
-            + (self.slots.capacity() + self.chunks.capacity()) * std::mem::size_of::<Slot>()
+        (self.slots.capacity() + self.chunks.capacity()) * std::mem::size_of::<Slot>()
             + (self.overflow.capacity() + self.heap.capacity()) * std::mem::size_of::<Item>()
     }
 
@@ -346,10 +365,10 @@ impl EventQueue {
         ((t - self.t0) * self.inv_width) as u64
     }
 
-    /// File disc `i`'s current time: into the heap, a calendar slot or overflow.
+    /// File disc `i` under its current time `time`: into the heap, a calendar slot
+    /// or overflow.
     #[inline]
-    fn file(&mut self, i: u32) {
-        let time = self.time_of[i as usize];
+    fn file(&mut self, i: u32, time: f64) {
         let b = self.bucket(time);
         if b <= self.cur {
             self.heap_push(Item { time, disc: i });
@@ -399,12 +418,12 @@ impl EventQueue {
     }
 
     fn chunk_limit(&self) -> usize {
-        Self::chunk_limit_for(self.time_of.len())
+        Self::chunk_limit_for(self.n)
     }
 
     /// Entries the overflow list may hold before the calendar is rebuilt.
     fn overflow_limit(&self) -> usize {
-        2 * self.time_of.len() + 64
+        2 * self.n + 64
     }
 
     /// A chunk holding `chunk`, from the free list or the pool's end.
@@ -424,32 +443,30 @@ impl EventQueue {
 
     /// Move to the next bucket: pour its slot into the heap; at every full turn of
     /// the calendar, bring overflow events that are now within reach into slots.
-    fn advance(&mut self) {
+    fn advance<T: EventTimes + ?Sized>(&mut self, times: &T) {
         self.moved = true;
         if self.in_slots == 0 {
             // Only overflow entries are left: jump straight to the earliest of them.
             let b = self
                 .overflow
                 .iter()
-                .filter(|item| self.is_current(item))
+                .filter(|item| times.time(item.disc) == item.time)
                 .map(|item| self.bucket(item.time))
                 .min()
                 .unwrap_or(u64::MAX);
             self.cur = b.max(self.cur + 1);
-            self.redistribute_overflow();
+            self.redistribute_overflow(times);
         } else {
             self.cur += 1;
             if self.cur & self.mask == 0 {
-                self.redistribute_overflow();
+                self.redistribute_overflow(times);
             }
         }
         // The times of the discs four buckets ahead are read when the engine looks
         // ahead ([`EventQueue::filed_ahead`], from three buckets ahead) and when
         // their bucket is poured: start loading them now.
         for &d in self.ahead(4) {
-            if let Some(t) = self.time_of.get(d as usize) {
-                memory::prefetch(t);
-            }
+            times.prefetch(d);
         }
         let s = (self.cur & self.mask) as usize;
         // Entries still on their way into this slot go in now (the others wait, so
@@ -466,11 +483,11 @@ impl EventQueue {
         }
         let slot = std::mem::replace(&mut self.slots[s], Slot::EMPTY);
         let before = self.heap.len();
-        self.pour(&slot);
+        self.pour(times, &slot);
         let mut c = slot.more;
         while c != NIL {
             let chunk = self.chunks[c as usize];
-            self.pour(&chunk);
+            self.pour(times, &chunk);
             self.chunks[c as usize].more = self.free;
             self.free = c;
             self.chunks_used -= 1;
@@ -480,18 +497,18 @@ impl EventQueue {
             self.heapify();
         }
         if self.chunks_used >= self.chunk_limit() {
-            self.rebuild();
+            self.rebuild(times);
         }
     }
 
     /// Append the current entries of `slot` (filed in the current bucket) to the
     /// heap array, unordered.
     #[inline]
-    fn pour(&mut self, slot: &Slot) {
+    fn pour<T: EventTimes + ?Sized>(&mut self, times: &T, slot: &Slot) {
         let len = slot.len();
         self.in_slots -= len;
         for &d in &slot.disc[..len] {
-            let time = self.time_of[d as usize];
+            let time = times.time(d);
             // Stale entries are dropped here rather than sorted first, without a
             // branch (whether an entry is stale is a coin toss): every entry is
             // appended, and a stale one is cut off again.
@@ -500,12 +517,6 @@ impl EventQueue {
             let len = self.heap.len() - 1 + keep as usize;
             self.heap.truncate(len);
         }
-    }
-
-    /// Whether `item` still holds its disc's current time.
-    #[inline]
-    fn is_current(&self, item: &Item) -> bool {
-        self.time_of[item.disc as usize] == item.time
     }
 
     /// Restore the heap order of the whole heap array (Floyd's construction).
@@ -539,18 +550,18 @@ impl EventQueue {
 
     /// Drop stale overflow entries and move those now within the calendar's reach
     /// into their slots.
-    fn redistribute_overflow(&mut self) {
+    fn redistribute_overflow<T: EventTimes + ?Sized>(&mut self, times: &T) {
         let mut k = 0;
         while k < self.overflow.len() {
             let item = self.overflow[k];
-            if !self.is_current(&item) {
+            if times.time(item.disc) != item.time {
                 self.overflow.swap_remove(k);
                 continue;
             }
             let b = self.bucket(item.time);
             if b <= self.cur || b - self.cur <= self.mask {
                 self.overflow.swap_remove(k);
-                self.file(item.disc);
+                self.file(item.disc, item.time);
                 continue;
             }
             k += 1;
@@ -593,9 +604,36 @@ mod tests {
         NotNan::new(x).unwrap()
     }
 
+    /// A queue with its times in a plain array, as the tests drive it.
+    struct Q {
+        q: EventQueue,
+        times: Vec<f64>,
+    }
+
+    impl Q {
+        fn new(n: usize) -> Q {
+            Q {
+                q: EventQueue::new(n),
+                times: vec![f64::INFINITY; n],
+            }
+        }
+        fn set(&mut self, i: u32, x: Time) {
+            self.q.set(self.times.as_mut_slice(), i, x);
+        }
+        fn retune(&mut self, now: f64) {
+            self.q.retune(self.times.as_slice(), now);
+        }
+        fn peek(&mut self) -> (Time, u32) {
+            self.q.peek(self.times.as_slice())
+        }
+        fn get(&self, i: u32) -> Time {
+            t(self.times[i as usize])
+        }
+    }
+
     #[test]
     fn ties_go_to_the_smaller_index() {
-        let mut q = EventQueue::new(5);
+        let mut q = Q::new(5);
         q.set(3, t(1.0));
         q.set(1, t(1.0));
         q.set(4, t(1.0));
@@ -606,7 +644,7 @@ mod tests {
 
     #[test]
     fn far_future_events_come_back_from_overflow() {
-        let mut q = EventQueue::new(4);
+        let mut q = Q::new(4);
         q.set(0, t(0.5));
         q.retune(0.0);
         q.set(1, t(1e6));
@@ -621,7 +659,7 @@ mod tests {
 
     #[test]
     fn a_time_set_back_is_found_and_stale_copies_are_dropped() {
-        let mut q = EventQueue::new(3);
+        let mut q = Q::new(3);
         q.set(0, t(5.0));
         q.set(1, t(6.0));
         q.retune(0.0);
@@ -641,7 +679,7 @@ mod tests {
     #[test]
     fn piled_up_stale_entries_are_collected() {
         let n = 10;
-        let mut q = EventQueue::new(n);
+        let mut q = Q::new(n);
         for i in 0..n {
             q.set(i as u32, t(100.0 + i as f64));
         }
@@ -651,8 +689,8 @@ mod tests {
         for k in 0..100_000u32 {
             let i = k % n as u32;
             q.set(i, t(50.0 + (k % 977) as f64 * 0.1 + i as f64 * 1e-3));
-            assert!(q.chunks_used <= q.chunk_limit());
-            assert!(q.overflow.len() <= q.overflow_limit());
+            assert!(q.q.chunks_used <= q.q.chunk_limit());
+            assert!(q.q.overflow.len() <= q.q.overflow_limit());
         }
         let (t0, i0) = q.peek();
         let best = (0..n as u32).map(|i| (q.get(i), i)).min().unwrap();
@@ -665,16 +703,16 @@ mod tests {
         // more than a slot holds. The rebuild must not loop, and the events must come
         // out in index order, each exactly once.
         let n = 1000;
-        let mut q = EventQueue::new(n);
+        let mut q = Q::new(n);
         for i in 0..n as u32 {
             q.set(i, t(5.0));
         }
         q.retune(0.0);
-        q.flush();
+        q.q.flush();
         assert!(
-            q.chunks_used >= n / SLOT_DISCS - 1,
+            q.q.chunks_used >= n / SLOT_DISCS - 1,
             "{} chunks",
-            q.chunks_used
+            q.q.chunks_used
         );
         for i in 0..n as u32 {
             assert_eq!(q.peek(), (t(5.0), i));
@@ -688,7 +726,7 @@ mod tests {
         // Fewer sets than the pending buffer holds, then more: both must be seen.
         for k in [3usize, PENDING, 3 * PENDING + 1] {
             let n = 64;
-            let mut q = EventQueue::new(n);
+            let mut q = Q::new(n);
             q.set(0, t(1.0));
             q.retune(0.0);
             for i in 1..=k as u32 {
@@ -708,7 +746,7 @@ mod tests {
             width in 0.01f64..10.0,
             ops in proptest::collection::vec((0usize..40, 0u32..2000, any::<bool>()), 1..300),
         ) {
-            let mut q = EventQueue::new(n);
+            let mut q = Q::new(n);
             let mut model = vec![f64::INFINITY; n];
             for (k, m) in model.iter_mut().enumerate() {
                 *m = k as f64 * 0.37;

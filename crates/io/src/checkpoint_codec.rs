@@ -56,7 +56,7 @@ float64[] t                       # time of that position (time); carom writes 0
 uint32[] collision_count
 float64[] last_collision          # time of last pair collision (-inf if none or TC off)
 float64[] event_time              # time of the pending event (+inf if none)
-float64[] pair_time               # time of the pair candidate (+inf if none; may be after event_time)
+float64[] pair_time               # time of the pair candidate where it is the pending event, else +inf (not needed to resume)
 uint32[] pending_partner          # the pair candidate's partner (4294967295 = none)
 uint32[] pending_partner_count    # the partner's collision_count when the candidate was found
 uint32[] pending_kind             # kind | aux << 8; kind 0 none, 1 pair candidate, 2 wall, 3 cell crossing
