@@ -451,6 +451,60 @@ fn ctrl_c_finishes_the_log_and_resume_continues_it() {
     assert_eq!(out.status.code(), Some(2));
 }
 
+/// Start `carom ARGS` in `dir`, send it `signal` (a `kill` signal name) after
+/// `wait_ms`, and collect what it printed and how it ended.
+fn signalled(dir: &Path, args: &[&str], signal: &str, wait_ms: u64) -> Output {
+    let child = Command::new(BIN)
+        .args(args)
+        .current_dir(dir)
+        .stdin(Stdio::null())
+        .stdout(Stdio::null())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    std::thread::sleep(std::time::Duration::from_millis(wait_ms));
+    let status = Command::new("kill")
+        .args([&format!("-{signal}"), &child.id().to_string()])
+        .status()
+        .unwrap();
+    assert!(status.success());
+    child.wait_with_output().unwrap()
+}
+
+#[test]
+fn sigterm_and_sighup_stop_cleanly_also_when_resuming_in_place() {
+    // A batch scheduler sends SIGTERM at the end of a job's time; a closed terminal
+    // sends SIGHUP. Both must leave a finished log, like Ctrl-C.
+    let dir = scratch("sigterm");
+    let run = [
+        "run",
+        "--out",
+        "job.mcap",
+        "--set",
+        "species.0.count=2000",
+        "--set",
+        "stop.duration=1e6",
+    ];
+    let out = signalled(&dir, &run, "TERM", 1500);
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(130), "{stderr}");
+    let i = json_of(&carom(&dir, &["info", "job.mcap", "--json"]));
+    assert_eq!(i["complete"], true);
+    assert_eq!(i["summary"]["stop_reason"], "interrupted");
+    let t_first = f(&i["summary"]["sim_time"]);
+    // Continued in place (through a temporary file) and hung up: the file is
+    // finished (further on, unless the signal came before the first event), and
+    // the temporary file is gone.
+    let out = signalled(&dir, &["resume", "job.mcap"], "HUP", 2500);
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(130), "{stderr}");
+    let j = json_of(&carom(&dir, &["info", "job.mcap", "--json"]));
+    assert_eq!(j["complete"], true);
+    assert_eq!(j["summary"]["stop_reason"], "interrupted");
+    assert!(f(&j["summary"]["sim_time"]) >= t_first, "{j}");
+    assert!(!dir.join("job.mcap.resume-tmp").exists());
+}
+
 #[test]
 fn pressure_from_thermo_totals_when_collisions_are_not_logged() {
     let dir = scratch("nocoll");

@@ -2,7 +2,7 @@
 //!
 //! Exit status: 0 on success; 1 when a run or a read fails; 2 for a bad command
 //! line or configuration (the message names the field); 130 when a run was
-//! interrupted with Ctrl-C (its log is finished and readable).
+//! interrupted with Ctrl-C, SIGTERM or SIGHUP (its log is finished and readable).
 
 mod analyze;
 mod info;

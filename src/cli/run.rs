@@ -1,5 +1,7 @@
 //! `carom run` and `carom resume`: progress on a terminal (indicatif) or plain
-//! periodic lines otherwise, and Ctrl-C as a clean stop.
+//! periodic lines otherwise, and Ctrl-C (SIGINT), SIGTERM and SIGHUP as a clean
+//! stop: batch schedulers send SIGTERM at the end of a job's time, and a closed
+//! terminal sends SIGHUP.
 
 use std::io::IsTerminal;
 use std::path::{Path, PathBuf};
@@ -15,11 +17,12 @@ use indicatif::{ProgressBar, ProgressStyle};
 
 use super::{CliError, ResumeArgs, RunArgs};
 
-/// Raised by Ctrl-C; the run stops at its next event and finishes the log.
+/// Raised by Ctrl-C, SIGTERM or SIGHUP; the run stops at its next event and
+/// finishes the log.
 static STOP: AtomicBool = AtomicBool::new(false);
 
-/// Install the Ctrl-C handler: the first press asks the run to stop cleanly, a
-/// second one exits at once.
+/// Install the handler of Ctrl-C, SIGTERM and SIGHUP: the first signal asks the
+/// run to stop cleanly, a second one exits at once.
 fn install_ctrlc() {
     let r = ctrlc::set_handler(|| {
         if STOP.swap(true, Ordering::SeqCst) {
@@ -27,11 +30,13 @@ fn install_ctrlc() {
             std::process::exit(130);
         }
         eprintln!(
-            "\ninterrupt: stopping at the next event and finishing the log (Ctrl-C again to abort)"
+            "\ninterrupt: stopping at the next event and finishing the log (interrupt again to abort)"
         );
     });
     if let Err(e) = r {
-        eprintln!("warning: cannot handle Ctrl-C ({e}); an interrupt will cut the log short");
+        eprintln!(
+            "warning: cannot handle Ctrl-C, SIGTERM or SIGHUP ({e}); a signal will cut the log short"
+        );
     }
 }
 
