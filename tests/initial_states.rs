@@ -823,6 +823,57 @@ fn invalid_temperature_is_an_error_naming_the_field() {
 }
 
 #[test]
+fn speeds_that_would_overflow_the_arithmetic_are_errors() {
+    // Speed × box edge must stay ≤ 1e150, so that squares of separations times
+    // relative velocities (and kinetic energies) stay finite. The base box is about
+    // 7.2 long; kT = 1e270 gives speeds near 1e135 and is accepted.
+    let ok = SystemSpec {
+        temperature: 1e270,
+        ..base()
+    };
+    let s = build(&ok, "kT 1e270").expect("speeds of 1e135 are fine");
+    assert!(s.kinetic_energy().is_finite());
+    for t in [1e300, 1e306, f64::MAX] {
+        let sp = SystemSpec {
+            temperature: t,
+            ..base()
+        };
+        assert_err_names(build(&sp, "T"), "temperature", &format!("kT = {t:e}"));
+    }
+    // Equal speeds are refused on the same grounds.
+    let sp = SystemSpec {
+        temperature: 1e300,
+        velocities: Velocities::EqualSpeed,
+        ..base()
+    };
+    assert_err_names(
+        build(&sp, "equal speeds"),
+        "temperature",
+        "equal speeds, kT 1e300",
+    );
+    // Given velocities are named as such: finite, but too fast for this box...
+    let n = 20;
+    let mut v = vec![DVec2::new(1.0, 0.0); n];
+    v[3] = DVec2::new(1e150, 0.0);
+    let sp = SystemSpec {
+        velocities: Velocities::Explicit(v.clone()),
+        ..base()
+    };
+    let msg = assert_err_names(build(&sp, "fast disc"), "velocities", "a disc at 1e150");
+    assert!(msg.contains("1e150"), "{msg}");
+    // ... or of finite speed but infinite kinetic energy with a huge mass.
+    v[3] = DVec2::new(1e140, 0.0);
+    let mut sp = mono(n);
+    sp[0].mass = 1e300;
+    let sp = SystemSpec {
+        velocities: Velocities::Explicit(v),
+        ..with_species(sp)
+    };
+    let msg = assert_err_names(build(&sp, "heavy disc"), "velocities", "m = 1e300");
+    assert!(msg.contains("kinetic energy"), "{msg}");
+}
+
+#[test]
 fn packing_fraction_beyond_reach_is_an_error() {
     // Lattice placement at η = 0.85, below close packing but provably out of reach
     // for two discs on a square torus: their distance is at most L/√2 (the centred

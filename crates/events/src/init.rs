@@ -83,6 +83,46 @@ fn check_finite_positive(field: &str, x: f64) -> Result<(), InitError> {
     Ok(())
 }
 
+/// The largest allowed product of the fastest disc's speed and the longest box edge
+/// (length²/time). The contact time (physics.md §2) squares products of a
+/// separation and a relative velocity, and positions and kinetic energies square
+/// or multiply these scales too: kept below 1e150, every such square stays far from
+/// the overflow of f64 at 1.8e308 (an infinity there would stop every collision,
+/// or put NaN into the event times).
+pub const SPEED_TIMES_SIZE_LIMIT: f64 = 1e150;
+
+/// Refuse velocities whose scale would overflow the engine's arithmetic (see
+/// [`SPEED_TIMES_SIZE_LIMIT`]); `field` names where they came from.
+fn check_scales(
+    spec: &SystemSpec,
+    species_of: &[u16],
+    velocities: &[DVec2],
+    field: &str,
+) -> Result<(), InitError> {
+    let fastest = velocities.iter().map(|v| v.length()).fold(0.0, f64::max);
+    let edge = spec.sim_box.size.max_element();
+    let product = fastest * edge;
+    if product.is_nan() || product > SPEED_TIMES_SIZE_LIMIT {
+        return Err(InitError::invalid(
+            field,
+            format!(
+                "the fastest disc's speed {fastest:.3e} times the longest box edge {edge:.3e} \
+                 is {product:.3e}, beyond what f64 arithmetic on contact times can hold"
+            ),
+            format!("speed × box edge ≤ {SPEED_TIMES_SIZE_LIMIT:e}"),
+        ));
+    }
+    let energy = crate::state::kinetic_energy(&spec.species, species_of, velocities);
+    if !energy.is_finite() {
+        return Err(InitError::invalid(
+            field,
+            "the total kinetic energy overflows f64",
+            "masses and speeds whose Σ m v²/2 is finite",
+        ));
+    }
+    Ok(())
+}
+
 impl SystemSpec {
     /// The reference system of physics.md: `n` discs of diameter σ = 1 and mass 1 at
     /// packing fraction `eta` in a square periodic box, on a lattice, with
@@ -154,6 +194,11 @@ impl SystemSpec {
                 v.clone()
             }
         };
+        let field = match &self.velocities {
+            Velocities::Explicit(_) => "velocities",
+            _ => "temperature",
+        };
+        check_scales(self, &species_of, &velocities, field)?;
         Ok(State {
             sim_box: self.sim_box,
             species: self.species.clone(),
