@@ -451,6 +451,65 @@ fn ctrl_c_finishes_the_log_and_resume_continues_it() {
     assert_eq!(out.status.code(), Some(2));
 }
 
+#[test]
+fn a_run_in_units_of_picoseconds_is_analysed_like_one_in_reduced_units() {
+    // The same run with lengths and times scaled by 2⁻⁴⁰ (≈ 10⁻¹², as for discs
+    // of a few Å in seconds): scaling by a power of two is exact, so the trajectory
+    // is the same number for number, and so must the analysis be. (MCAP's whole
+    // nanoseconds cannot resolve these times; the analysis reads times from the
+    // messages.)
+    let dir = scratch("picoseconds");
+    let s = 2f64.powi(-40);
+    let run = |out: &str, scale: f64| {
+        let set = |k: &str, v: f64| ["--set".to_string(), format!("{k}={v:e}")];
+        let mut args: Vec<String> = [
+            "run",
+            "--quiet",
+            "--out",
+            out,
+            "--set",
+            "species.0.count=400",
+        ]
+        .iter()
+        .map(|x| x.to_string())
+        .collect();
+        for (k, v) in [
+            ("species.0.radius", 0.5),
+            ("stop.duration", 20.0),
+            ("log.snapshot_interval", 1.0),
+            ("log.thermo_interval", 0.5),
+            ("log.checkpoint_interval", 10.0),
+        ] {
+            args.extend(set(k, v * scale));
+        }
+        let args: Vec<&str> = args.iter().map(|x| x.as_str()).collect();
+        ok(&carom(&dir, &args));
+        json_of(&carom(&dir, &["analyze", out, "--json"]))
+    };
+    let reduced = run("reduced.mcap", 1.0);
+    let pico = run("pico.mcap", s);
+    assert_eq!(
+        pico["window"]["snapshot_times"].as_array().unwrap().len(),
+        reduced["window"]["snapshot_times"]
+            .as_array()
+            .unwrap()
+            .len()
+    );
+    assert_eq!(f(&pico["window"]["t_end"]), 20.0 * s);
+    assert_eq!(f(&pico["pressure"]["z"]), f(&reduced["pressure"]["z"]));
+    assert_eq!(
+        f(&pico["collision_rate"]["per_disc"]) * s,
+        f(&reduced["collision_rate"]["per_disc"])
+    );
+    // `info` shows the channels' spans in the run's own time.
+    let i = json_of(&carom(&dir, &["info", "pico.mcap", "--json"]));
+    assert_eq!(
+        f(&i["channels"]["/snapshot"]["time_span"][1]),
+        20.0 * s,
+        "{i}"
+    );
+}
+
 /// Start `carom ARGS` in `dir`, send it `signal` (a `kill` signal name) after
 /// `wait_ms`, and collect what it printed and how it ended.
 fn signalled(dir: &Path, args: &[&str], signal: &str, wait_ms: u64) -> Output {

@@ -318,7 +318,11 @@ impl Analyzer {
         if self.energy_series.last().is_none_or(|e| e.0 != t) {
             self.energy_series.push((t, k, None));
         }
-        if t < self.t_eq - 1e-12 * self.t_eq.abs().max(1.0) {
+        // A snapshot at the start of the window counts despite rounding of the
+        // window's start (a tolerance relative to the run's own times, which may be
+        // in any unit).
+        let span = self.run.t_end - self.run.t_start;
+        if t < self.t_eq - 1e-12 * self.t_eq.abs().max(span) {
             return Ok(());
         }
         if let (Some(&last), Some(every)) = (self.snapshots_used.last(), self.opts.every) {

@@ -13,7 +13,7 @@ use carom::io::config::Config;
 use carom::io::log_reader::{scan, LogEnd, LogMessage, LogReader};
 use carom::io::schema::{Snapshot, KIND_PAIR};
 
-use super::{AnalyzeArgs, CliError};
+use super::{AnalyzeArgs, CliError, Num};
 
 /// The run's species, box and collision rule: from the configuration stored in the
 /// log, or failing that from the first snapshot (then assumed elastic).
@@ -228,8 +228,8 @@ pub fn text(r: &Report, args: &AnalyzeArgs, complete: bool) -> String {
         "  N = {}, η = {:.4}, box {:.4} × {:.4} ({} × {}), {}",
         r.n,
         r.packing_fraction,
-        r.box_size[0],
-        r.box_size[1],
+        Num(r.box_size[0]),
+        Num(r.box_size[1]),
         axis(r.periodic[0]),
         axis(r.periodic[1]),
         if r.elastic { "elastic" } else { "inelastic" }
@@ -238,9 +238,9 @@ pub fn text(r: &Report, args: &AnalyzeArgs, complete: bool) -> String {
     let _ = writeln!(
         s,
         "  log t ∈ [{}, {}], analysed from t = {} ({} of {} snapshots used{})",
-        w.t_start,
-        w.t_end,
-        w.equilibrate,
+        Num(w.t_start),
+        Num(w.t_end),
+        Num(w.equilibrate),
         w.snapshot_times.len(),
         w.snapshots_seen,
         match w.every {
@@ -252,7 +252,10 @@ pub fn text(r: &Report, args: &AnalyzeArgs, complete: bool) -> String {
     let _ = writeln!(
         s,
         "temperature  kT = {:.6}   (f = {} = 2N − {}; {})",
-        t.kt, t.dof, t.conserved_momentum_components, t.convention
+        Num(t.kt),
+        t.dof,
+        t.conserved_momentum_components,
+        t.convention
     );
     if r.maxwell_boltzmann.is_empty() {
         let _ = writeln!(s, "Maxwell–Boltzmann  no snapshots in the window");
@@ -267,8 +270,8 @@ pub fn text(r: &Report, args: &AnalyzeArgs, complete: bool) -> String {
             s,
             "  species {} (m = {}, a = {}): {} speeds; χ² = {:.2} / {} dof, p = {:.3e}; KS D = {:.4}, p = {:.3e}; vx KS p = {:.3e}, vy KS p = {:.3e}  → {}",
             m.species,
-            m.mass,
-            m.radius,
+            Num(m.mass),
+            Num(m.radius),
             m.samples,
             m.chi_square.statistic,
             m.chi_square.dof,
@@ -287,12 +290,12 @@ pub fn text(r: &Report, args: &AnalyzeArgs, complete: bool) -> String {
                 "pressure  Z = βPA/N = {:.5} ± {:.5}   βP = {:.6} ± {:.6}   P = {:.6}   (A = {:.4}; {} blocks of {:.4}{})",
                 p.z,
                 p.z_std_error,
-                p.beta_p,
-                p.beta_p_std_error,
-                p.p,
-                p.area,
+                Num(p.beta_p),
+                Num(p.beta_p_std_error),
+                Num(p.p),
+                Num(p.area),
                 p.blocks,
-                p.block_time,
+                Num(p.block_time),
                 if p.converged { "" } else { "; blocking did not converge: run longer" }
             );
             let _ = writeln!(s, "  estimator: {}", p.estimator);
@@ -305,7 +308,7 @@ pub fn text(r: &Report, args: &AnalyzeArgs, complete: bool) -> String {
     let _ = writeln!(
         s,
         "collision rate  ω = {:.5} ± {:.5} pair collisions per disc per unit time ({} pair, {} wall collisions logged, every {})",
-        c.per_disc, c.std_error, c.logged_pair_collisions, c.logged_wall_collisions, c.collision_stride
+        Num(c.per_disc), Num(c.std_error), c.logged_pair_collisions, c.logged_wall_collisions, c.collision_stride
     );
     if let Some(e) = &r.enskog {
         let _ = writeln!(
@@ -324,14 +327,14 @@ pub fn text(r: &Report, args: &AnalyzeArgs, complete: bool) -> String {
             let _ = writeln!(
                 s,
                 "energy budget  E0 = {:.6}, E = {:.6}, dissipated = {:.6} ({}), E0 − dissipated − E = {:.3e} (relative {:.3e})",
-                e.initial, e.final_, e.dissipated, e.dissipated_source, e.residual, e.relative_residual
+                Num(e.initial), Num(e.final_), Num(e.dissipated), e.dissipated_source, e.residual, e.relative_residual
             );
         }
         if let Some(h) = &i.haff {
             let _ = writeln!(
                 s,
                 "Haff's law  t0 = {:.4}, a2 = {:.4}; final kT measured {:.5}, predicted {:.5} (ratio {:.4})",
-                h.t0, h.a2, h.kt_final_measured, h.kt_final_predicted, h.ratio
+                Num(h.t0), h.a2, Num(h.kt_final_measured), Num(h.kt_final_predicted), h.ratio
             );
         }
         let series = &r.temperature.series;

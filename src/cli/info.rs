@@ -9,7 +9,7 @@ use std::fmt::Write;
 
 use serde_json::{json, Value};
 
-use super::{CliError, InfoArgs};
+use super::{CliError, InfoArgs, Num};
 
 fn stop_json(s: &Stop) -> Value {
     match s {
@@ -110,12 +110,12 @@ pub fn info(args: InfoArgs) -> Result<ExitCode, CliError> {
         stop_json(&i.run.stop)
     );
     if let (Some(f), Some(t)) = (&i.run.resumed_from, i.run.resumed_at) {
-        let _ = writeln!(s, "  resumed from {f} at t = {t}");
+        let _ = writeln!(s, "  resumed from {f} at t = {}", Num(t));
     }
     let _ = writeln!(s, "  channels:");
     for (k, t) in TOPICS.iter().enumerate() {
         let span = match i.time_span[k] {
-            Some((a, b)) => format!("t ∈ [{a}, {b}]"),
+            Some((a, b)) => format!("t ∈ [{}, {}]", Num(a), Num(b)),
             None => "no messages".into(),
         };
         let _ = writeln!(
@@ -127,19 +127,19 @@ pub fn info(args: InfoArgs) -> Result<ExitCode, CliError> {
     }
     let _ = writeln!(s, "  logged collisions: {}", i.logged_collisions);
     if let Some(t) = i.last_checkpoint_time {
-        let _ = writeln!(s, "  last checkpoint at t = {t}");
+        let _ = writeln!(s, "  last checkpoint at t = {}", Num(t));
     }
     let _ = match &i.summary {
         Some(sm) => writeln!(s,
             "  summary: stopped ({}{}) at t = {}, {} pair + {} wall collisions, {:.3e} collisions/s, E = {}, dissipated {}",
             sm.stop_reason.as_str(),
             sm.error.as_deref().map(|e| format!(": {e}")).unwrap_or_default(),
-            sm.sim_time,
+            Num(sm.sim_time),
             sm.pair_collisions,
             sm.wall_collisions,
             sm.collisions_per_second,
-            sm.kinetic_energy,
-            sm.energy_lost
+            Num(sm.kinetic_energy),
+            Num(sm.energy_lost)
         ),
         None => writeln!(s, "  summary: none (the run did not finish; `carom resume` continues it)"),
     };

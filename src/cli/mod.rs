@@ -184,6 +184,25 @@ pub(crate) fn emit(text: &str) -> Result<(), CliError> {
     }
 }
 
+/// A number for people to read: as Rust prints it (the shortest text that reads
+/// back exactly) between 10⁻⁴ and 10¹⁵ in magnitude, in scientific notation
+/// outside (so t = 5.55e-142 rather than 141 zeros). A precision (`{:.4}`) counts
+/// digits after the point in either notation.
+pub(crate) struct Num(pub f64);
+
+impl std::fmt::Display for Num {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        let (x, a) = (self.0, self.0.abs());
+        let plain = a == 0.0 || !a.is_finite() || (1e-4..1e15).contains(&a);
+        match (plain, f.precision()) {
+            (true, None) => write!(f, "{x}"),
+            (true, Some(p)) => write!(f, "{x:.p$}"),
+            (false, None) => write!(f, "{x:e}"),
+            (false, Some(p)) => write!(f, "{x:.p$e}"),
+        }
+    }
+}
+
 /// Parse the command line, run the command, report errors; the process's exit
 /// status.
 pub fn main() -> ExitCode {

@@ -15,7 +15,7 @@ use carom::io::Stop;
 use carom::run::{Control, Progress, ResumeOptions, RunError, RunSummary};
 use indicatif::{ProgressBar, ProgressStyle};
 
-use super::{CliError, ResumeArgs, RunArgs};
+use super::{CliError, Num, ResumeArgs, RunArgs};
 
 /// Raised by Ctrl-C, SIGTERM or SIGHUP; the run stops at its next event and
 /// finishes the log.
@@ -52,7 +52,7 @@ const PLAIN_EVERY: Duration = Duration::from_secs(5);
 
 fn stop_text(s: &Stop) -> String {
     match s {
-        Stop::Time(t) => format!("t = {t}"),
+        Stop::Time(t) => format!("t = {}", Num(*t)),
         Stop::Collisions(n) => format!("{n} collisions"),
     }
 }
@@ -91,7 +91,7 @@ impl Display {
     fn update(&mut self, p: &Progress) {
         let msg = format!(
             "t = {:.4} / {}, {} collisions, {:.3e} coll/s",
-            p.sim_time,
+            Num(p.sim_time),
             stop_text(&p.stop),
             p.collisions,
             p.collisions_per_second
@@ -145,7 +145,7 @@ fn report(summary: &RunSummary) -> ExitCode {
          {:.3e} collisions/s over {:.1} s, {:.1} MB",
         summary.log.display(),
         summary.stop_reason.as_str(),
-        summary.sim_time,
+        Num(summary.sim_time),
         summary.pair_collisions,
         summary.wall_collisions,
         summary.logged_collisions,

@@ -207,6 +207,18 @@ impl<'a> CdrReader<'a> {
         Ok(s)
     }
 
+    /// Step over `n` aligned primitives of type `T` without reading them.
+    pub fn skip<T: CdrPrimitive>(&mut self, field: &'static str, n: usize) -> Result<(), CdrError> {
+        self.align(T::SIZE);
+        let bytes = n.checked_mul(T::SIZE).ok_or(CdrError::Truncated {
+            field,
+            offset: self.pos,
+            needed: usize::MAX,
+            available: self.remaining(),
+        })?;
+        self.take(field, bytes).map(|_| ())
+    }
+
     /// Read one aligned primitive.
     pub fn get<T: CdrPrimitive>(&mut self, field: &'static str) -> Result<T, CdrError> {
         self.align(T::SIZE);

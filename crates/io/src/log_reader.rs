@@ -932,7 +932,7 @@ pub fn scan(path: &Path) -> Result<LogInfo, ReadError> {
     let mut last_cp = None;
     while let Some(m) = r.next_raw()? {
         messages[m.channel] += 1;
-        let (t0, t1) = (m.log_time as f64 * 1e-9, m.publish_time as f64 * 1e-9);
+        let (t0, t1) = simulated_times(&m);
         let s = &mut span[m.channel];
         *s = Some(match *s {
             None => (t0, t1),
@@ -959,6 +959,39 @@ pub fn scan(path: &Path) -> Result<LogInfo, ReadError> {
         last_checkpoint_time: last_cp,
         file_bytes,
     })
+}
+
+/// The simulated times (time) of the first and the last record of message `m`,
+/// read from the message itself. MCAP's log and publish times are whole
+/// nanoseconds of simulated time (one time unit as one second): they cannot tell
+/// apart the times of a run in seconds at the scale of molecules (10⁻¹² s), and
+/// saturate beyond 1.8·10¹⁰. They are used only for a message that cannot be read.
+fn simulated_times(m: &RawMessage) -> (f64, f64) {
+    let exact = match m.channel {
+        CH_COLLISIONS => (|| {
+            let mut r = crate::cdr::CdrReader::new(m.data).ok()?;
+            r.skip::<u64>("first_ordinal, stride", 2).ok()?;
+            let n = r.get::<u32>("time").ok()? as usize;
+            if n == 0 {
+                return None;
+            }
+            let first = r.get::<f64>("time").ok()?;
+            if n == 1 {
+                return Some((first, first));
+            }
+            r.skip::<f64>("time", n - 2).ok()?;
+            Some((first, r.get::<f64>("time").ok()?))
+        })(),
+        CH_SNAPSHOT => crate::cdr::CdrReader::new(m.data)
+            .and_then(|mut r| r.get::<f64>("time"))
+            .ok()
+            .map(|t| (t, t)),
+        CH_THERMO => Thermo::decode(m.data).ok().map(|t| (t.time, t.time)),
+        _ => LogCheckpoint::decode(m.data)
+            .ok()
+            .map(|c| (c.engine.now, c.engine.now)),
+    };
+    exact.unwrap_or((m.log_time as f64 * 1e-9, m.publish_time as f64 * 1e-9))
 }
 
 /// The last complete checkpoint of a log (possibly truncated) and how many carom
