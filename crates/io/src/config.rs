@@ -930,6 +930,22 @@ impl Config {
                     "an integer ≥ 1",
                 ))
             }
+            (None, Some(_))
+                if self
+                    .species
+                    .iter()
+                    .map(|s| s.count)
+                    .filter(|&c| c > 0)
+                    .eq([1])
+                    && !self.sim_box.boundary.axes().contains(&AxisBoundary::Walls) =>
+            {
+                // It would run forever, filling the disk with snapshots.
+                return Err(ConfigError::invalid(
+                    "stop.collisions",
+                    "a single disc in a periodic box never collides",
+                    "stop.duration, or walls, or more than one disc",
+                ));
+            }
             _ => {}
         }
         let l = &self.log;
@@ -1428,6 +1444,10 @@ mod tests {
             (r#"{"stop": {"duration": 1, "collisions": 5}}"#, "stop"),
             (r#"{"stop": {"duration": -1}}"#, "stop.duration"),
             (r#"{"stop": {"collisions": 0}}"#, "stop.collisions"),
+            (
+                r#"{"species": [{"count": 1}], "stop": {"collisions": 10}}"#,
+                "stop.collisions",
+            ),
             (r#"{"log": {"collision_every": 0}}"#, "log.collision_every"),
             (
                 r#"{"log": {"snapshot_interval": 0}}"#,
