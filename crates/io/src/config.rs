@@ -673,6 +673,18 @@ fn strip_position(msg: &str) -> &str {
     }
 }
 
+/// serde's name of an expected Rust type in words a user of the config reads
+/// ("f64" is "a number"); anything else as it is.
+fn plain_type(expected: &str) -> String {
+    match expected {
+        "f64" | "f32" => "a number".to_owned(),
+        "u64" | "u32" | "usize" | "u16" => "a non-negative integer".to_owned(),
+        "i64" | "i32" => "an integer".to_owned(),
+        "a boolean" | "bool" => "true or false".to_owned(),
+        _ => expected.to_owned(),
+    }
+}
+
 /// Split serde's message "problem, expected X" into (problem, allowed).
 fn split_serde_message(msg: &str) -> (String, String) {
     // serde_json appends " at line L column C" only when parsing text; from a Value
@@ -690,7 +702,7 @@ fn split_serde_message(msg: &str) -> (String, String) {
     match msg.find(", expected ") {
         Some(k) => (
             msg[..k].to_owned(),
-            msg[k + ", expected ".len()..].to_owned(),
+            plain_type(&msg[k + ", expected ".len()..]),
         ),
         None => {
             if msg.starts_with("missing field") {
@@ -1231,6 +1243,24 @@ mod tests {
         e.field()
             .unwrap_or_else(|| panic!("no field in {e}"))
             .to_owned()
+    }
+
+    #[test]
+    fn type_errors_say_what_is_allowed_in_words() {
+        for (text, sets, allowed) in [
+            (r#"{"temperature": "warm"}"#, vec![], "allowed: a number"),
+            ("{}", vec!["temperature=abc"], "allowed: a number"),
+            (r#"{"seed": -1}"#, vec![], "allowed: a non-negative integer"),
+            (
+                r#"{"log": {"collisions": 3}}"#,
+                vec![],
+                "allowed: true or false",
+            ),
+        ] {
+            let msg = err_of(text, &sets).to_string();
+            assert!(msg.contains(allowed), "{text} {sets:?}: {msg}");
+            assert!(!msg.contains("f64") && !msg.contains("u64"), "{msg}");
+        }
     }
 
     #[test]
