@@ -501,6 +501,10 @@ fn a_run_in_units_of_picoseconds_is_analysed_like_one_in_reduced_units() {
         f(&pico["collision_rate"]["per_disc"]) * s,
         f(&reduced["collision_rate"]["per_disc"])
     );
+    // Too few histogram bins leave the χ² test nothing: a usage error.
+    let out = carom(&dir, &["analyze", "pico.mcap", "--bins", "3"]);
+    assert_eq!(out.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("--bins"));
     // `info` shows the channels' spans in the run's own time.
     let i = json_of(&carom(&dir, &["info", "pico.mcap", "--json"]));
     assert_eq!(

@@ -114,7 +114,7 @@ pub fn read_report(args: &AnalyzeArgs) -> Result<(Report, bool), CliError> {
     let opts = AnalysisOptions {
         equilibrate: args.equilibrate,
         every: args.every,
-        speed_bins: args.bins.max(2),
+        speed_bins: args.bins as usize,
         ..AnalysisOptions::default()
     };
     if let Some(t) = args.equilibrate {

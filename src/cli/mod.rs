@@ -115,9 +115,11 @@ pub struct AnalyzeArgs {
     /// distribution; default: every snapshot after --equilibrate.
     #[arg(long, value_name = "DT")]
     pub every: Option<f64>,
-    /// Bins of the speed histograms.
-    #[arg(long, value_name = "N", default_value_t = 40)]
-    pub bins: usize,
+    /// Bins of the speed histograms (at least 4: the χ² test fits one parameter
+    /// and needs a degree of freedom left).
+    #[arg(long, value_name = "N", default_value_t = 40,
+          value_parser = clap::value_parser!(u32).range(4..))]
+    pub bins: u32,
 }
 
 /// Arguments of `carom info`.
