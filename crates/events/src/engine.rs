@@ -40,9 +40,9 @@
 //! the queue's (the queue reads it through [`EventTimes`]) saves a cache line per
 //! disc an event touches at large N: `examples/profile`, η = 0.5, both builds side
 //! by side on the two cores, medians of 6: 1.04 at N = 10⁶ (per-run ratios
-//! 1.03–1.18) and 1.08 at N = 10⁴; 8 fewer bytes per disc. The full scans after
-//! crossings with an obsolete candidate are outweighed by the recomputations they
-//! save at the head of the queue (0.191 → 0.176 per collision).
+//! 1.03–1.18) and 1.08 at N = 10⁴; 8 fewer bytes per disc. Obsolete predictions
+//! recomputed at the head of the queue fell from 0.191 to 0.176 per collision, as
+//! a crossing now replaces an obsolete candidate at once.
 
 use crate::cells::{CellGrid, Link, NONE};
 use crate::error::EngineError;
@@ -102,11 +102,11 @@ pub struct Stats {
 }
 
 /// Everything the event loop touches for one disc, in one 64-byte cache line: its
-/// straight path (origin and velocity), collision counter, pair candidate,
-/// pending event and its time, species, and its place in the cell lists. At large N every event
-/// lands at a random place in memory, so keeping these together saves a cache miss
-/// per lookup (measured: see benches/engine.rs), and a scan walking a cell's list
-/// reads nothing but the records it tests.
+/// straight path (origin and velocity), collision counter, pair candidate, pending
+/// event and its time, species, and its place in the cell lists. At large N every
+/// event lands at a random place in memory, so keeping these together saves a cache
+/// miss per lookup (measured: see benches/engine.rs), and a scan walking a cell's
+/// list reads nothing but the records it tests.
 ///
 /// The path is stored as its origin `r0`, the position the disc would have had at
 /// internal time 0 on its current velocity: its position at time t is
@@ -165,10 +165,6 @@ impl Body {
 /// anyway: a separate array of times cost a cache miss per disc an event touches at
 /// large N.
 impl EventTimes for [Body] {
-    #[inline(always)]
-    fn discs(&self) -> usize {
-        self.len()
-    }
     #[inline(always)]
     fn time(&self, i: u32) -> f64 {
         self[i as usize].event_time

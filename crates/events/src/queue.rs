@@ -62,8 +62,6 @@ pub const SLOT_DISCS: usize = 7;
 /// stored time must change only through [`EventQueue::set`] (or be followed by
 /// [`EventQueue::retune`], which refiles every disc).
 pub trait EventTimes {
-    /// Number of discs.
-    fn discs(&self) -> usize;
     /// The stored event time of disc `i`.
     fn time(&self, i: u32) -> f64;
     /// Store `t` as disc `i`'s event time.
@@ -74,10 +72,6 @@ pub trait EventTimes {
 
 /// Plain arrays of times (for tests and simple callers).
 impl EventTimes for [f64] {
-    #[inline]
-    fn discs(&self) -> usize {
-        self.len()
-    }
     #[inline]
     fn time(&self, i: u32) -> f64 {
         self[i as usize]
