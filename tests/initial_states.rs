@@ -840,6 +840,12 @@ fn speeds_that_would_overflow_the_arithmetic_are_errors() {
         };
         assert_err_names(build(&sp, "T"), "temperature", &format!("kT = {t:e}"));
     }
+    // Moderate speeds in a box of 1e152 diameters: the box is what is too large.
+    let sp = SystemSpec {
+        placement: Placement::Random,
+        ..spec(mono(20), 1e-300, 1.0, Kind::Periodic, 1)
+    };
+    assert_err_names(build(&sp, "huge box"), "box.size", "η = 1e-300");
     // Equal speeds are refused on the same grounds.
     let sp = SystemSpec {
         temperature: 1e300,
@@ -854,12 +860,12 @@ fn speeds_that_would_overflow_the_arithmetic_are_errors() {
     // Given velocities are named as such: finite, but too fast for this box...
     let n = 20;
     let mut v = vec![DVec2::new(1.0, 0.0); n];
-    v[3] = DVec2::new(1e150, 0.0);
+    v[3] = DVec2::new(1e151, 0.0);
     let sp = SystemSpec {
         velocities: Velocities::Explicit(v.clone()),
         ..base()
     };
-    let msg = assert_err_names(build(&sp, "fast disc"), "velocities", "a disc at 1e150");
+    let msg = assert_err_names(build(&sp, "fast disc"), "velocities", "a disc at 1e151");
     assert!(msg.contains("1e150"), "{msg}");
     // ... or of finite speed but infinite kinetic energy with a huge mass.
     v[3] = DVec2::new(1e140, 0.0);

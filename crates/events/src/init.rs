@@ -92,7 +92,9 @@ fn check_finite_positive(field: &str, x: f64) -> Result<(), InitError> {
 pub const SPEED_TIMES_SIZE_LIMIT: f64 = 1e150;
 
 /// Refuse velocities whose scale would overflow the engine's arithmetic (see
-/// [`SPEED_TIMES_SIZE_LIMIT`]); `field` names where they came from.
+/// [`SPEED_TIMES_SIZE_LIMIT`]); `field` names where they came from. When even a
+/// box one diameter across would pass (fastest speed × largest diameter within the
+/// limit), the box is what is too large, and the error names `box.size`.
 fn check_scales(
     spec: &SystemSpec,
     species_of: &[u16],
@@ -103,8 +105,9 @@ fn check_scales(
     let edge = spec.sim_box.size.max_element();
     let product = fastest * edge;
     if product.is_nan() || product > SPEED_TIMES_SIZE_LIMIT {
+        let box_too_large = fastest * 2.0 * spec.largest_radius() <= SPEED_TIMES_SIZE_LIMIT;
         return Err(InitError::invalid(
-            field,
+            if box_too_large { "box.size" } else { field },
             format!(
                 "the fastest disc's speed {fastest:.3e} times the longest box edge {edge:.3e} \
                  is {product:.3e}, beyond what f64 arithmetic on contact times can hold"

@@ -158,6 +158,52 @@ impl From<InitError> for ConfigError {
     }
 }
 
+/// The box edges (length) for `species` at the packing fraction and aspect ratio
+/// of `b` (no `size` given), refused when they come out infinite, zero, or with the
+/// shorter edge not longer than the largest diameter: the error then names the
+/// setting that made them so, rather than a `box.size` the user never wrote.
+fn derived_box_size(species: &[Species], b: &BoxConfig) -> Result<DVec2, ConfigError> {
+    let eta = b.packing_fraction.unwrap_or(DEFAULT_PACKING_FRACTION);
+    let aspect = b.aspect.unwrap_or(1.0);
+    let covered: f64 = species.iter().map(|s| s.count as f64 * s.disc_area()).sum();
+    if !covered.is_finite() {
+        return Err(ConfigError::invalid(
+            "species",
+            format!("the discs' total area Σ count π a² is {covered}"),
+            "radii and counts whose total area is a finite number",
+        ));
+    }
+    let size = box_size_for(species, eta, aspect);
+    if !size.is_finite() || size.min_element() <= 0.0 {
+        return Err(ConfigError::invalid(
+            "box.packing_fraction",
+            format!(
+                "η = {eta:?} with these discs gives box edges {:?} × {:?}",
+                size.x, size.y
+            ),
+            "a packing fraction and disc sizes whose box has finite edges",
+        ));
+    }
+    let diameter = species
+        .iter()
+        .filter(|s| s.count > 0)
+        .map(|s| 2.0 * s.radius)
+        .fold(0.0, f64::max);
+    if size.min_element() <= diameter {
+        return Err(ConfigError::invalid(
+            "box.aspect",
+            format!(
+                "aspect {aspect} at η = {eta} gives box edges {:.4} × {:.4}, the shorter \
+                 not longer than the largest disc diameter {diameter}",
+                size.x, size.y
+            ),
+            "an aspect ratio nearer 1, or more discs, so that both edges exceed the \
+             largest diameter",
+        ));
+    }
+    Ok(size)
+}
+
 /// Map a field name of [`InitError`] to the configuration's dotted path.
 fn init_field_to_config(field: &str) -> String {
     // `name[3].rest` → segments name, 3, rest.
@@ -1038,13 +1084,7 @@ impl Config {
             .collect();
         let size = match c.sim_box.size {
             Some([lx, ly]) => DVec2::new(lx, ly),
-            None => box_size_for(
-                &species,
-                c.sim_box
-                    .packing_fraction
-                    .unwrap_or(DEFAULT_PACKING_FRACTION),
-                c.sim_box.aspect.unwrap_or(1.0),
-            ),
+            None => derived_box_size(&species, &c.sim_box)?,
         };
         let restitution = c.sim_box.wall_restitution.unwrap_or(1.0);
         let axes = c.sim_box.boundary.axes();
@@ -1429,6 +1469,17 @@ mod tests {
             (
                 r#"{"species": [{"count": 5}, {"count": 5, "mass": -1}]}"#,
                 "species.1.mass",
+            ),
+            // Boxes derived from η and the aspect: the setting that spoils them is
+            // named, not the box.size nobody wrote.
+            (r#"{"species": [{"count": 5, "radius": 1e200}]}"#, "species"),
+            (
+                r#"{"box": {"packing_fraction": 1e-320}}"#,
+                "box.packing_fraction",
+            ),
+            (
+                r#"{"species": [{"count": 4}], "box": {"aspect": 100}}"#,
+                "box.aspect",
             ),
             (
                 r#"{"box": {"packing_fraction": 0.95}}"#,
