@@ -422,6 +422,10 @@ fn ctrl_c_finishes_the_log_and_resume_continues_it() {
     assert_eq!(j["summary"]["stop_reason"], "time");
     assert!((f(&j["summary"]["sim_time"]) - (t_stop + 1.0)).abs() < 1e-9);
     assert_eq!(j["run"]["resumed_from"], "long.mcap");
+    // A stop before the log's end is a usage error (exit 2) naming the option.
+    let out = carom(&dir, &["resume", "long.mcap", "--until", "0", "--quiet"]);
+    assert_eq!(out.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("stop.time"));
     // Resuming into an existing other file needs --force, as `run` does; the file
     // is left as it was.
     let before = std::fs::read(dir.join("more.mcap")).unwrap();

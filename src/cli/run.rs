@@ -131,10 +131,12 @@ fn default_out(config: Option<&Path>) -> PathBuf {
 }
 
 /// Map a run error whose cause is the configuration to a [`ConfigError`] naming
-/// the configuration's field.
+/// the configuration's field, and one whose cause is an option (such as a
+/// `resume --until` before the log's end) to a usage error: both exit with 2.
 fn run_error(e: RunError) -> CliError {
     match e {
         RunError::Init(init) => CliError::Config(ConfigError::from_init(init)),
+        e @ RunError::Invalid { .. } => CliError::Usage(e.to_string()),
         other => CliError::Run(other),
     }
 }
