@@ -518,6 +518,37 @@ fn a_run_in_units_of_picoseconds_is_analysed_like_one_in_reduced_units() {
     );
 }
 
+#[test]
+fn a_species_with_too_few_speeds_is_reported_untested_not_fatal() {
+    // One heavy disc among 400: three snapshots give it three speeds, too few for
+    // a χ² test. The rest of the analysis must still come out.
+    let dir = scratch("fewspeeds");
+    ok(&carom(
+        &dir,
+        &[
+            "run",
+            "--quiet",
+            "--out",
+            "m.mcap",
+            "--set",
+            "species.0.count=400",
+            "--set",
+            r#"species.1={"count": 1, "radius": 0.5, "mass": 2}"#,
+            "--set",
+            "stop.duration=3",
+        ],
+    ));
+    let r = json_of(&carom(&dir, &["analyze", "m.mcap", "--json"]));
+    assert_eq!(r["maxwell_boltzmann"].as_array().unwrap().len(), 1, "{r}");
+    assert_eq!(r["maxwell_boltzmann"][0]["species"], 0);
+    let u = &r["maxwell_boltzmann_untested"];
+    assert_eq!(u.as_array().unwrap().len(), 1, "{r}");
+    assert_eq!(u[0]["species"], 1);
+    assert!(f(&r["pressure"]["z"]) > 3.0, "{r}");
+    let text = ok(&carom(&dir, &["analyze", "m.mcap"]));
+    assert!(text.contains("species 1: not tested"), "{text}");
+}
+
 /// Start `carom ARGS` in `dir`, send it `signal` (a `kill` signal name) after
 /// `wait_ms`, and collect what it printed and how it ended.
 fn signalled(dir: &Path, args: &[&str], signal: &str, wait_ms: u64) -> Output {

@@ -403,12 +403,27 @@ impl Analyzer {
 
         // ---- Maxwell–Boltzmann per species
         let mut maxwell_boltzmann = Vec::new();
+        let mut maxwell_boltzmann_untested = Vec::new();
         if let Some(kt) = kt_used {
             for (s, sp) in run.species.iter().enumerate() {
                 if self.speeds[s].len() < 2 {
                     continue;
                 }
-                let t = mb_speed_test(&self.speeds[s], sp.mass, kt, self.opts.speed_bins, true)?;
+                // A species with too few speeds for the χ² test (a handful of
+                // discs in a short window) is reported as untested; the other
+                // species and the rest of the analysis go on.
+                let t =
+                    match mb_speed_test(&self.speeds[s], sp.mass, kt, self.opts.speed_bins, true) {
+                        Err(StatsError::NotEnoughData(why)) => {
+                            maxwell_boltzmann_untested.push(SpeciesUntested {
+                                species: s,
+                                samples: self.speeds[s].len(),
+                                reason: why,
+                            });
+                            continue;
+                        }
+                        r => r?,
+                    };
                 let mb = t.reference;
                 let comp_hist = |v: &[f64]| {
                     let l = 4.5 * mb.scale();
@@ -575,6 +590,7 @@ impl Analyzer {
             },
             temperature,
             maxwell_boltzmann,
+            maxwell_boltzmann_untested,
             pressure,
             collision_rate,
             enskog,
@@ -740,6 +756,8 @@ pub struct Report {
     /// Velocity distribution against Maxwell–Boltzmann, one entry per species with
     /// samples.
     pub maxwell_boltzmann: Vec<SpeciesMb>,
+    /// Species with speeds but too few for the Maxwell–Boltzmann tests.
+    pub maxwell_boltzmann_untested: Vec<SpeciesUntested>,
     /// Pressure and compressibility factor; `null` when no temperature is known.
     pub pressure: Option<PressureReport>,
     /// Pair collisions per disc per unit time.
@@ -860,6 +878,17 @@ impl From<&KsTest> for KsReport {
             p_value: k.p_value,
         }
     }
+}
+
+/// A species whose velocities could not be tested against Maxwell–Boltzmann.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct SpeciesUntested {
+    /// Species index.
+    pub species: usize,
+    /// Speeds in the window (discs × snapshots).
+    pub samples: usize,
+    /// Why the tests could not be made.
+    pub reason: String,
 }
 
 /// One species' velocities against the 2D Maxwell–Boltzmann distribution

@@ -257,7 +257,7 @@ pub fn text(r: &Report, args: &AnalyzeArgs, complete: bool) -> String {
         t.conserved_momentum_components,
         t.convention
     );
-    if r.maxwell_boltzmann.is_empty() {
+    if r.maxwell_boltzmann.is_empty() && r.maxwell_boltzmann_untested.is_empty() {
         let _ = writeln!(s, "Maxwell–Boltzmann  no snapshots in the window");
     } else {
         let _ = writeln!(
@@ -281,6 +281,13 @@ pub fn text(r: &Report, args: &AnalyzeArgs, complete: bool) -> String {
             m.ks_vx.p_value,
             m.ks_vy.p_value,
             if m.passed { "consistent with MB" } else { "NOT Maxwell–Boltzmann" }
+        );
+    }
+    for u in &r.maxwell_boltzmann_untested {
+        let _ = writeln!(
+            s,
+            "  species {}: not tested ({} speeds: {})",
+            u.species, u.samples, u.reason
         );
     }
     match &r.pressure {
