@@ -684,12 +684,35 @@ pub fn load(path: Option<&Path>, sets: &[String]) -> Result<RunSpec, ConfigError
 
 /// Parse JSON text into a [`Value`], reporting syntax errors with line and column.
 fn parse_json(text: &str, origin: &str) -> Result<Value, ConfigError> {
-    serde_json::from_str(text).map_err(|e| ConfigError::Syntax {
+    let value = serde_json::from_str(text).map_err(|e| ConfigError::Syntax {
         origin: origin.to_owned(),
         line: e.line(),
         column: e.column(),
         message: strip_position(&e.to_string()).to_owned(),
-    })
+    })?;
+    // A JSON object read into a Value keeps the last of two equal keys without a
+    // word; reading the text straight into the configuration's structs notices.
+    // (Any other error of that reading is left to the checks that follow, which
+    // see the `--set` overrides too.)
+    let mut de = serde_json::Deserializer::from_str(text);
+    if let Err(e) = serde_path_to_error::deserialize::<_, Config>(&mut de) {
+        let message = e.inner().to_string();
+        if let Some(rest) = message.strip_prefix("duplicate field `") {
+            let key = rest.split('`').next().unwrap_or_default();
+            let parent = dotted(e.path());
+            let field = if parent == "(top level)" || parent.ends_with(key) {
+                key.to_owned()
+            } else {
+                format!("{parent}.{key}")
+            };
+            return Err(ConfigError::invalid(
+                field,
+                format!("given twice ({})", strip_position(&message)),
+                "each key once per object",
+            ));
+        }
+    }
+    Ok(value)
 }
 
 /// Render a serde_path_to_error path as a dotted path (`species.0.count`).
@@ -1469,6 +1492,11 @@ mod tests {
             (
                 r#"{"species": [{"count": 5}, {"count": 5, "mass": -1}]}"#,
                 "species.1.mass",
+            ),
+            (r#"{"temperature": 1, "temperature": 2}"#, "temperature"),
+            (
+                r#"{"species": [{"count": 5, "radius": 0.5, "radius": 1}]}"#,
+                "species.0.radius",
             ),
             // Boxes derived from η and the aspect: the setting that spoils them is
             // named, not the box.size nobody wrote.
