@@ -259,7 +259,9 @@ impl Engine {
         // Stale entries (about 4 in 10: every collision leaves the partner's old
         // entry behind) are skipped already here: their loads would only
         // compete with the useful ones for the processor's miss buffers (N = 10⁶:
-        // 1.06 → 1.16 M/s, median of 7 alternating runs).
+        // 1.06 → 1.16 M/s, median of 7 alternating runs). Now that the records
+        // come a bucket earlier and only labels are fetched here, skipping still
+        // pays: labels of every entry without the check, 0.94 (8 side by side).
         for d in self.queue.filed_ahead(bodies, 3) {
             prefetch_at(&self.label, d as usize);
         }
