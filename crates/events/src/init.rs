@@ -72,6 +72,17 @@ pub fn box_size_for(species: &[Species], eta: f64, aspect: f64) -> DVec2 {
     DVec2::new(lx, area / lx)
 }
 
+/// The largest radius among the species with a count above 0 (length; 0 for
+/// none): a species with count 0 sets neither the lattice spacing nor the cell
+/// size, nor how narrow a box may be.
+pub fn largest_radius(species: &[Species]) -> f64 {
+    species
+        .iter()
+        .filter(|s| s.count > 0)
+        .map(|s| s.radius)
+        .fold(0.0, f64::max)
+}
+
 fn check_finite_positive(field: &str, x: f64) -> Result<(), InitError> {
     if !x.is_finite() || x <= 0.0 {
         return Err(InitError::invalid(
@@ -212,14 +223,10 @@ impl SystemSpec {
         })
     }
 
-    /// The largest radius of the species that have discs (length): a species with
-    /// count 0 sets neither the lattice spacing nor the cell size.
+    /// The largest radius of the species that have discs (length; see
+    /// [`largest_radius`]).
     fn largest_radius(&self) -> f64 {
-        self.species
-            .iter()
-            .filter(|s| s.count > 0)
-            .map(|s| s.radius)
-            .fold(0.0, f64::max)
+        largest_radius(&self.species)
     }
 
     fn validate(&self) -> Result<(), InitError> {

@@ -44,7 +44,9 @@
 use std::path::Path;
 
 use carom_core::{Boundary, DVec2, Restitution, SimBox, Species};
-use carom_events::{box_size_for, EngineParams, InitError, Placement, SystemSpec, Velocities};
+use carom_events::{
+    box_size_for, largest_radius, EngineParams, InitError, Placement, SystemSpec, Velocities,
+};
 use serde::{Deserialize, Deserializer, Serialize};
 use serde_json::Value;
 use thiserror::Error;
@@ -184,11 +186,7 @@ fn derived_box_size(species: &[Species], b: &BoxConfig) -> Result<DVec2, ConfigE
             "a packing fraction and disc sizes whose box has finite edges",
         ));
     }
-    let diameter = species
-        .iter()
-        .filter(|s| s.count > 0)
-        .map(|s| 2.0 * s.radius)
-        .fold(0.0, f64::max);
+    let diameter = 2.0 * largest_radius(species);
     if size.min_element() <= diameter {
         return Err(ConfigError::invalid(
             "box.aspect",
