@@ -754,7 +754,8 @@ pub struct Report {
     /// Temperature and its degrees-of-freedom convention.
     pub temperature: TemperatureReport,
     /// Velocity distribution against Maxwell–Boltzmann, one entry per species with
-    /// samples.
+    /// enough samples for the tests (the others are in
+    /// `maxwell_boltzmann_untested`).
     pub maxwell_boltzmann: Vec<SpeciesMb>,
     /// Species with speeds but too few for the Maxwell–Boltzmann tests.
     pub maxwell_boltzmann_untested: Vec<SpeciesUntested>,
