@@ -939,10 +939,7 @@ pub fn scan(path: &Path) -> Result<LogInfo, ReadError> {
             Some((a, b)) => (a.min(t0), b.max(t1)),
         });
         if m.channel == CH_COLLISIONS {
-            // `time` length sits after the header and two uint64 scalars.
-            if let Some(b) = m.data.get(20..24) {
-                logged += u32::from_le_bytes([b[0], b[1], b[2], b[3]]) as u64;
-            }
+            logged += batch_times(m.data).map_or(0, |(n, ..)| n as u64);
         }
         if m.channel == CH_CHECKPOINT {
             last_cp = Some(t0);
@@ -968,20 +965,7 @@ pub fn scan(path: &Path) -> Result<LogInfo, ReadError> {
 /// saturate beyond 1.8·10¹⁰. They are used only for a message that cannot be read.
 fn simulated_times(m: &RawMessage) -> (f64, f64) {
     let exact = match m.channel {
-        CH_COLLISIONS => (|| {
-            let mut r = crate::cdr::CdrReader::new(m.data).ok()?;
-            r.skip::<u64>("first_ordinal, stride", 2).ok()?;
-            let n = r.get::<u32>("time").ok()? as usize;
-            if n == 0 {
-                return None;
-            }
-            let first = r.get::<f64>("time").ok()?;
-            if n == 1 {
-                return Some((first, first));
-            }
-            r.skip::<f64>("time", n - 2).ok()?;
-            Some((first, r.get::<f64>("time").ok()?))
-        })(),
+        CH_COLLISIONS => batch_times(m.data).map(|(_, first, last)| (first, last)),
         CH_SNAPSHOT => crate::cdr::CdrReader::new(m.data)
             .and_then(|mut r| r.get::<f64>("time"))
             .ok()
@@ -992,6 +976,21 @@ fn simulated_times(m: &RawMessage) -> (f64, f64) {
             .map(|c| (c.engine.now, c.engine.now)),
     };
     exact.unwrap_or((m.log_time as f64 * 1e-9, m.publish_time as f64 * 1e-9))
+}
+
+/// A `/collisions` batch's number of collisions and the times (time) of its first
+/// and last, read without decoding the rest; `None` for an empty or unreadable
+/// batch.
+fn batch_times(data: &[u8]) -> Option<(usize, f64, f64)> {
+    let mut r = crate::cdr::CdrReader::new(data).ok()?;
+    r.skip::<u64>("first_ordinal, stride", 2).ok()?;
+    let n = r.get::<u32>("time").ok()? as usize;
+    let first = r.get::<f64>("time").ok()?;
+    if n > 1 {
+        r.skip::<f64>("time", n - 2).ok()?;
+        return Some((n, first, r.get::<f64>("time").ok()?));
+    }
+    (n == 1).then_some((1, first, first))
 }
 
 /// The last complete checkpoint of a log (possibly truncated) and how many carom
