@@ -916,7 +916,14 @@ impl Engine {
         let ri = bi.at(now);
         let mut found = Found::NOTHING;
         self.scan(i, ri, [-1, 1], [-1, 1], &mut found);
-        let (boundary, kind, aux) = self.boundary_event(i, ri, bi.v);
+        let boundary = self.boundary_event(i, ri, bi.v);
+        self.file_event(i, &found, boundary);
+    }
+
+    /// Make disc `i`'s earliest event pending and queue it: the pair candidate
+    /// `found`, or the boundary event (time from now, kind, aux) if that comes first.
+    #[inline(always)]
+    fn file_event(&mut self, i: usize, found: &Found, (boundary, kind, aux): (f64, u8, u8)) {
         // Without branches (a pair or a boundary event comes first about equally
         // often); with no partner, the count read is of a disc in memory and unused.
         let partner_count = self.bodies[(found.partner as usize).min(self.bodies.len() - 1)].count;
@@ -929,7 +936,7 @@ impl Engine {
         self.queue.set(
             self.bodies.as_mut_slice(),
             i as u32,
-            time_key(now + found.best.min(boundary)),
+            time_key(self.clock + found.best.min(boundary)),
         );
     }
 
@@ -979,23 +986,8 @@ impl Engine {
         };
         // The strip's discs replace the candidate only when one meets earlier.
         self.scan(i, ri, xs, ys, &mut candidate);
-        let (boundary, kind, aux) = self.boundary_event(i, ri, bi.v);
-        let partner_count = if candidate.partner == NONE {
-            0
-        } else {
-            self.bodies[candidate.partner as usize].count
-        };
-        let pair = candidate.best < boundary;
-        let b = &mut self.bodies[i];
-        b.partner = candidate.partner;
-        b.partner_count = partner_count;
-        b.kind = std::hint::select_unpredictable(pair, KIND_PAIR, kind);
-        b.aux = aux | candidate.code << 2;
-        self.queue.set(
-            self.bodies.as_mut_slice(),
-            i as u32,
-            time_key(now + candidate.best.min(boundary)),
-        );
+        let boundary = self.boundary_event(i, ri, bi.v);
+        self.file_event(i, &candidate, boundary);
     }
 
     /// Look for disc `i`'s earliest pair collision (before `found.best`, time from
