@@ -19,6 +19,11 @@
 //!   With the TC model (t_c = 10⁻⁴ τ0, about 10⁻³ of the initial mean free time) the
 //!   same system runs 2·10⁵ collisions with no overlap beyond 1e-10 of σ and an exact
 //!   energy budget.
+//! * Restitution 0 (both models) under the TC model: a pair left without normal
+//!   relative velocity, which rounding may leave slightly approaching, does not
+//!   meet again at the same instant (two discs, 200 variants, inside the box and across its periodic edge;
+//!   each of the two sides' views is needed); and N = 400 at η = 0.3 with
+//!   t_c = 10⁻³ runs to t = 20 without stalling or overlap, keeping momentum.
 //! * Walls with restitution e_w < 1 (walled box and channel, elastic pairs): every
 //!   wall hit reverses and scales the normal velocity by e_w, keeps the tangential
 //!   one, reports the impulse m (1 + e_w)|v_n| and dissipates exactly
@@ -467,4 +472,105 @@ fn runaway_guard_counts_only_collisions_at_one_instant() {
         stops > 0,
         "no seed reached a second collision at one instant"
     );
+}
+
+/// Two discs meeting along (3, 4)/5 (σ = 5) while sliding past each other at unit
+/// speed, inside the box or across its periodic edge, in 200 variants of their
+/// approach speed, under the TC model. With e = 0 or R = 0 the rule leaves them
+/// without normal relative velocity, which rounding may leave slightly
+/// approaching; they must not then meet again at the same instant (before, they
+/// did, and the TC model's elastic collision could not change their velocities by
+/// so little: a stall).
+#[test]
+fn a_pair_left_without_normal_velocity_does_not_meet_again_at_once() {
+    let n = DVec2::new(0.6, 0.8);
+    for rule in [Restitution::Normal(0.0), Restitution::CentreOfMass(0.0)] {
+        let mut collided = 0;
+        for m in 0..200u32 {
+            let approach = 0.5 * (1.0 + f64::from(m) * 1e-3);
+            let v0 = DVec2::new(0.8, -0.6) + n * approach;
+            let v1 = DVec2::new(-0.8, 0.6) - n * approach;
+            // Inside the box, or across its periodic edge (then the two discs see
+            // each other through images shifted by ∓L, rounded differently).
+            let r0 = if m % 2 == 0 {
+                DVec2::new(10.0, 10.0)
+            } else {
+                DVec2::new(39.9, 10.0)
+            };
+            let mut r1 = r0 + n * 5.01;
+            r1.x %= 40.0;
+            let state = State {
+                sim_box: carom::core::SimBox::periodic(40.0, 40.0),
+                species: vec![Species {
+                    count: 2,
+                    radius: 2.5,
+                    mass: 1.0,
+                }],
+                species_of: vec![0, 0],
+                positions: vec![r0, r1],
+                velocities: vec![v0, v1],
+                time: 0.0,
+            };
+            let params = EngineParams {
+                restitution: rule,
+                tc: 1e-3,
+                max_events_without_time_advance: 10,
+            };
+            let mut engine = Engine::new(state, params).expect("engine");
+            engine.schedule(10.0, 0).expect("schedule");
+            let mut times = Vec::new();
+            loop {
+                match engine.next_event() {
+                    Ok(Some(Event::Pair(p))) => {
+                        times.push(p.time);
+                        let (before, after) = (p.vi_before + p.vj_before, p.vi_after + p.vj_after);
+                        assert!(
+                            (after - before).length() <= 4.0 * f64::EPSILON,
+                            "{rule:?}, m = {m}: momentum {before} → {after}"
+                        );
+                    }
+                    Ok(Some(Event::Scheduled { .. })) => break,
+                    Ok(other) => panic!("{rule:?}, m = {m}: unexpected {other:?}"),
+                    Err(e) => panic!("{rule:?}, m = {m}: {e}"),
+                }
+            }
+            // They meet after about 0.01 time units, and once: sliding apart, they
+            // do not meet again before t = 10.
+            assert_eq!(times.len(), 1, "{rule:?}, m = {m}: collisions at {times:?}");
+            collided += 1;
+        }
+        assert_eq!(collided, 200);
+    }
+}
+
+/// Restitution 0 with the TC model is a granular gas that must run: before the pair
+/// was separated after a collision, N = 400 at η = 0.3 with e = 0 and t_c = 10⁻³
+/// stalled at t ≈ 0.53 (a pair left approaching by rounding met again at once, and
+/// the elastic TC collision could not change velocities by less than their ulp).
+#[test]
+fn restitution_zero_with_the_tc_model_runs_without_stalling() {
+    for rule in [Restitution::Normal(0.0), Restitution::CentreOfMass(0.0)] {
+        let params = EngineParams {
+            restitution: rule,
+            tc: 1e-3,
+            max_events_without_time_advance: 100_000,
+        };
+        let mut engine =
+            Engine::new(state(400, 0.3, [Boundary::Periodic; 2], 0), params).expect("engine");
+        let mut checker = InvariantChecker::new(&engine);
+        let (p0, scale) = momentum(&engine);
+        let collisions = engine
+            .run_until(20.0)
+            .unwrap_or_else(|e| panic!("{rule:?}: {e}"));
+        assert!(collisions > 1000, "{rule:?}: only {collisions} collisions");
+        assert_eq!(engine.now(), 20.0);
+        checker
+            .check_overlaps(&engine)
+            .unwrap_or_else(|v| panic!("{rule:?}: {v}"));
+        let (p, _) = momentum(&engine);
+        assert!(
+            (p - p0).length() <= 1e-12 * scale,
+            "{rule:?}: momentum {p0} → {p}"
+        );
+    }
 }

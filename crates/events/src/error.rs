@@ -56,7 +56,8 @@ pub enum EngineError {
     #[error(
         "runaway: {events} collisions at time {time} without time advancing \
          (limit max_events_without_time_advance = {limit}); this is inelastic collapse — \
-         enable the TC model (tc > 0), raise the restitution, or lower the density"
+         enable the TC model (tc > 0) or lengthen tc, raise the restitution, or lower the \
+         density"
     )]
     Stalled {
         /// Simulation time at which the clock stopped (time).
