@@ -21,6 +21,7 @@ fn analyse(
         sim_box: spec.sim_box,
         restitution: params.restitution,
         collision_stride: 1,
+        totals_from_thermo: false,
         t_start: 0.0,
         t_end,
     };

@@ -27,6 +27,11 @@ pub struct RunDescription {
     /// Logged collisions are every `collision_stride`-th collision (1 = all); sums
     /// over logged collisions are multiplied by it.
     pub collision_stride: u64,
+    /// The virial, wall impulse and collision counts come from running totals over
+    /// every collision ([`Analyzer::increment`], from the `/thermo` records), and
+    /// logged collisions are only counted: for logs without collisions, and for
+    /// logs of every k-th collision (k > 1), whose sums would only estimate them.
+    pub totals_from_thermo: bool,
     /// Simulated time of the start of the log (time).
     pub t_start: f64,
     /// Simulated time of the end of the log (time).
@@ -217,9 +222,12 @@ impl Analyzer {
     /// A logged pair collision at time `t` with virial r_ij·Δp_i (length·momentum)
     /// and dissipated energy (energy).
     pub fn pair(&mut self, t: f64, virial: f64, energy_lost: f64) {
+        self.pair_total += 1;
+        if self.run.totals_from_thermo {
+            return;
+        }
         let s = self.run.collision_stride as f64;
         self.lost_from_collisions += s * energy_lost;
-        self.pair_total += 1;
         if let Some(b) = self.bin(t) {
             b.virial += s * virial;
             b.pairs += 1;
@@ -229,9 +237,12 @@ impl Analyzer {
     /// A logged wall collision at time `t` giving the wall momentum `impulse`
     /// (momentum), dissipating `energy_lost` (energy).
     pub fn wall(&mut self, t: f64, impulse: f64, energy_lost: f64) {
+        self.wall_total += 1;
+        if self.run.totals_from_thermo {
+            return;
+        }
         let s = self.run.collision_stride as f64;
         self.lost_from_collisions += s * energy_lost;
-        self.wall_total += 1;
         if let Some(b) = self.bin(t) {
             b.wall_impulse += s * impulse;
             b.walls += 1;
@@ -647,8 +658,12 @@ impl Analyzer {
             .windows(2)
             .map(|w| 0.5 * (w[1].0 - w[0].0) * (w[0].1.max(0.0).sqrt() + w[1].1.max(0.0).sqrt()))
             .sum();
-        let pairs = self.pair_total as f64 * self.run.collision_stride as f64
-            + self.pairs_from_increments as f64;
+        let logged = if self.run.totals_from_thermo {
+            0.0
+        } else {
+            self.pair_total as f64 * self.run.collision_stride as f64
+        };
+        let pairs = logged + self.pairs_from_increments as f64;
         if integral <= 0.0 || pairs == 0.0 {
             return None;
         }
@@ -1049,6 +1064,7 @@ mod tests {
             sim_box: SimBox::periodic(10.0, 10.0),
             restitution: Restitution::Elastic,
             collision_stride: 1,
+            totals_from_thermo: false,
             t_start: 0.0,
             t_end: 10.0,
         }

@@ -92,6 +92,10 @@ pub fn read_report(args: &AnalyzeArgs) -> Result<(Report, bool), CliError> {
     }
     let mut reader = LogReader::open(&args.file)?;
     let collisions_logged = info.run.log.collisions && info.channels[0];
+    // Every k-th collision (k > 1) gives only an estimate of the sums that the
+    // /thermo records hold exactly.
+    let totals_from_thermo = !collisions_logged
+        || (info.run.log.collision_every > 1 && info.run.log.thermo_interval.is_some());
     // The first snapshot is only needed when the configuration is unreadable.
     let first_snapshot = if Config::from_json_str(&info.run.config).is_err() {
         let mut r = LogReader::open(&args.file)?;
@@ -108,6 +112,7 @@ pub fn read_report(args: &AnalyzeArgs) -> Result<(Report, bool), CliError> {
         sim_box,
         restitution,
         collision_stride: info.run.log.collision_every.max(1),
+        totals_from_thermo,
         t_start,
         t_end,
     };
@@ -154,7 +159,7 @@ pub fn read_report(args: &AnalyzeArgs) -> Result<(Report, bool), CliError> {
             }
             LogMessage::Thermo(t) => {
                 a.thermo(t.time, t.kinetic_energy, Some(t.energy_lost));
-                if !collisions_logged {
+                if totals_from_thermo {
                     if let Some((t0, v0, w0, p0)) = previous_thermo {
                         if t.pair_collisions >= p0 {
                             a.increment(

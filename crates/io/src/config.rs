@@ -526,7 +526,8 @@ pub struct LogConfig {
     /// Log collisions on `/collisions`. Default true.
     #[serde(default = "yes")]
     pub collisions: bool,
-    /// Log every k-th collision. Default 1 (every collision); integer ≥ 1.
+    /// Log every k-th collision. Default 1 (every collision); integer ≥ 1. (With
+    /// k > 1 the analysis takes the pressure from the `/thermo` running totals.)
     #[serde(default = "default_one_u64", deserialize_with = "de_count")]
     pub collision_every: u64,
     /// Simulated time between `/snapshot` messages (time). Default 1; `null` for no
