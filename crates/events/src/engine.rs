@@ -156,9 +156,16 @@ impl Body {
     /// the path origin moves by (v_old − v) now.
     #[inline]
     pub fn set_velocity(&mut self, v: DVec2, now: f64) {
-        self.r0 += (self.v - v) * now;
+        self.r0 = origin_after((self.r0, self.v), v, now);
         self.v = v;
     }
+}
+
+/// The origin (length) of a path (origin, velocity) = `path` once its velocity is
+/// set to `v` at internal time `now` ([`Body::set_velocity`]).
+#[inline(always)]
+fn origin_after((r0, v0): (DVec2, DVec2), v: DVec2, now: f64) -> DVec2 {
+    r0 + (v0 - v) * now
 }
 
 /// The queue reads each disc's event time from its record, which the event reads
@@ -253,16 +260,19 @@ fn reorder_interval(n: usize) -> u64 {
 }
 
 /// Whether discs i and j, whose paths (origin, velocity) were `paths` before a
-/// collision at internal time `now`, approach at `now` with velocities (v_i, v_j),
-/// as the neighbour scans will see them: each disc's position computed from its
-/// updated path as [`Body::set_velocity`] and [`Body::at`] do, and b = Δr·Δv < 0
-/// (physics.md §2) from i's side (j's image at r_j + shift) or from j's.
+/// collision at internal time `now`, approach at `now` once given velocities
+/// (v_i, v_j), as the neighbour scans will see them: b = Δr·Δv < 0 (physics.md §2)
+/// from i's side (j's image at r_j + shift) or from j's, with the positions
+/// ([`Body::at`]) of the updated paths.
 #[inline(always)]
-fn approaching(paths: [(DVec2, DVec2); 2], shift: DVec2, now: f64, v: (DVec2, DVec2)) -> bool {
-    let [(ri0, vi0), (rj0, vj0)] = paths;
-    let (vi, vj) = v;
-    let ri = (ri0 + (vi0 - vi) * now) + vi * now;
-    let rj = (rj0 + (vj0 - vj) * now) + vj * now;
+fn approaching(
+    paths: [(DVec2, DVec2); 2],
+    shift: DVec2,
+    now: f64,
+    (vi, vj): (DVec2, DVec2),
+) -> bool {
+    let ri = origin_after(paths[0], vi, now) + vi * now;
+    let rj = origin_after(paths[1], vj, now) + vj * now;
     (rj - (ri - shift)).dot(vj - vi) < 0.0 || (ri - (rj + shift)).dot(vi - vj) < 0.0
 }
 
@@ -858,7 +868,7 @@ impl Engine {
         // Not for an inelastic rule without the TC model: there a pair left
         // approaching by rounding meets again at once, and the run stops with the
         // runaway error, as a collapse must be reported (physics.md §4).
-        let separated = if tc > 0.0 || rule.is_elastic() {
+        let separated = if tc > 0.0 || self.params.restitution.is_elastic() {
             self.separate(i, j, shift, dr, (res.vi, res.vj), (mi, mj))
         } else {
             None
@@ -911,7 +921,7 @@ impl Engine {
     /// again, forever: under the TC model (restitution 0, t_c = 10⁻³, N = 400,
     /// η = 0.3) a stall at t ≈ 0.5 that no collapse caused. Used for elastic
     /// collisions and under the TC model only (see [`Engine::collide`]). Costs
-    /// about 45 instructions per collision (cachegrind, N = 10⁴: 2938 → 2984) and
+    /// about 55 instructions per collision (cachegrind, N = 10⁴: 2938 → 2993) and
     /// changes no other collision (the same trajectories at N = 10⁴, η = 0.5 and
     /// 0.7, and at N = 10⁶).
     #[inline(always)]
