@@ -865,11 +865,24 @@ impl Engine {
             self.params.restitution
         };
         let mut res = resolve(vi, vj, mi, mj, dr, rule);
-        // Not for an inelastic rule without the TC model: there a pair left
-        // approaching by rounding meets again at once, and the run stops with the
-        // runaway error, as a collapse must be reported (physics.md §4).
-        let separated = if tc > 0.0 || self.params.restitution.is_elastic() {
-            self.separate(i, j, shift, dr, (res.vi, res.vj), (mi, mj))
+        // A rule leaves the pair separating at −e u (physics.md §4), but when that
+        // is below what the velocities' rounding resolves (e = 0, R = 0, or an
+        // elastic collision of a pair that met at such a speed, as under the TC
+        // model) the rounded velocities may leave it approaching. In contact, it
+        // would then collide again at once, and as the resolution cannot change the
+        // velocities again, forever: under the TC model (restitution 0, t_c = 10⁻³,
+        // N = 400, η = 0.3) a stall at t ≈ 0.5 that no collapse caused. So a pair
+        // that still approaches as the scans will see it is pushed apart. Not for an
+        // inelastic rule without the TC model: there the pair meets again at once,
+        // and the run stops with the runaway error, as a collapse must be reported.
+        // Costs about 55 instructions per collision (cachegrind, N = 10⁴:
+        // 2938 → 2993) and changes no other collision (the same trajectories at
+        // N = 10⁴, η = 0.5 and 0.7, and at N = 10⁶).
+        let paths = [(self.bodies[i].r0, vi), (self.bodies[j].r0, vj)];
+        let separated = if (tc > 0.0 || self.params.restitution.is_elastic())
+            && approaching(paths, shift, now, (res.vi, res.vj))
+        {
+            push_apart(paths, shift, now, dr, (res.vi, res.vj), (mi, mj))
         } else {
             None
         };
@@ -906,41 +919,6 @@ impl Engine {
             energy_lost: res.energy_lost,
             virial,
         }
-    }
-
-    /// The velocities (v_i', v_j') the collision rule gave, or, when the pair would
-    /// still approach with them as every scan will see it, the nearest velocities
-    /// with which it does not (see [`push_apart`]). `shift` is j's image shift and
-    /// `n` the contact vector r_j + shift − r_i.
-    ///
-    /// A rule leaves the pair separating at −e u (physics.md §4), but when that is
-    /// below what the velocities' rounding resolves (e = 0, R = 0, or an elastic
-    /// collision of a pair that met at such a speed, as under the TC model) the
-    /// rounded velocities may leave it approaching. In contact, it would then
-    /// collide again at once, and as the resolution cannot change the velocities
-    /// again, forever: under the TC model (restitution 0, t_c = 10⁻³, N = 400,
-    /// η = 0.3) a stall at t ≈ 0.5 that no collapse caused. Used for elastic
-    /// collisions and under the TC model only (see [`Engine::collide`]). Costs
-    /// about 55 instructions per collision (cachegrind, N = 10⁴: 2938 → 2993) and
-    /// changes no other collision (the same trajectories at N = 10⁴, η = 0.5 and
-    /// 0.7, and at N = 10⁶).
-    #[inline(always)]
-    fn separate(
-        &self,
-        i: usize,
-        j: usize,
-        shift: DVec2,
-        n: DVec2,
-        (vi, vj): (DVec2, DVec2),
-        (mi, mj): (f64, f64),
-    ) -> Option<(DVec2, DVec2)> {
-        let now = self.clock;
-        let (bi, bj) = (&self.bodies[i], &self.bodies[j]);
-        let paths = [(bi.r0, bi.v), (bj.r0, bj.v)];
-        if !approaching(paths, shift, now, (vi, vj)) {
-            return None;
-        }
-        push_apart(paths, shift, now, n, (vi, vj), (mi, mj))
     }
 
     fn hit_wall(&mut self, i: usize, aux: u8) -> WallCollision {
