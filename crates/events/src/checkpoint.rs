@@ -50,7 +50,7 @@ pub struct Checkpoint {
     pub times: Vec<f64>,
     /// Collision counters.
     pub counts: Vec<u32>,
-    /// Time of each disc's last pair collision (time); −∞ if none, and never
+    /// Time of each disc's last collision, pair or wall (time); −∞ if none, and never
     /// updated when the TC model is off (t_c = 0), which is the only reader.
     pub last_collision: Vec<f64>,
     /// Time of each disc's pending event (+∞ if none; time).

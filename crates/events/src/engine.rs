@@ -65,7 +65,8 @@ pub struct EngineParams {
     /// Collision rule for pairs (physics.md §3–4).
     pub restitution: Restitution,
     /// TC model duration t_c (time; physics.md §4): a collision is elastic when either
-    /// disc collided less than t_c ago. 0 disables it.
+    /// disc collided less than t_c ago; a wall collision counts as a collision of its
+    /// disc and is elastic likewise. 0 disables it.
     pub tc: f64,
     /// Collisions allowed at one instant before the engine reports a runaway
     /// (inelastic collapse) instead of hanging.
@@ -928,15 +929,29 @@ impl Engine {
         } else {
             WallSide::Low
         };
-        let e = match self.sim_box.boundary[k] {
+        let wall_e = match self.sim_box.boundary[k] {
             Boundary::Walls { restitution } => restitution,
             Boundary::Periodic => unreachable!("wall event on a periodic axis"),
         };
+        // The TC model covers wall collisions as well (physics.md §4: a collision is
+        // elastic if the disc collided less than t_c ago), as in Luding & McNamara:
+        // without it, discs wedged between inelastic walls collapse under the TC
+        // model just as they would without it (`tests/inelastic.rs`).
+        let now = self.clock;
+        let tc = self.params.tc;
+        let e = if tc > 0.0 && now - self.last_collision[i] < tc {
+            1.0
+        } else {
+            wall_e
+        };
+        if tc > 0.0 {
+            self.last_collision[i] = now;
+        }
         let m = self.mass(i);
         let before = self.bodies[i].v;
         let mut after = before;
         after[k] = wall_reflect(before[k], e);
-        self.bodies[i].set_velocity(after, self.clock);
+        self.bodies[i].set_velocity(after, now);
         self.bodies[i].count = self.bodies[i].count.wrapping_add(1);
         let impulse = m * (before[k] - after[k]).abs();
         let energy_lost = 0.5 * m * (1.0 - e * e) * before[k] * before[k];

@@ -54,7 +54,7 @@ float64[] vx                      # velocity (length/time)
 float64[] vy
 float64[] t                       # time of that position (time); carom writes 0: x, y are the path's origin
 uint32[] collision_count
-float64[] last_collision          # time of last pair collision (-inf if none or TC off)
+float64[] last_collision          # time of last collision, pair or wall (-inf if none or TC off)
 float64[] event_time              # time of the pending event (+inf if none)
 float64[] pair_time               # time of the pair candidate where it is the pending event, else +inf (not needed to resume)
 uint32[] pending_partner          # the pair candidate's partner (4294967295 = none)

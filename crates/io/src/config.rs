@@ -467,7 +467,8 @@ pub struct CollisionConfig {
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub coefficient: Option<f64>,
     /// TC model duration t_c (time, physics.md §4): a collision is elastic when either
-    /// disc collided less than t_c ago. Default 0 (off); allowed: finite, ≥ 0, and
+    /// disc collided less than t_c ago, and so is a wall collision of a disc that
+    /// collided (with a disc or a wall) less than t_c ago. Default 0 (off); allowed: finite, ≥ 0, and
     /// much shorter than the mean free time.
     #[serde(default)]
     pub tc: f64,
