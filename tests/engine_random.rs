@@ -25,7 +25,7 @@
 //! With the TC model a dissipative run must go on: before the TC model covered wall
 //! collisions, 13 of 600 such random systems with lossy walls stalled.
 
-use carom::core::{Axis, Boundary, DVec2, Restitution, SimBox, Species, WallSide};
+use carom::core::{Axis, Boundary, Restitution, SimBox, Species, WallSide};
 use carom::events::{
     box_size_for, Engine, EngineError, EngineParams, Event, InvariantChecker, Placement,
     SystemSpec, Velocities,
