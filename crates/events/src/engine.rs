@@ -606,6 +606,11 @@ impl Engine {
 
     /// Process events until the next observable one and return it; `None` when
     /// nothing will ever happen again (all discs at rest and nothing scheduled).
+    ///
+    /// Cell crossings are not observable, so in a system whose discs move but never
+    /// collide again (a lone disc in a periodic box) this call returns only at the
+    /// next scheduled event: schedule a stop ([`Engine::schedule`], or use
+    /// [`Engine::run_until`]) rather than waiting for collisions that never come.
     pub fn next_event(&mut self) -> Result<Option<Event>, EngineError> {
         loop {
             self.tuner.left -= 1;
@@ -704,7 +709,9 @@ impl Engine {
     }
 
     /// Run `n` collisions (pair + wall), skipping scheduled events. Stops early if
-    /// nothing will ever happen again; returns the number processed.
+    /// nothing will ever happen again; returns the number processed. (Like
+    /// [`Engine::next_event`], it does not return while discs that never collide
+    /// again keep crossing cells.)
     pub fn run_collisions(&mut self, n: u64) -> Result<u64, EngineError> {
         let mut done = 0;
         while done < n {
