@@ -853,6 +853,15 @@ impl Engine {
         DVec2::new(sx * self.sim_box.size.x, sy * self.sim_box.size.y)
     }
 
+    /// Whether disc `i` collided (with a disc or a wall) less than t_c before `now`
+    /// (internal time), so that its next collision is elastic under the TC model
+    /// (physics.md §4); always false with the model off.
+    #[inline]
+    fn within_tc(&self, i: usize, now: f64) -> bool {
+        let tc = self.params.tc;
+        tc > 0.0 && now - self.last_collision[i] < tc
+    }
+
     /// Resolve the pair collision of discs i and j (j seen through the image with
     /// shift code `shift_code`) at the current time with the configured rule, or
     /// elastically under the TC model, and predict both discs' next events.
@@ -865,9 +874,7 @@ impl Engine {
         let (vi, vj) = (self.bodies[i].v, self.bodies[j].v);
         let (mi, mj) = (self.mass(i), self.mass(j));
         let tc = self.params.tc;
-        let rule = if tc > 0.0
-            && (now - self.last_collision[i] < tc || now - self.last_collision[j] < tc)
-        {
+        let rule = if self.within_tc(i, now) || self.within_tc(j, now) {
             Restitution::Elastic
         } else {
             self.params.restitution
@@ -945,13 +952,8 @@ impl Engine {
         // without it, discs wedged between inelastic walls collapse under the TC
         // model just as they would without it (`tests/inelastic.rs`).
         let now = self.clock;
-        let tc = self.params.tc;
-        let e = if tc > 0.0 && now - self.last_collision[i] < tc {
-            1.0
-        } else {
-            wall_e
-        };
-        if tc > 0.0 {
+        let e = if self.within_tc(i, now) { 1.0 } else { wall_e };
+        if self.params.tc > 0.0 {
             self.last_collision[i] = now;
         }
         let m = self.mass(i);
