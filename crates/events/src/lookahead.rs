@@ -122,7 +122,7 @@
 //!   the burst of loads: 0.94.
 //! - The partner's chain one bucket earlier (its record three buckets ahead, its
 //!   rows two, its first discs one, so that no stage runs for the current bucket):
-//!   0.91 (per-run ratios 0.84–1.00). Loads asked for earlier are not the cure.
+//!   0.92 (per-run ratios 0.84–1.00). Loads asked for earlier are not the cure.
 //!
 //! `perf` at N = 10⁶ (cpu-clock) puts 21 % of the time in the look-ahead and 8 %
 //! in filing, and most of their samples on prefetch instructions: the label
