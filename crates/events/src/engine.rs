@@ -253,6 +253,16 @@ pub struct Engine {
     pub(crate) tuner: lookahead::Tuner,
 }
 
+/// How far (in box lengths, along either axis) a path origin may lie from the box
+/// before the clock is restarted early ([`Engine::keep_origin_near`]); in a fluid it
+/// stays within about one box length.
+const ORIGIN_LIMIT: f64 = 8.0;
+
+/// The same limit in cell widths (each at least the largest contact distance σ),
+/// the larger of the two applying: in a small box, origins 4096 σ out still round
+/// to 10⁻¹² σ, and a drifting cluster is not renumbered every few box lengths.
+const ORIGIN_LIMIT_CELLS: f64 = 4096.0;
+
 /// Pair collisions between two renumberings of the discs along the Z curve.
 /// (Every 4 N instead of 16 N made no measurable difference at N = 10⁶: 1.02,
 /// median of 6 runs side by side with the 16 N build.)
@@ -862,6 +872,28 @@ impl Engine {
         tc > 0.0 && now - self.last_collision[i] < tc
     }
 
+    /// Ask for a renumbering at the next event, and with it a restart of the
+    /// internal clock ([`Engine::rebase_clock`]), if disc `i`'s path origin has
+    /// moved more than [`ORIGIN_LIMIT`] box lengths (or [`ORIGIN_LIMIT_CELLS`] cell
+    /// widths, whichever is more) from the box. Positions are
+    /// computed as r0 + v t, so their rounding is that of |r0|: it stays that of
+    /// the box's own coordinates only while |r0| does. The renumbering every 16 N
+    /// pair collisions keeps |r0| ≈ L + |v| t small in a fluid, but a cooled
+    /// granular cluster drifting with the rounding residue of its momentum (speeds of
+    /// 10⁻¹⁷ at t ≈ 10²³, few collisions) moved 4·10⁶ box lengths on one clock, and
+    /// its contacts were off by 10⁻⁹ (`tests/engine_reference.rs`, random dynamics).
+    /// Called where an origin changes: a velocity change, a wrap across a periodic
+    /// edge.
+    #[inline]
+    fn keep_origin_near(&mut self, i: usize) {
+        let r0 = self.bodies[i].r0;
+        let limit = (ORIGIN_LIMIT * self.sim_box.size.max_element())
+            .max(ORIGIN_LIMIT_CELLS * self.grid.width.max_element());
+        if r0.x.abs().max(r0.y.abs()) > limit {
+            self.next_reorder = self.next_reorder.min(self.stats.pair_collisions);
+        }
+    }
+
     /// Resolve the pair collision of discs i and j (j seen through the image with
     /// shift code `shift_code`) at the current time with the configured rule, or
     /// elastically under the TC model, and predict both discs' next events.
@@ -909,6 +941,8 @@ impl Engine {
         let virial = -dr.dot(res.impulse_i);
         self.bodies[i].set_velocity(res.vi, now);
         self.bodies[j].set_velocity(res.vj, now);
+        self.keep_origin_near(i);
+        self.keep_origin_near(j);
         self.bodies[i].count = self.bodies[i].count.wrapping_add(1);
         self.bodies[j].count = self.bodies[j].count.wrapping_add(1);
         if tc > 0.0 {
@@ -961,6 +995,7 @@ impl Engine {
         let mut after = before;
         after[k] = wall_reflect(before[k], e);
         self.bodies[i].set_velocity(after, now);
+        self.keep_origin_near(i);
         self.bodies[i].count = self.bodies[i].count.wrapping_add(1);
         let impulse = m * (before[k] - after[k]).abs();
         let energy_lost = 0.5 * m * (1.0 - e * e) * before[k] * before[k];
@@ -1006,6 +1041,7 @@ impl Engine {
         self.grid.insert(&mut self.bodies, i as u32, c);
         self.stats.cell_crossings += 1;
         if wrapped {
+            self.keep_origin_near(i);
             // The position moved by one box length: partners' image shifts change.
             self.bodies[i].count = self.bodies[i].count.wrapping_add(1);
             self.predict(i);
