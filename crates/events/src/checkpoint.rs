@@ -304,6 +304,7 @@ impl Engine {
                 Ok(Reverse((t, seq, tag)))
             })
             .collect::<Result<_, EngineError>>()?;
+        let limit = crate::engine::origin_limit(cp.sim_box.size, grid.width);
         Ok(Engine {
             sim_box: cp.sim_box,
             species: cp.species,
@@ -325,6 +326,7 @@ impl Engine {
             next_reorder: cp.next_reorder,
             look_ahead: crate::lookahead::worthwhile(n),
             tuner: crate::lookahead::Tuner::new(n),
+            origin_limit: limit,
         })
     }
 }

@@ -251,6 +251,15 @@ pub struct Engine {
     pub(crate) look_ahead: bool,
     /// Times fetching ahead on and off and keeps the faster.
     pub(crate) tuner: lookahead::Tuner,
+    /// The largest |r0| component before the clock is restarted early (length;
+    /// [`Engine::keep_origin_near`]; derived from the box and the grid).
+    pub(crate) origin_limit: f64,
+}
+
+/// The limit of [`Engine::origin_limit`] for a box of edges `size` and cells of
+/// edges `width` (length).
+pub(crate) fn origin_limit(size: DVec2, width: DVec2) -> f64 {
+    (ORIGIN_LIMIT * size.max_element()).max(ORIGIN_LIMIT_CELLS * width.max_element())
 }
 
 /// How far (in box lengths, along either axis) a path origin may lie from the box
@@ -467,6 +476,7 @@ impl Engine {
             let c = grid.coords_of(bodies[i].r0);
             grid.insert(&mut bodies, i as u32, c);
         }
+        let limit = origin_limit(state.sim_box.size, grid.width);
         let mut engine = Engine {
             sim_box: state.sim_box,
             species: state.species,
@@ -476,6 +486,7 @@ impl Engine {
             next_reorder: reorder_interval(n),
             look_ahead: lookahead::worthwhile(n),
             tuner: lookahead::Tuner::new(n),
+            origin_limit: limit,
             bodies,
             last_collision: memory::filled(n, f64::NEG_INFINITY),
             queue: EventQueue::new(n),
@@ -887,9 +898,7 @@ impl Engine {
     #[inline]
     fn keep_origin_near(&mut self, i: usize) {
         let r0 = self.bodies[i].r0;
-        let limit = (ORIGIN_LIMIT * self.sim_box.size.max_element())
-            .max(ORIGIN_LIMIT_CELLS * self.grid.width.max_element());
-        if r0.x.abs().max(r0.y.abs()) > limit {
+        if r0.x.abs().max(r0.y.abs()) > self.origin_limit {
             self.next_reorder = self.next_reorder.min(self.stats.pair_collisions);
         }
     }
