@@ -27,11 +27,13 @@
 //!
 //! The same random systems also resume from a checkpoint bit-identically.
 
-use carom::core::{Axis, Boundary, Restitution, SimBox, Species, WallSide};
+mod engine_common;
+use carom::core::{Axis, Boundary, SimBox, Species, WallSide};
 use carom::events::{
     box_size_for, Engine, EngineError, EngineParams, Event, InvariantChecker, Placement,
     SystemSpec, Velocities,
 };
+use engine_common::draw_dynamics;
 use rand::{RngExt, SeedableRng};
 use rand_pcg::Pcg64;
 
@@ -71,16 +73,7 @@ fn draw(case: u64) -> (SystemSpec, EngineParams) {
     };
     let boundary = [axis(), axis()];
     let size = box_size_for(&species, eta, aspect);
-    let restitution = match g.random_range(0..3) {
-        0 => Restitution::Elastic,
-        1 => Restitution::CentreOfMass(g.random_range(0.0..1.0)),
-        _ => Restitution::Normal(g.random_range(0.0..1.0)),
-    };
-    let tc = if g.random::<bool>() {
-        0.0
-    } else {
-        10f64.powf(g.random_range(-4.0..-1.0))
-    };
+    let (restitution, tc) = draw_dynamics(&mut g, -4.0..-1.0);
     let spec = SystemSpec {
         species,
         sim_box: SimBox { size, boundary },

@@ -54,6 +54,7 @@
 //! pairs moving together at relative speeds of 10⁻¹³, whose next contact rounding
 //! alone decides (one such pair was 2·10⁻³ off); that much is allowed on top.
 
+mod engine_common;
 use carom::core::boundary::{wall_time, Boundary, SimBox, WallSide};
 use carom::core::collision::resolve;
 use carom::core::kinematics::contact_time;
@@ -62,6 +63,7 @@ use carom::events::{
     box_size_for, Engine, EngineError, EngineParams, Event, Placement, State, SystemSpec,
     Velocities,
 };
+use engine_common::draw_dynamics;
 
 /// An event as the reference names it: pairs unordered (i < j), walls by disc, axis
 /// and side.
@@ -629,16 +631,7 @@ fn oracle_random_dynamics() {
             },
         };
         let boundary = [axis(), axis()];
-        let restitution = match g.random_range(0..3) {
-            0 => Restitution::Elastic,
-            1 => Restitution::CentreOfMass(g.random_range(0.0..1.0)),
-            _ => Restitution::Normal(g.random_range(0.0..1.0)),
-        };
-        let tc = if g.random::<bool>() {
-            0.0
-        } else {
-            10f64.powf(g.random_range(-3.0..-1.0))
-        };
+        let (restitution, tc) = draw_dynamics(&mut g, -3.0..-1.0);
         let size = box_size_for(&species, eta, aspect);
         let a_max = species.iter().map(|s| s.radius).fold(0.0, f64::max);
         if size.min_element() < 8.0 * a_max || species.iter().map(|s| s.count).sum::<usize>() < 2 {

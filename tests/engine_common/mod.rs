@@ -24,3 +24,25 @@ pub fn mono(n: usize) -> Vec<Species> {
         mass: 1.0,
     }]
 }
+
+/// Random dynamics, as the random-system tests draw them: the pair rule (elastic,
+/// or either inelastic model with a coefficient in [0, 1), one in three each) and
+/// the TC duration (0, or 10^x with x uniform in `tc_exponents`, one in two each).
+pub fn draw_dynamics(
+    g: &mut rand_pcg::Pcg64,
+    tc_exponents: std::ops::Range<f64>,
+) -> (carom::core::Restitution, f64) {
+    use carom::core::Restitution;
+    use rand::RngExt;
+    let restitution = match g.random_range(0..3) {
+        0 => Restitution::Elastic,
+        1 => Restitution::CentreOfMass(g.random_range(0.0..1.0)),
+        _ => Restitution::Normal(g.random_range(0.0..1.0)),
+    };
+    let tc = if g.random::<bool>() {
+        0.0
+    } else {
+        10f64.powf(g.random_range(tc_exponents))
+    };
+    (restitution, tc)
+}
