@@ -302,7 +302,9 @@ impl EventQueue {
     /// for fetching their records before they are needed.
     #[inline]
     pub fn ahead(&self, k: u64) -> &[u32; SLOT_DISCS] {
-        &self.slots[((self.cur + k) & self.mask) as usize].disc
+        // Wrapping: once the current bucket has saturated (see `advance`) the slot
+        // named is any slot, which is harmless for a hint.
+        &self.slots[(self.cur.wrapping_add(k) & self.mask) as usize].disc
     }
 
     /// The discs of [`ahead(k)`](Self::ahead) whose current time is still in that
@@ -317,7 +319,7 @@ impl EventQueue {
             .iter()
             .take_while(|&&d| d != NIL)
             .copied()
-            .filter(move |&d| self.bucket(times.time(d)) == self.cur + k)
+            .filter(move |&d| self.bucket(times.time(d)) == self.cur.wrapping_add(k))
     }
 
     /// Set the event time of disc `i` to `t`: stored in `times` and filed.
@@ -448,10 +450,14 @@ impl EventQueue {
                 .map(|item| self.bucket(item.time))
                 .min()
                 .unwrap_or(u64::MAX);
-            self.cur = b.max(self.cur + 1);
+            // Saturating: a time more than 2⁶⁴ bucket widths ahead (a system that
+            // cooled by many orders of magnitude since the width was tuned) lies in
+            // the last bucket, u64::MAX, and from then on every event is filed in
+            // the heap, which orders them exactly.
+            self.cur = b.max(self.cur.saturating_add(1));
             self.redistribute_overflow(times);
         } else {
-            self.cur += 1;
+            self.cur = self.cur.saturating_add(1);
             if self.cur & self.mask == 0 {
                 self.redistribute_overflow(times);
             }
