@@ -896,9 +896,13 @@ impl Engine {
     /// Called where an origin changes: a velocity change, a wrap across a periodic
     /// edge.
     #[inline]
-    fn keep_origin_near(&mut self, i: usize) {
-        let r0 = self.bodies[i].r0;
-        if r0.x.abs().max(r0.y.abs()) > self.origin_limit {
+    fn keep_origin_near<const K: usize>(&mut self, discs: [usize; K]) {
+        // One comparison for all the discs of an event (a pair: two).
+        let far = discs
+            .iter()
+            .map(|&i| self.bodies[i].r0.abs().max_element())
+            .fold(0.0, f64::max);
+        if far > self.origin_limit {
             self.next_reorder = self.next_reorder.min(self.stats.pair_collisions);
         }
     }
@@ -950,8 +954,7 @@ impl Engine {
         let virial = -dr.dot(res.impulse_i);
         self.bodies[i].set_velocity(res.vi, now);
         self.bodies[j].set_velocity(res.vj, now);
-        self.keep_origin_near(i);
-        self.keep_origin_near(j);
+        self.keep_origin_near([i, j]);
         self.bodies[i].count = self.bodies[i].count.wrapping_add(1);
         self.bodies[j].count = self.bodies[j].count.wrapping_add(1);
         if tc > 0.0 {
@@ -1004,7 +1007,7 @@ impl Engine {
         let mut after = before;
         after[k] = wall_reflect(before[k], e);
         self.bodies[i].set_velocity(after, now);
-        self.keep_origin_near(i);
+        self.keep_origin_near([i]);
         self.bodies[i].count = self.bodies[i].count.wrapping_add(1);
         let impulse = m * (before[k] - after[k]).abs();
         let energy_lost = 0.5 * m * (1.0 - e * e) * before[k] * before[k];
@@ -1050,7 +1053,7 @@ impl Engine {
         self.grid.insert(&mut self.bodies, i as u32, c);
         self.stats.cell_crossings += 1;
         if wrapped {
-            self.keep_origin_near(i);
+            self.keep_origin_near([i]);
             // The position moved by one box length: partners' image shifts change.
             self.bodies[i].count = self.bodies[i].count.wrapping_add(1);
             self.predict(i);
