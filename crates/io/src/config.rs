@@ -532,15 +532,17 @@ pub struct LogConfig {
     #[serde(default = "default_one_u64", deserialize_with = "de_count")]
     pub collision_every: u64,
     /// Simulated time between `/snapshot` messages (time). Default 1; `null` for no
-    /// snapshots; otherwise finite, > 0.
+    /// snapshots; otherwise finite, > 0, and at least `stop.duration` /
+    /// [`MAX_RECORDS`].
     #[serde(default = "default_snapshot")]
     pub snapshot_interval: Option<f64>,
     /// Simulated time between `/thermo` messages (time). Default 0.1; `null` for
-    /// none; otherwise finite, > 0.
+    /// none; otherwise finite, > 0, and at least `stop.duration` / [`MAX_RECORDS`].
     #[serde(default = "default_thermo")]
     pub thermo_interval: Option<f64>,
     /// Simulated time between `/checkpoint` messages (time). Default 10; `null` for
-    /// a checkpoint at the end only; otherwise finite, > 0.
+    /// a checkpoint at the end only; otherwise finite, > 0, and at least
+    /// `stop.duration` / [`MAX_RECORDS`].
     #[serde(default = "default_checkpoint")]
     pub checkpoint_interval: Option<f64>,
     /// Chunk compression: `"zstd"` (default), `"lz4"` or `"none"`.
@@ -575,6 +577,12 @@ impl Default for LogConfig {
 /// 3.5 × 10⁴ collisions per unit time, so 50 time units are ~1.75 × 10⁶ collisions,
 /// a few seconds at ~10⁶ collisions/s.
 pub const DEFAULT_DURATION: f64 = 50.0;
+
+/// The most records of one kind (snapshots, thermo or checkpoints) a run of
+/// `stop.duration` may ask for through its log interval: far more than any
+/// analysis reads (10⁹ thermo records are about 100 GB), so only a mistyped
+/// interval meets it.
+pub const MAX_RECORDS: f64 = 1e9;
 /// Default packing fraction η when the box size is not given.
 pub const DEFAULT_PACKING_FRACTION: f64 = 0.5;
 /// Default number of discs (one species).
@@ -1037,6 +1045,12 @@ impl Config {
                 "an integer ≥ 1 (use log.collisions = false to log none)",
             ));
         }
+        // A run of known length: how long it lasts, to count its records.
+        let duration = match (self.stop.duration, self.stop.collisions) {
+            (Some(t), _) => Some(t),
+            (None, None) => Some(DEFAULT_DURATION),
+            (None, Some(_)) => None,
+        };
         for (name, v) in [
             ("log.snapshot_interval", l.snapshot_interval),
             ("log.thermo_interval", l.thermo_interval),
@@ -1048,6 +1062,22 @@ impl Config {
                         name,
                         format!("value {x}"),
                         "finite simulated time > 0, or null for none",
+                    ));
+                }
+                // An exponent mistyped (1e-17 for 1e-1) would otherwise start a
+                // run that crawls while it fills the disk with records.
+                if let Some(t) = duration.filter(|&t| t / x > MAX_RECORDS) {
+                    return Err(ConfigError::invalid(
+                        name,
+                        format!(
+                            "value {x:e} would write {:.1e} records over stop.duration = {t}",
+                            t / x
+                        ),
+                        format!(
+                            "an interval ≥ stop.duration / {MAX_RECORDS:.0e} = {:e}, \
+                             at most {MAX_RECORDS:.0e} records of a kind per run; or null for none",
+                            t / MAX_RECORDS
+                        ),
                     ));
                 }
             }
@@ -1564,6 +1594,14 @@ mod tests {
             ),
             (r#"{"log": {"flush_seconds": 0}}"#, "log.flush_seconds"),
             (
+                r#"{"log": {"thermo_interval": 1e-17}}"#,
+                "log.thermo_interval",
+            ),
+            (
+                r#"{"stop": {"duration": 1e3}, "log": {"checkpoint_interval": 1e-7}}"#,
+                "log.checkpoint_interval",
+            ),
+            (
                 r#"{"species": [{"count": 2}], "placement": {"explicit": [[1, 1]]}}"#,
                 "placement.explicit",
             ),
@@ -1578,6 +1616,24 @@ mod tests {
             assert_eq!(e.field(), Some(field), "{text}: {e}");
             assert!(e.to_string().contains("allowed"), "{e}");
         }
+    }
+
+    #[test]
+    fn log_intervals_give_at_most_a_billion_records_per_run() {
+        let ok = |text: &str| Config::from_json_str(text).unwrap().to_run_spec().unwrap();
+        // 10⁹ snapshots over the run: allowed; one interval's width less: refused.
+        ok(r#"{"stop": {"duration": 1000}, "log": {"snapshot_interval": 1e-6}}"#);
+        let e = err_of(
+            r#"{"stop": {"duration": 1000}, "log": {"snapshot_interval": 0.99e-6}}"#,
+            &[],
+        );
+        assert_eq!(e.field(), Some("log.snapshot_interval"), "{e}");
+        assert!(e.to_string().contains("1.0e9 records"), "{e}");
+        // The default duration (50) counts too.
+        let e = err_of(r#"{"log": {"thermo_interval": 1e-8}}"#, &[]);
+        assert_eq!(e.field(), Some("log.thermo_interval"), "{e}");
+        // A run stopped by its collision count has no known length: not checked.
+        ok(r#"{"stop": {"collisions": 10}, "log": {"thermo_interval": 1e-17}}"#);
     }
 
     #[test]
