@@ -16,6 +16,12 @@
 //! * Walled and channel (periodic x, walls y) boxes at moderate η (0.3 for every N,
 //!   0.5 for N ≥ 4); random placement at low density, and of a mixture of radius
 //!   ratio 4 at η = 0.3 (largest first).
+//! * Relaxed placement (random positions, overlaps minimized away): dense mixtures
+//!   out of the lattice's reach — the equimolar 1 : 1.4 glass former at η = 0.80
+//!   and 0.83, a three-species mixture, monodisperse discs, in periodic, walled and
+//!   channel boxes — with every pair at least 1.001 contact distances apart, the
+//!   species spread over the box, and an elastic run from the state keeping the
+//!   invariants; above jamming (η = 0.88) an error naming the packing fraction.
 //! * Maxwell–Boltzmann velocities: zero total momentum (to 1e-12 of Σ m|v|) and kinetic
 //!   temperature 2K/f equal to the requested kT to 1e-12 relative, with
 //!   f = 2N − (number of periodic axes) (physics.md §5) computed here; per-species
@@ -543,6 +549,144 @@ fn random_placement_of_an_asymmetric_mixture() {
 }
 
 /// f = 2N − (number of periodic axes), physics.md §5.
+/// The equimolar binary mixture of radii 0.5 and 0.7 (masses ∝ area), the usual
+/// glass former in 2D.
+fn glass(n_each: usize) -> Vec<Species> {
+    vec![
+        Species {
+            count: n_each,
+            radius: 0.5,
+            mass: 1.0,
+        },
+        Species {
+            count: n_each,
+            radius: 0.7,
+            mass: 1.96,
+        },
+    ]
+}
+
+#[test]
+fn relaxed_placement_prepares_dense_mixtures() {
+    let three = vec![
+        Species {
+            count: 400,
+            radius: 0.5,
+            mass: 1.0,
+        },
+        Species {
+            count: 300,
+            radius: 0.6,
+            mass: 1.44,
+        },
+        Species {
+            count: 200,
+            radius: 0.8,
+            mass: 2.56,
+        },
+    ];
+    let cases = [
+        (glass(1000), 0.80, 1.0, Kind::Periodic),
+        (glass(300), 0.83, 1.0, Kind::Periodic),
+        (glass(500), 0.78, 2.0, Kind::Channel),
+        (glass(500), 0.75, 0.5, Kind::Walls),
+        (three, 0.78, 1.0, Kind::Periodic),
+        (mono(1000), 0.80, 1.0, Kind::Periodic),
+    ];
+    for (species, eta, aspect, kind) in cases {
+        let what = format!(
+            "relaxed {} species, η = {eta}, aspect {aspect}, {kind:?}",
+            species.len()
+        );
+        let sp = SystemSpec {
+            placement: Placement::Relaxed,
+            ..spec(species.clone(), eta, aspect, kind, 7)
+        };
+        if species.len() > 1 {
+            // Out of the lattice's reach: its sites are spaced for the largest disc.
+            assert_err_names(
+                build(&spec(species, eta, aspect, kind, 7), &what),
+                "packing_fraction",
+                &what,
+            );
+        }
+        let s = build(&sp, &what).unwrap_or_else(|e| panic!("{what}: {e}"));
+        validate(&s, &sp, &what);
+        // Every pair at least 1.001 contact distances apart (the placement's
+        // margin), and every disc 1.001 radii from a wall.
+        let (i, j, ratio) = closest_pair(&s).unwrap();
+        assert!(
+            ratio >= 1.001 * (1.0 - 1e-12),
+            "{what}: discs {i}, {j} at {ratio} σ"
+        );
+        for (k, r) in s.positions.iter().enumerate() {
+            for a in 0..2 {
+                if !s.sim_box.boundary[a].is_periodic() {
+                    let gap = r[a].min(s.sim_box.size[a] - r[a]) / s.radius(k);
+                    assert!(
+                        gap >= 1.001 * (1.0 - 1e-12),
+                        "{what}: disc {k} {gap} radii from a wall"
+                    );
+                }
+            }
+        }
+        // The species are spread over the box, not sorted by size: each species'
+        // share in each quarter of the box (along x) is its overall share within
+        // 6 binomial standard deviations.
+        let n = s.len() as f64;
+        for (k, spc) in s.species.iter().enumerate() {
+            let p = spc.count as f64 / n;
+            for q in 0..4 {
+                let in_q = |r: &DVec2| (4.0 * r.x / s.sim_box.size.x) as usize == q;
+                let total = s.positions.iter().filter(|r| in_q(r)).count() as f64;
+                let mine = (0..s.len())
+                    .filter(|&i| s.species_of[i] as usize == k && in_q(&s.positions[i]))
+                    .count() as f64;
+                let sd = (total * p * (1.0 - p)).sqrt();
+                assert!(
+                    (mine - p * total).abs() <= 6.0 * sd,
+                    "{what}: species {k} has {mine} of {total} discs in quarter {q} (share {p})"
+                );
+            }
+        }
+    }
+}
+
+#[test]
+fn the_engine_runs_from_a_relaxed_dense_mixture() {
+    use carom::events::{Engine, EngineParams, InvariantChecker};
+    let sp = SystemSpec {
+        placement: Placement::Relaxed,
+        ..spec(glass(500), 0.80, 1.0, Kind::Periodic, 3)
+    };
+    let s = sp.build().expect("relaxed placement at η = 0.80");
+    let mut engine = Engine::new(s, EngineParams::default()).expect("engine accepts the state");
+    let mut checker = InvariantChecker::new(&engine);
+    for _ in 0..10 {
+        engine.run_collisions(10_000).expect("run");
+        checker.check(&engine).expect("invariants");
+    }
+}
+
+#[test]
+fn relaxed_placement_above_jamming_is_an_error() {
+    let sp = SystemSpec {
+        placement: Placement::Relaxed,
+        ..spec(glass(200), 0.88, 1.0, Kind::Periodic, 1)
+    };
+    let start = std::time::Instant::now();
+    let msg = assert_err_names(
+        build(&sp, "relaxed η 0.88"),
+        "packing_fraction",
+        "relaxed η 0.88",
+    );
+    assert!(msg.contains("0.88") && msg.contains("jammed"), "{msg}");
+    assert!(
+        start.elapsed().as_secs() < 60,
+        "relaxation took too long to give up"
+    );
+}
+
 fn dof(s: &State) -> f64 {
     let periodic = s
         .sim_box
@@ -713,6 +857,7 @@ fn same_seed_same_state_different_seed_different_state() {
         (Placement::Lattice, Velocities::MaxwellBoltzmann),
         (Placement::Random, Velocities::MaxwellBoltzmann),
         (Placement::Lattice, Velocities::EqualSpeed),
+        (Placement::Relaxed, Velocities::MaxwellBoltzmann),
     ];
     for (placement, velocities) in variants {
         let make = |seed| SystemSpec {
@@ -903,7 +1048,7 @@ fn packing_fraction_beyond_reach_is_an_error() {
     let s = build(&sp, "η 0.85 N 500").expect("a 21 × 24 triangular lattice fits");
     validate(&s, &sp, "η 0.85 N 500");
     // At or above hexagonal close packing (π/(2√3) ≈ 0.9069) for any placement.
-    for placement in [Placement::Lattice, Placement::Random] {
+    for placement in [Placement::Lattice, Placement::Random, Placement::Relaxed] {
         let sp = SystemSpec {
             placement: placement.clone(),
             ..spec(mono(100), 0.95, 1.0, Kind::Periodic, 1)

@@ -25,6 +25,7 @@ pub mod invariants;
 pub mod lookahead;
 mod memory;
 pub mod queue;
+pub mod relax;
 pub mod state;
 
 pub use checkpoint::Checkpoint;

@@ -300,7 +300,8 @@ pub struct SpeciesConfig {
 pub struct BoxConfig {
     /// Packing fraction η = Σ N_s π a_s² / (L_x L_y) (dimensionless). Default 0.5
     /// when `size` is not given; allowed: 0 < η < 0.9069 (close packing). Lattice
-    /// placement reaches 0.72, random placement only low densities (η ≲ 0.4).
+    /// placement reaches 0.72, random placement only low densities (η ≲ 0.4),
+    /// relaxed placement about 0.8.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub packing_fraction: Option<f64>,
     /// Aspect ratio L_x / L_y (dimensionless), with `packing_fraction`. Default 1;
@@ -419,6 +420,10 @@ pub enum PlacementConfig {
     /// `"random"`: uniformly random without overlap, largest discs first (low
     /// density, η ≲ 0.4).
     Random,
+    /// `"relaxed"`: uniformly random positions at the requested density, made free
+    /// of overlaps by minimizing a soft overlap energy (disordered; any mixture up
+    /// to η ≈ 0.8).
+    Relaxed,
     /// `{"explicit": [[x, y], ...]}`: one centre position per disc (length), in the
     /// order of the species; inside the box and not overlapping.
     Explicit(Vec<[f64; 2]>),
@@ -1154,6 +1159,7 @@ impl Config {
             placement: match &c.placement {
                 PlacementConfig::Lattice => Placement::Lattice,
                 PlacementConfig::Random => Placement::Random,
+                PlacementConfig::Relaxed => Placement::Relaxed,
                 PlacementConfig::Explicit(p) => Placement::Explicit(to_vecs(p)),
             },
             velocities: match &c.velocities {
@@ -1741,6 +1747,9 @@ mod tests {
         assert!((eta(&get("dense-fluid.json")) - 0.68).abs() < 1e-9);
         assert!(eta(&get("dilute-gas.json")) < 0.1);
         assert!(get("binary-mixture.json").system.species.len() >= 2);
+        let glass = get("glass-mixture.json");
+        assert!(glass.system.species.len() >= 2 && eta(&glass) > 0.75);
+        assert_eq!(glass.system.placement, Placement::Relaxed);
         assert!(matches!(
             get("granular-cooling.json").params.restitution,
             Restitution::Normal(e) if e < 1.0
