@@ -204,15 +204,10 @@ impl CellGrid {
         members[j].link_mut().next = next;
     }
 
-    /// Every disc in the 3 × 3 block of cells around cell `c`: cells beyond a wall
-    /// are dropped, and on a periodic axis narrower than three cells a disc may come
-    /// more than once. For setup and checks that use minimum images; the event loop
-    /// walks the block itself because it tracks each cell's image shift.
-    pub fn discs_near<'a, M: Member>(
-        &'a self,
-        members: &'a [M],
-        c: [u32; 2],
-    ) -> impl Iterator<Item = u32> + 'a {
+    /// Linear indices of the cells of the 3 × 3 block around cell `c`: cells beyond
+    /// a wall are dropped, and on a periodic axis narrower than three cells a cell
+    /// may come more than once.
+    pub fn cells_near(&self, c: [u32; 2]) -> impl Iterator<Item = usize> + '_ {
         let cell = move |o: [i64; 2]| -> Option<usize> {
             let mut cc = [0u32; 2];
             for k in 0..2 {
@@ -231,16 +226,27 @@ impl CellGrid {
         (-1..=1)
             .flat_map(|oy| (-1..=1).map(move |ox| [ox, oy]))
             .filter_map(cell)
-            .flat_map(move |k| {
-                let mut j = self.head[k];
-                std::iter::from_fn(move || {
-                    let cur = j;
-                    (cur != NONE).then(|| {
-                        j = members[cur as usize].link().next;
-                        cur
-                    })
+    }
+
+    /// Every disc in the 3 × 3 block of cells around cell `c` ([`Self::cells_near`]:
+    /// on a periodic axis narrower than three cells a disc may come more than once).
+    /// For setup and checks that use minimum images; the event loop walks the block
+    /// itself because it tracks each cell's image shift.
+    pub fn discs_near<'a, M: Member>(
+        &'a self,
+        members: &'a [M],
+        c: [u32; 2],
+    ) -> impl Iterator<Item = u32> + 'a {
+        self.cells_near(c).flat_map(move |k| {
+            let mut j = self.head[k];
+            std::iter::from_fn(move || {
+                let cur = j;
+                (cur != NONE).then(|| {
+                    j = members[cur as usize].link().next;
+                    cur
                 })
             })
+        })
     }
 
     /// Time from now until a disc at coordinate `x` (its position now), moving with

@@ -658,12 +658,18 @@ fn lattice(
         ));
     }
     let mut chosen = lat.occupied(&spec.sim_box, a, n);
-    // Shuffle which disc sits where, so species mix (Fisher–Yates, seeded).
-    for k in (1..n).rev() {
-        let j = rng.random_range(0..=k);
-        chosen.swap(k, j);
-    }
+    // Shuffle which disc sits where, so species mix.
+    shuffle(&mut chosen, rng);
     Ok(chosen)
+}
+
+/// Shuffle `v` in place with the seeded generator (Fisher–Yates, from the end; the
+/// order of draws is part of what a seed reproduces).
+fn shuffle<T>(v: &mut [T], rng: &mut Pcg64) {
+    for k in (1..v.len()).rev() {
+        let j = rng.random_range(0..=k);
+        v.swap(k, j);
+    }
 }
 
 fn random(spec: &SystemSpec, species_of: &[u16], rng: &mut Pcg64) -> Result<Vec<DVec2>, InitError> {
@@ -759,17 +765,11 @@ fn relaxed(
     let nx = ((n as f64 * size.x / size.y).sqrt().round() as usize).clamp(1, n);
     let ny = n.div_ceil(nx);
     let mut cells: Vec<usize> = (0..nx * ny).collect();
-    for k in (1..cells.len()).rev() {
-        let j = rng.random_range(0..=k);
-        cells.swap(k, j);
-    }
+    shuffle(&mut cells, rng);
     cells.truncate(n);
     cells.sort_unstable();
     // Shuffle which disc takes which cell, so the species mix.
-    for k in (1..n).rev() {
-        let j = rng.random_range(0..=k);
-        cells.swap(k, j);
-    }
+    shuffle(&mut cells, rng);
     let cell = DVec2::new(size.x / nx as f64, size.y / ny as f64);
     let start: Vec<DVec2> = cells
         .iter()

@@ -90,27 +90,8 @@ pub(crate) fn relax(
     // periodic axis of fewer than three cells the 3 × 3 block repeats cells.
     let blocks: Vec<Vec<usize>> = (0..cells)
         .map(|k| {
-            let c = [
-                (k % grid.n[0] as usize) as i64,
-                (k / grid.n[0] as usize) as i64,
-            ];
-            let mut b: Vec<usize> = (-1..=1)
-                .flat_map(|oy| (-1..=1).map(move |ox| [c[0] + ox, c[1] + oy]))
-                .filter_map(|o| {
-                    let mut cc = [0u32; 2];
-                    for a in 0..2 {
-                        let m = grid.n[a] as i64;
-                        if grid.periodic[a] {
-                            cc[a] = o[a].rem_euclid(m) as u32;
-                        } else if (0..m).contains(&o[a]) {
-                            cc[a] = o[a] as u32;
-                        } else {
-                            return None;
-                        }
-                    }
-                    Some(grid.index(cc))
-                })
-                .collect();
+            let w = grid.n[0] as usize;
+            let mut b: Vec<usize> = grid.cells_near([(k % w) as u32, (k / w) as u32]).collect();
             b.sort_unstable();
             b.dedup();
             b
