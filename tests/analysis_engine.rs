@@ -203,29 +203,38 @@ fn cooling_granular_gas_closes_its_energy_budget() {
     assert!(r.enskog.is_none());
 }
 
-#[test]
-fn binary_mixture_each_species_follows_its_own_maxwell_boltzmann() {
-    let species = vec![
-        Species {
-            count: 512,
-            radius: 0.5,
-            mass: 1.0,
-        },
-        Species {
-            count: 512,
-            radius: 0.6,
-            mass: 4.0,
-        },
-    ];
-    let size = box_size_for(&species, 0.3, 1.0);
-    let spec = SystemSpec {
+/// An equimolar binary mixture of `n_each` discs per species with these radii and
+/// masses at packing fraction `eta` in a square periodic box, Maxwell–Boltzmann
+/// velocities at kT = 1.
+fn binary(
+    n_each: usize,
+    radius: [f64; 2],
+    mass: [f64; 2],
+    eta: f64,
+    placement: Placement,
+    seed: u64,
+) -> SystemSpec {
+    let species: Vec<Species> = (0..2)
+        .map(|k| Species {
+            count: n_each,
+            radius: radius[k],
+            mass: mass[k],
+        })
+        .collect();
+    let size = box_size_for(&species, eta, 1.0);
+    SystemSpec {
         species,
         sim_box: SimBox::periodic(size.x, size.y),
         temperature: 1.0,
-        seed: 21,
-        placement: Placement::Lattice,
+        seed,
+        placement,
         velocities: Velocities::MaxwellBoltzmann,
-    };
+    }
+}
+
+#[test]
+fn binary_mixture_each_species_follows_its_own_maxwell_boltzmann() {
+    let spec = binary(512, [0.5, 0.6], [1.0, 4.0], 0.3, Placement::Lattice, 21);
     let opts = AnalysisOptions {
         equilibrate: Some(10.0),
         every: Some(4.0),
@@ -255,27 +264,7 @@ fn a_relaxed_dense_mixture_is_maxwell_boltzmann_from_the_first_time_unit() {
     // random positions with only the overlaps removed, a collective flow (four
     // times its equilibrium share of the kinetic energy at t = 1) kept both
     // species' speeds off Maxwell–Boltzmann (p ≈ 1e-5 to 1e-10 over t ∈ [1, 10]).
-    let species = vec![
-        Species {
-            count: 2000,
-            radius: 0.5,
-            mass: 1.0,
-        },
-        Species {
-            count: 2000,
-            radius: 0.7,
-            mass: 1.96,
-        },
-    ];
-    let size = box_size_for(&species, 0.78, 1.0);
-    let spec = SystemSpec {
-        species,
-        sim_box: SimBox::periodic(size.x, size.y),
-        temperature: 1.0,
-        seed: 5,
-        placement: Placement::Relaxed,
-        velocities: Velocities::MaxwellBoltzmann,
-    };
+    let spec = binary(2000, [0.5, 0.7], [1.0, 1.96], 0.78, Placement::Relaxed, 5);
     let opts = AnalysisOptions {
         equilibrate: Some(1.0),
         every: Some(1.0),
