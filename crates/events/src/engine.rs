@@ -789,7 +789,11 @@ impl Engine {
     }
 
     /// Renumber the discs along the Z (Morton) curve of their cells, so that discs
-    /// close in space are close in memory and in the queue. Only the internal order
+    /// close in space are close in memory and in the queue. (The Hilbert curve, with
+    /// fewer jumps between distant cells, gave the same trajectory and 0.98 of the
+    /// speed at N = 10⁶, median of 6 side-by-side runs: each neighbour's record is
+    /// its own cache line either way. Nor did the label array on huge pages help:
+    /// 0.96, 6 runs.) Only the internal order
     /// changes: events and states keep the user's numbering, and no arithmetic on
     /// the trajectory depends on the order (ties are broken by internal index, which
     /// this renumbering makes a deterministic function of the history).
