@@ -22,12 +22,12 @@ use carom_core::{DVec2, SimBox};
 
 /// Factor on the radii while minimizing (dimensionless): the inflated discs are
 /// pushed apart, so the real ones end with gaps.
-pub(crate) const INFLATE: f64 = 1.0 + 2e-3;
+pub const INFLATE: f64 = 1.0 + 2e-3;
 
 /// The minimization stops once every pair of discs is at least this factor times
 /// its contact distance a_i + a_j apart, and every disc at least this factor times
 /// its radius from a wall (dimensionless).
-pub(crate) const MARGIN: f64 = 1.0 + 1e-3;
+pub const MARGIN: f64 = 1.0 + 1e-3;
 
 /// FIRE parameters (Bitzek et al. 2006, in the time unit of a unit mass on a unit
 /// spring): first and largest step, steps of positive power before the step grows,
