@@ -669,7 +669,7 @@ fn the_engine_runs_from_a_relaxed_dense_mixture() {
 }
 
 #[test]
-fn relaxed_placement_above_jamming_is_an_error() {
+fn relaxed_placement_refuses_jammed_states_and_too_narrow_boxes() {
     let sp = SystemSpec {
         placement: Placement::Relaxed,
         ..spec(glass(200), 0.88, 1.0, Kind::Periodic, 1)
@@ -681,6 +681,30 @@ fn relaxed_placement_above_jamming_is_an_error() {
         "relaxed η 0.88",
     );
     assert!(msg.contains("0.88") && msg.contains("jammed"), "{msg}");
+    // A periodic edge between one and two contact distances long: lattice
+    // placement may use it, but relaxation compares each pair through one image
+    // only, so it refuses the box and names the edge.
+    let narrow = SystemSpec {
+        species: mono(3),
+        sim_box: SimBox {
+            size: DVec2::new(1.5, 20.0),
+            boundary: [Boundary::Periodic; 2],
+        },
+        ..sp
+    };
+    assert!(build(
+        &SystemSpec {
+            placement: Placement::Lattice,
+            ..narrow.clone()
+        },
+        "lattice 1.5 σ"
+    )
+    .is_ok());
+    assert_err_names(
+        build(&narrow, "relaxed 1.5 σ"),
+        "box.size.x",
+        "relaxed in a 1.5 σ wide box",
+    );
     assert!(
         start.elapsed().as_secs() < 60,
         "relaxation took too long to give up"
