@@ -42,13 +42,14 @@
 
 use carom_core::{Boundary, DVec2};
 use carom_events::state::degrees_of_freedom;
-use carom_events::{Engine, EngineError, Event, InitError};
+use carom_events::{Engine, EngineError, Event, InitError, PlacementProgress, State, SystemSpec};
 use carom_io::checkpoint_codec::LogCheckpoint;
 use carom_io::log_reader::{last_checkpoint, LogReader, ReadError};
 use carom_io::log_writer::{LogWriter, WriteError, WriterOptions, WriterPosition, CH_THERMO};
 use carom_io::run_metadata::{now_rfc3339, RunMetadata, StopReason, SummaryMetadata};
 use carom_io::schema::{Thermo, LOG_FORMAT_VERSION};
 use carom_io::{LogOptions, RunSpec, Stop};
+use std::ops::ControlFlow;
 use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::{Duration, Instant};
@@ -95,6 +96,13 @@ pub enum RunError {
     /// Reading the log to resume failed.
     #[error(transparent)]
     Read(#[from] ReadError),
+    /// The stop flag was raised while the discs were being placed, before the log
+    /// was created: nothing was written.
+    #[error("interrupted while placing the discs (relaxed placement, after {steps} minimization steps); no log was written")]
+    InterruptedPlacing {
+        /// Minimization steps taken.
+        steps: usize,
+    },
     /// Renaming the finished resumed log over the input failed.
     #[error("cannot move the resumed log {from} over {to}: {source}")]
     Rename {
@@ -132,6 +140,9 @@ pub struct Control<'a> {
     pub stop: Option<&'a AtomicBool>,
     /// Called about every `progress_interval` of wall time, and once at the end.
     pub progress: Option<&'a mut dyn FnMut(&Progress)>,
+    /// Called about every `progress_interval` of wall time while relaxed placement
+    /// minimizes (before the run starts and its log exists), and once when it ends.
+    pub placing: Option<&'a mut dyn FnMut(&PlacementProgress)>,
     /// Wall time between progress calls.
     pub progress_interval: Duration,
 }
@@ -141,6 +152,7 @@ impl Default for Control<'_> {
         Control {
             stop: None,
             progress: None,
+            placing: None,
             progress_interval: Duration::from_millis(200),
         }
     }
@@ -152,6 +164,7 @@ impl<'a> Control<'a> {
         Control {
             stop: Some(stop),
             progress: Some(progress),
+            placing: None,
             progress_interval: Duration::from_millis(200),
         }
     }
@@ -162,6 +175,7 @@ impl std::fmt::Debug for Control<'_> {
         f.debug_struct("Control")
             .field("stop", &self.stop)
             .field("progress", &self.progress.is_some())
+            .field("placing", &self.placing.is_some())
             .field("progress_interval", &self.progress_interval)
             .finish()
     }
@@ -261,8 +275,8 @@ fn validate(log: &LogOptions, stop: &Stop, now: f64) -> Result<(), RunError> {
 /// until the run stops (stop criterion, `control.stop`, or an engine failure, after
 /// which the log is still finished). See the module documentation for what is
 /// written.
-pub fn run(spec: &RunSpec, out: &Path, control: Control<'_>) -> Result<RunSummary, RunError> {
-    let state = spec.system.build()?;
+pub fn run(spec: &RunSpec, out: &Path, mut control: Control<'_>) -> Result<RunSummary, RunError> {
+    let state = place(&spec.system, &mut control)?;
     validate(&spec.log, &spec.stop, state.time)?;
     let n = state.len();
     let engine = Engine::new(state, spec.params).map_err(|source| RunError::Engine {
@@ -292,6 +306,48 @@ pub fn run(spec: &RunSpec, out: &Path, control: Control<'_>) -> Result<RunSummar
     d.run_start_time = d.engine.now();
     d.schedule_initial()?;
     d.run_loop(out)
+}
+
+/// Build the initial state of `system`, reporting relaxed placement's progress to
+/// `control.placing` (every `control.progress_interval`, and once at the end) and
+/// stopping it when `control.stop` is raised.
+fn place(system: &SystemSpec, control: &mut Control<'_>) -> Result<State, RunError> {
+    let mut last_report: Option<Instant> = None;
+    let mut latest = None;
+    let mut observe = |p: &PlacementProgress| {
+        latest = Some(*p);
+        if let Some(show) = control.placing.as_mut() {
+            if last_report.is_none_or(|t| t.elapsed() >= control.progress_interval) {
+                show(p);
+                last_report = Some(Instant::now());
+            }
+        }
+        match control.stop {
+            Some(flag) if flag.load(Ordering::Relaxed) => ControlFlow::Break(()),
+            _ => ControlFlow::Continue(()),
+        }
+    };
+    let state = system.build_observed(&mut observe);
+    if let (Some(show), Some(p)) = (control.placing.as_mut(), latest) {
+        // Reported before each step: a placement that succeeded took one more, and
+        // left nothing too close.
+        let done = PlacementProgress {
+            steps: p.steps + 1,
+            close: 0,
+            ..p
+        };
+        show(if matches!(state, Ok(Some(_))) {
+            &done
+        } else {
+            &p
+        });
+    }
+    match state? {
+        Some(state) => Ok(state),
+        None => Err(RunError::InterruptedPlacing {
+            steps: latest.map_or(0, |p| p.steps),
+        }),
+    }
 }
 
 /// Continue the log `input` from its last complete checkpoint into `out` (which may

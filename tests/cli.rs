@@ -570,6 +570,64 @@ fn signalled(dir: &Path, args: &[&str], signal: &str, wait_ms: u64) -> Output {
 }
 
 #[test]
+fn ctrl_c_while_placing_the_discs_stops_at_once_and_writes_nothing() {
+    // Relaxed placement of 40 000 discs beyond jamming minimizes for tens of
+    // seconds before it gives up: the progress is shown, and Ctrl-C ends it with
+    // the interrupt's exit code and no log.
+    let dir = scratch("ctrlc-placing");
+    let config = Path::new(env!("CARGO_MANIFEST_DIR")).join("data/glass-mixture.json");
+    let run = [
+        "run",
+        config.to_str().unwrap(),
+        "--out",
+        "dense.mcap",
+        "--set",
+        "box.packing_fraction=0.85",
+        "--set",
+        "species.0.count=20000",
+        "--set",
+        "species.1.count=20000",
+    ];
+    // Placed at the example's own density: the end of placement is reported.
+    let out = Command::new(BIN)
+        .args(
+            [
+                &run[..2],
+                &["--out", "placed.mcap", "--set", "stop.duration=0.01"],
+            ]
+            .concat(),
+        )
+        .current_dir(&dir)
+        .output()
+        .unwrap();
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(out.status.success(), "{stderr}");
+    assert!(
+        stderr.contains("placed 4000 discs (relaxed placement) in "),
+        "{stderr}"
+    );
+    let start = std::time::Instant::now();
+    let out = signalled(&dir, &run, "INT", 1500);
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(130), "{stderr}");
+    assert!(
+        start.elapsed().as_secs() < 10,
+        "took {:?} to stop",
+        start.elapsed()
+    );
+    assert!(
+        stderr.contains("placing 40000 discs (relaxed placement): step 0 of at most"),
+        "{stderr}"
+    );
+    assert!(
+        stderr.contains("interrupted while placing the discs")
+            && stderr.contains("no log was written"),
+        "{stderr}"
+    );
+    assert!(!dir.join("dense.mcap").exists());
+}
+
+#[test]
 fn sigterm_and_sighup_stop_cleanly_also_when_resuming_in_place() {
     // A batch scheduler sends SIGTERM at the end of a job's time; a closed terminal
     // sends SIGHUP. Both must leave a finished log, like Ctrl-C.

@@ -38,6 +38,7 @@
 use carom::core::boundary::{Boundary, SimBox};
 use carom::core::{DVec2, Species};
 use carom::events::{box_size_for, InitError, Placement, State, SystemSpec, Velocities};
+use std::ops::ControlFlow;
 use std::panic::{catch_unwind, AssertUnwindSafe};
 
 const ASPECTS: [f64; 7] = [
@@ -1313,4 +1314,65 @@ fn a_dilute_gas_in_a_huge_box_gets_few_cells() {
     assert!(e.heap_bytes() < 1 << 20, "{} heap bytes", e.heap_bytes());
     // Crossings are events too: a few thousand collisions' worth of flight.
     e.run_until(1e5).expect("run");
+}
+
+#[test]
+fn relaxed_placement_reports_its_progress_and_stops_when_asked() {
+    let sp = SystemSpec {
+        placement: Placement::Relaxed,
+        ..spec(glass(300), 0.82, 1.0, Kind::Periodic, 3)
+    };
+    // Observed to the end: one report before every step, steps counting up from
+    // 0, some pairs still too close at each, and the same state as `build`, bit
+    // for bit (watching does not change the minimization).
+    let mut seen = Vec::new();
+    let observed = sp
+        .build_observed(&mut |p| {
+            seen.push(*p);
+            ControlFlow::Continue(())
+        })
+        .unwrap()
+        .expect("an observer that never stops gets a state");
+    assert_eq!(observed, sp.build().unwrap());
+    assert!(seen.len() > 20, "only {} steps", seen.len());
+    for (k, p) in seen.iter().enumerate() {
+        assert_eq!(p.steps, k);
+        assert_eq!(p.discs, 600);
+        assert!(p.max_steps >= 10_000);
+        assert!(p.close > 0, "{p:?}");
+    }
+    assert!(
+        seen.last().unwrap().close < seen[0].close / 10,
+        "{:?} → {:?}",
+        seen[0],
+        seen.last().unwrap()
+    );
+    // Stopped at step 5: nothing built, and no step taken after the stop.
+    let mut calls = 0;
+    let stopped = sp.build_observed(&mut |p| {
+        calls += 1;
+        if p.steps == 5 {
+            ControlFlow::Break(())
+        } else {
+            ControlFlow::Continue(())
+        }
+    });
+    assert_eq!(stopped, Ok(None));
+    assert_eq!(calls, 6);
+    // Placements that take no time never call the observer.
+    for placement in [Placement::Lattice, Placement::Random] {
+        let eta = if placement == Placement::Random {
+            0.2
+        } else {
+            0.6
+        };
+        let sp = SystemSpec {
+            placement,
+            ..spec(mono(300), eta, 1.0, Kind::Periodic, 3)
+        };
+        let s = sp
+            .build_observed(&mut |p| panic!("observer called: {p:?}"))
+            .unwrap();
+        assert_eq!(s, Some(sp.build().unwrap()));
+    }
 }

@@ -5,7 +5,7 @@
 
 mod mcap_common;
 
-use carom::events::{Engine, EngineParams, Event};
+use carom::events::{Engine, EngineParams, Event, SystemSpec};
 use carom::io::log_reader::{scan, LogEnd, LogEvent, LogMessage, LogReader};
 use carom::io::run_metadata::StopReason;
 use carom::io::schema::{CollisionRecord, KIND_WALL};
@@ -258,6 +258,7 @@ fn collision_budget_and_stop_flag() {
         stop: Some(&stop),
         progress: Some(&mut cb),
         progress_interval: std::time::Duration::ZERO,
+        ..Control::default()
     };
     let s = run(
         &spec(system, Stop::Time(1e9), log_opts(Compression::Zstd)),
@@ -362,4 +363,63 @@ fn thermo_pressure_matches_the_equation_of_state() {
     };
     assert!((p * area / (400.0 * b.temperature) - b.z.unwrap()).abs() < 1e-9);
     std::fs::remove_file(&out).unwrap();
+}
+
+#[test]
+fn relaxed_placement_reports_progress_and_the_stop_flag_ends_it_before_the_log() {
+    use carom::events::{Placement, PlacementProgress};
+    use carom::run::RunError;
+    let system = SystemSpec {
+        placement: Placement::Relaxed,
+        ..system(400, 0.82, false, false, 2)
+    };
+    // To the end: a report at every step (interval 0), the last one with nothing
+    // left too close, then the run.
+    let out = tmp("placed.mcap");
+    let mut seen: Vec<PlacementProgress> = Vec::new();
+    let mut show = |p: &PlacementProgress| seen.push(*p);
+    let control = Control {
+        placing: Some(&mut show),
+        progress_interval: std::time::Duration::ZERO,
+        ..Control::default()
+    };
+    let s = run(
+        &spec(system.clone(), Stop::Time(0.1), log_opts(Compression::None)),
+        &out,
+        control,
+    )
+    .unwrap();
+    assert_eq!(s.stop_reason, StopReason::Time);
+    let (last, before) = seen.split_last().unwrap();
+    assert!(before.len() > 10, "{} reports", before.len());
+    assert!(before
+        .iter()
+        .enumerate()
+        .all(|(k, p)| p.steps == k && p.close > 0));
+    assert_eq!((last.steps, last.close), (before.len(), 0));
+    std::fs::remove_file(&out).unwrap();
+    // The stop flag raised at step 3: placement ends there and no log is created.
+    let stop = AtomicBool::new(false);
+    let mut show = |p: &PlacementProgress| {
+        if p.steps == 3 {
+            stop.store(true, Ordering::Relaxed);
+        }
+    };
+    let control = Control {
+        stop: Some(&stop),
+        placing: Some(&mut show),
+        progress_interval: std::time::Duration::ZERO,
+        ..Control::default()
+    };
+    let e = run(
+        &spec(system, Stop::Time(0.1), log_opts(Compression::None)),
+        &out,
+        control,
+    )
+    .unwrap_err();
+    assert!(
+        matches!(e, RunError::InterruptedPlacing { steps: 3 }),
+        "{e}"
+    );
+    assert!(!out.exists());
 }

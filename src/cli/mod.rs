@@ -167,6 +167,9 @@ impl CliError {
     fn exit_code(&self) -> u8 {
         match self {
             CliError::Config(_) | CliError::Usage(_) => 2,
+            // Interrupted before the log existed: the shell's code for SIGINT, as
+            // for a run interrupted later (with its log finished).
+            CliError::Run(carom::run::RunError::InterruptedPlacing { .. }) => 130,
             _ => 1,
         }
     }

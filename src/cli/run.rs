@@ -3,12 +3,14 @@
 //! stop: batch schedulers send SIGTERM at the end of a job's time, and a closed
 //! terminal sends SIGHUP.
 
+use std::cell::RefCell;
 use std::io::IsTerminal;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::{Duration, Instant};
 
+use carom::events::PlacementProgress;
 use carom::io::config::{self, ConfigError};
 use carom::io::run_metadata::StopReason;
 use carom::io::Stop;
@@ -30,7 +32,8 @@ fn install_ctrlc() {
             std::process::exit(130);
         }
         eprintln!(
-            "\ninterrupt: stopping at the next event and finishing the log (interrupt again to abort)"
+            "\ninterrupt: stopping at the next event and finishing the log, or at once if the \
+             discs are still being placed (interrupt again to abort)"
         );
     });
     if let Err(e) = r {
@@ -41,11 +44,14 @@ fn install_ctrlc() {
 }
 
 /// Progress display: an indicatif bar on a terminal, a plain line every
-/// `PLAIN_EVERY` otherwise, nothing with `--quiet`.
+/// `PLAIN_EVERY` otherwise, nothing with `--quiet`. Relaxed placement, before the
+/// run, gets a spinner of its own (its length is not known in advance).
 struct Display {
     bar: Option<ProgressBar>,
     plain: bool,
     last_plain: Option<Instant>,
+    /// The placement spinner (terminal only) and when placement started.
+    placing: Option<(Option<ProgressBar>, Instant)>,
 }
 
 const PLAIN_EVERY: Duration = Duration::from_secs(5);
@@ -64,6 +70,7 @@ impl Display {
                 bar: None,
                 plain: false,
                 last_plain: None,
+                placing: None,
             };
         }
         if std::io::stderr().is_terminal() {
@@ -78,12 +85,14 @@ impl Display {
                 bar: Some(bar),
                 plain: false,
                 last_plain: None,
+                placing: None,
             }
         } else {
             Display {
                 bar: None,
                 plain: true,
                 last_plain: None,
+                placing: None,
             }
         }
     }
@@ -112,7 +121,56 @@ impl Display {
         }
     }
 
+    /// Show how far relaxed placement has got; `p.close == 0` means it is done.
+    fn placing(&mut self, p: &PlacementProgress) {
+        if self.bar.is_none() && !self.plain {
+            return;
+        }
+        let terminal = self.bar.is_some();
+        let (spinner, start) = self.placing.get_or_insert_with(|| {
+            let spinner = terminal.then(|| {
+                let s = ProgressBar::new_spinner();
+                s.set_style(
+                    ProgressStyle::with_template("{spinner} [{elapsed_precise}] {msg}")
+                        .expect("valid template"),
+                );
+                s
+            });
+            (spinner, Instant::now())
+        });
+        let seconds = start.elapsed().as_secs_f64();
+        let msg = if p.close == 0 {
+            format!(
+                "placed {} discs (relaxed placement) in {} minimization steps, {seconds:.1} s",
+                p.discs, p.steps
+            )
+        } else {
+            format!(
+                "placing {} discs (relaxed placement): step {} of at most {}, \
+                 {} pairs or wall contacts still too close",
+                p.discs, p.steps, p.max_steps, p.close
+            )
+        };
+        if let Some(s) = spinner {
+            if p.close == 0 {
+                s.finish_and_clear();
+            } else {
+                s.set_message(msg);
+                s.tick();
+            }
+        } else {
+            let due = self.last_plain.is_none_or(|t| t.elapsed() >= PLAIN_EVERY);
+            if due || p.close == 0 {
+                eprintln!("[{seconds:7.1} s] {msg}");
+                self.last_plain = Some(Instant::now());
+            }
+        }
+    }
+
     fn finish(&self) {
+        if let Some((Some(s), _)) = &self.placing {
+            s.finish_and_clear();
+        }
         if let Some(bar) = &self.bar {
             bar.finish_and_clear();
         }
@@ -195,10 +253,15 @@ pub fn run(args: RunArgs) -> Result<ExitCode, CliError> {
         )));
     }
     install_ctrlc();
-    let mut display = Display::new(args.quiet);
-    let mut progress = |p: &Progress| display.update(p);
-    let summary = carom::run::run(&spec, &out, Control::new(&STOP, &mut progress));
-    display.finish();
+    let display = RefCell::new(Display::new(args.quiet));
+    let mut progress = |p: &Progress| display.borrow_mut().update(p);
+    let mut placing = |p: &PlacementProgress| display.borrow_mut().placing(p);
+    let control = Control {
+        placing: Some(&mut placing),
+        ..Control::new(&STOP, &mut progress)
+    };
+    let summary = carom::run::run(&spec, &out, control);
+    display.borrow().finish();
     Ok(report(&summary.map_err(run_error)?))
 }
 

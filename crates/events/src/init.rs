@@ -21,11 +21,28 @@
 
 use crate::cells::{CellGrid, Link};
 use crate::error::InitError;
+use crate::relax::Why;
 use crate::state::{degrees_of_freedom, packing_fraction, State};
 use carom_core::{Boundary, DVec2, SimBox, Species};
 use rand::{RngExt, SeedableRng};
 use rand_distr::{Distribution, StandardNormal};
 use rand_pcg::Pcg64;
+use std::ops::ControlFlow;
+
+/// How far relaxed placement has got, reported to the observer of
+/// [`SystemSpec::build_observed`] before every minimization step.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct PlacementProgress {
+    /// Discs being placed.
+    pub discs: usize,
+    /// Minimization steps taken so far.
+    pub steps: usize,
+    /// The most steps relaxed placement takes before it gives up.
+    pub max_steps: usize,
+    /// Pairs and wall contacts still closer than [`crate::relax::MARGIN`] allows;
+    /// placement is done when none is left.
+    pub close: usize,
+}
 
 /// How the discs are placed.
 #[derive(Debug, Clone, PartialEq)]
@@ -180,6 +197,18 @@ impl SystemSpec {
 
     /// Check every field, place the discs and draw velocities.
     pub fn build(&self) -> Result<State, InitError> {
+        let state = self.build_observed(&mut |_| ControlFlow::Continue(()))?;
+        Ok(state.expect("an observer that never stops"))
+    }
+
+    /// [`SystemSpec::build`], reporting the progress of relaxed placement (the one
+    /// placement that can take long: about a minute for 10⁶ discs, more near
+    /// jamming) to `observe` before every minimization step. When `observe` breaks,
+    /// building stops and returns `Ok(None)`. Other placements never call it.
+    pub fn build_observed(
+        &self,
+        observe: &mut dyn FnMut(&PlacementProgress) -> ControlFlow<()>,
+    ) -> Result<Option<State>, InitError> {
         self.validate()?;
         let n: usize = self.species.iter().map(|s| s.count).sum();
         let mut species_of = Vec::with_capacity(n);
@@ -190,7 +219,10 @@ impl SystemSpec {
         let positions = match &self.placement {
             Placement::Lattice => lattice(self, &species_of, &mut rng)?,
             Placement::Random => random(self, &species_of, &mut rng)?,
-            Placement::Relaxed => relaxed(self, &species_of, &mut rng)?,
+            Placement::Relaxed => match relaxed(self, &species_of, &mut rng, observe)? {
+                Some(p) => p,
+                None => return Ok(None),
+            },
             Placement::Explicit(p) => {
                 check_explicit(self, &species_of, p)?;
                 p.iter().map(|&r| self.sim_box.wrap(r)).collect()
@@ -222,14 +254,14 @@ impl SystemSpec {
             _ => "temperature",
         };
         check_scales(self, &species_of, &velocities, field)?;
-        Ok(State {
+        Ok(Some(State {
             sim_box: self.sim_box,
             species: self.species.clone(),
             species_of,
             positions,
             velocities,
             time: 0.0,
-        })
+        }))
     }
 
     /// The largest radius of the species that have discs (length; see
@@ -732,11 +764,13 @@ fn random(spec: &SystemSpec, species_of: &[u16], rng: &mut Pcg64) -> Result<Vec<
 /// jammed at 0.85 after some 10⁴).
 const RELAX_STEPS: usize = 100_000;
 
+/// Relaxed placement (see [`crate::relax`]); `None` when `observe` stopped it.
 fn relaxed(
     spec: &SystemSpec,
     species_of: &[u16],
     rng: &mut Pcg64,
-) -> Result<Vec<DVec2>, InitError> {
+    observe: &mut dyn FnMut(&PlacementProgress) -> ControlFlow<()>,
+) -> Result<Option<Vec<DVec2>>, InitError> {
     let radius = |i: usize| spec.species[species_of[i] as usize].radius;
     let reach = 4.0 * spec.largest_radius() * crate::relax::INFLATE;
     for (k, name) in ["x", "y"].iter().enumerate() {
@@ -783,26 +817,37 @@ fn relaxed(
             )
         })
         .collect();
-    crate::relax::relax(&spec.sim_box, &radii, start, RELAX_STEPS).map_err(|e| {
-        let eta = packing_fraction(&spec.species, &spec.sim_box);
-        let why = if e.jammed {
-            format!(
-                "the discs jammed with {} pairs or wall contacts still overlapping",
-                e.close
-            )
-        } else {
-            format!(
-                "{} pairs or wall contacts still too close after {} minimization steps",
-                e.close, e.steps
-            )
-        };
-        InitError::invalid(
-            "packing_fraction",
-            format!("{eta:.4} is too dense for relaxed placement in this box: {why}"),
-            "η below the jamming density of the mixture (about 0.84 for discs; \
+    let mut report = |steps, close| {
+        observe(&PlacementProgress {
+            discs: n,
+            steps,
+            max_steps: RELAX_STEPS,
+            close,
+        })
+    };
+    let relaxed = crate::relax::relax(&spec.sim_box, &radii, start, RELAX_STEPS, &mut report);
+    let e = match relaxed {
+        Ok(p) => return Ok(Some(p)),
+        Err(e) => e,
+    };
+    let eta = packing_fraction(&spec.species, &spec.sim_box);
+    let why = match e.why {
+        Why::Stopped => return Ok(None),
+        Why::Jammed => format!(
+            "the discs jammed with {} pairs or wall contacts still overlapping",
+            e.close
+        ),
+        Why::OutOfSteps => format!(
+            "{} pairs or wall contacts still too close after {} minimization steps",
+            e.close, e.steps
+        ),
+    };
+    Err(InitError::invalid(
+        "packing_fraction",
+        format!("{eta:.4} is too dense for relaxed placement in this box: {why}"),
+        "η below the jamming density of the mixture (about 0.84 for discs; \
              0.83 works for an equimolar 1 : 1.4 mixture), or \"lattice\" placement",
-        )
-    })
+    ))
 }
 
 /// Whether a disc of radius `a` at `r` would overlap one of the discs already in

@@ -32,6 +32,8 @@ pub use checkpoint::Checkpoint;
 pub use engine::{Engine, EngineParams, Stats};
 pub use error::{EngineError, InitError};
 pub use event::{Event, PairCollision, WallCollision};
-pub use init::{box_size_for, largest_radius, Placement, SystemSpec, Velocities};
+pub use init::{
+    box_size_for, largest_radius, Placement, PlacementProgress, SystemSpec, Velocities,
+};
 pub use invariants::{InvariantChecker, Violation};
 pub use state::State;

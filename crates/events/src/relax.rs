@@ -19,6 +19,7 @@
 
 use crate::cells::CellGrid;
 use carom_core::{DVec2, SimBox};
+use std::ops::ControlFlow;
 
 /// Factor on the radii while minimizing (dimensionless): the inflated discs are
 /// pushed apart, so the real ones end with gaps.
@@ -47,15 +48,25 @@ const F_ALPHA: f64 = 0.99;
 const JAMMED_FORCE: f64 = 1e-10;
 
 /// Why relaxation stopped without a state free of overlaps.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) enum Why {
+    /// The discs are jammed: the forces balance while overlaps remain.
+    Jammed,
+    /// The most steps allowed were taken.
+    OutOfSteps,
+    /// The observer asked to stop.
+    Stopped,
+}
+
+/// How relaxation stopped without a state free of overlaps.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub(crate) struct NotRelaxed {
     /// Minimization steps taken.
     pub steps: usize,
     /// Pairs and wall contacts still closer than [`MARGIN`] allows at the end.
     pub close: usize,
-    /// Whether the discs are jammed (the forces balance while overlaps remain),
-    /// rather than out of steps.
-    pub jammed: bool,
+    /// Why it stopped.
+    pub why: Why,
 }
 
 /// Move the discs of radii `radii` (length) from positions `pos` (length, inside
@@ -63,11 +74,14 @@ pub(crate) struct NotRelaxed {
 /// and none is closer to a wall than [`MARGIN`] times its radius, in at most
 /// `max_steps` FIRE steps. Periodic axes must be longer than 2·[`INFLATE`] times
 /// the largest contact distance (so that a pair meets through one image only).
+/// `observe` is called with (steps taken, pairs and wall contacts still too close)
+/// before every step, and stops the minimization when it breaks.
 pub(crate) fn relax(
     sim_box: &SimBox,
     radii: &[f64],
     pos: Vec<DVec2>,
     max_steps: usize,
+    observe: &mut dyn FnMut(usize, usize) -> ControlFlow<()>,
 ) -> Result<Vec<DVec2>, NotRelaxed> {
     let n = pos.len();
     let a_max = radii.iter().copied().fold(0.0, f64::max);
@@ -109,7 +123,7 @@ pub(crate) fn relax(
     let mut scratch: Vec<(u32, DVec2, DVec2, f64)> = Vec::with_capacity(n);
     let (mut dt, mut alpha, mut positive) = (DT_START, ALPHA_START, 0u32);
     let mut close = 0;
-    let mut jammed = false;
+    let mut why = Why::OutOfSteps;
     let mut steps = 0;
     while steps <= max_steps {
         // Sort into cells (stable, so equal inputs give equal orders).
@@ -175,10 +189,14 @@ pub(crate) fn relax(
         }
         let f2: f64 = force.iter().map(|f| f.length_squared()).sum();
         if f2 < n as f64 * (JAMMED_FORCE * a_max).powi(2) {
-            jammed = true;
+            why = Why::Jammed;
             break;
         }
         if steps == max_steps {
+            break;
+        }
+        if observe(steps, close).is_break() {
+            why = Why::Stopped;
             break;
         }
         steps += 1;
@@ -213,11 +231,7 @@ pub(crate) fn relax(
             }
         }
     }
-    Err(NotRelaxed {
-        steps,
-        close,
-        jammed,
-    })
+    Err(NotRelaxed { steps, close, why })
 }
 
 /// The nearest periodic image of the separation `d` of two positions inside the
