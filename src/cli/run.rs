@@ -138,32 +138,36 @@ impl Display {
             });
             (spinner, Instant::now())
         });
-        let seconds = start.elapsed().as_secs_f64();
-        let msg = if p.close == 0 {
-            format!(
-                "placed {} discs (relaxed placement) in {} minimization steps, {seconds:.1} s",
-                p.discs, p.steps
-            )
-        } else {
-            format!(
-                "placing {} discs (relaxed placement): step {} of at most {}, \
-                 {} pairs or wall contacts still too close",
-                p.discs, p.steps, p.max_steps, p.close
-            )
-        };
         if let Some(s) = spinner {
             if p.close == 0 {
                 s.finish_and_clear();
             } else {
-                s.set_message(msg);
+                // Short enough for one line of an 80-column terminal.
+                s.set_message(format!(
+                    "placing {} discs (relaxed): step {}, {} pairs too close",
+                    p.discs, p.steps, p.close
+                ));
                 s.tick();
             }
-        } else {
-            let due = self.last_plain.is_none_or(|t| t.elapsed() >= PLAIN_EVERY);
-            if due || p.close == 0 {
-                eprintln!("[{seconds:7.1} s] {msg}");
-                self.last_plain = Some(Instant::now());
+            return;
+        }
+        let due = self.last_plain.is_none_or(|t| t.elapsed() >= PLAIN_EVERY);
+        if due || p.close == 0 {
+            let seconds = start.elapsed().as_secs_f64();
+            if p.close == 0 {
+                eprintln!(
+                    "[{seconds:7.1} s] placed {} discs (relaxed placement) in {} minimization \
+                     steps",
+                    p.discs, p.steps
+                );
+            } else {
+                eprintln!(
+                    "[{seconds:7.1} s] placing {} discs (relaxed placement): step {} of at most \
+                     {}, {} pairs or wall contacts still too close",
+                    p.discs, p.steps, p.max_steps, p.close
+                );
             }
+            self.last_plain = Some(Instant::now());
         }
     }
 
