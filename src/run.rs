@@ -44,6 +44,7 @@ use carom_core::{Boundary, DVec2};
 use carom_events::state::degrees_of_freedom;
 use carom_events::{Engine, EngineError, Event, InitError, PlacementProgress, State, SystemSpec};
 use carom_io::checkpoint_codec::LogCheckpoint;
+use carom_io::config::MAX_RECORDS;
 use carom_io::log_reader::{last_checkpoint, LogReader, ReadError};
 use carom_io::log_writer::{LogWriter, WriteError, WriterOptions, WriterPosition, CH_THERMO};
 use carom_io::run_metadata::{now_rfc3339, RunMetadata, StopReason, SummaryMetadata};
@@ -267,6 +268,32 @@ fn validate(log: &LogOptions, stop: &Stop, now: f64) -> Result<(), RunError> {
                 allowed: "finite times ≥ the start time",
             });
         }
+        // A stop time mistyped by some orders of magnitude (`resume --until 1e12`)
+        // would otherwise fill the disk with records, as a mistyped interval would
+        // (the configuration checks those against stop.duration).
+        let smallest = [
+            ("log.snapshot_interval", log.snapshot_interval),
+            ("log.thermo_interval", log.thermo_interval),
+            ("log.checkpoint_interval", log.checkpoint_interval),
+        ]
+        .into_iter()
+        .filter_map(|(name, x)| Some((name, x?)))
+        .min_by(|a, b| a.1.total_cmp(&b.1));
+        if let Some((name, x)) = smallest {
+            let records = (t - now) / x;
+            if records > MAX_RECORDS {
+                return Err(RunError::Invalid {
+                    field: "stop.time",
+                    problem: format!(
+                        "stop time {t} would write {records:.1e} records {x} apart \
+                         ({name}) after the current time {now}, more than {MAX_RECORDS:.0e}; \
+                         the latest stop time is {}",
+                        now + MAX_RECORDS * x
+                    ),
+                    allowed: "stop times at most 10⁹ log intervals after the current time",
+                });
+            }
+        }
     }
     Ok(())
 }
@@ -276,8 +303,10 @@ fn validate(log: &LogOptions, stop: &Stop, now: f64) -> Result<(), RunError> {
 /// which the log is still finished). See the module documentation for what is
 /// written.
 pub fn run(spec: &RunSpec, out: &Path, mut control: Control<'_>) -> Result<RunSummary, RunError> {
+    // Before placement, which can take a minute: a fresh state starts at time 0.
+    validate(&spec.log, &spec.stop, 0.0)?;
     let state = place(&spec.system, &mut control)?;
-    validate(&spec.log, &spec.stop, state.time)?;
+    debug_assert_eq!(state.time, 0.0);
     let n = state.len();
     let engine = Engine::new(state, spec.params).map_err(|source| RunError::Engine {
         source,

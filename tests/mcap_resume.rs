@@ -8,6 +8,7 @@ mod mcap_common;
 
 use carom::io::log_reader::{LogEnd, LogEvent, LogReader, ReadError};
 use carom::io::log_writer::{LogWriter, WriterOptions, WriterPosition};
+use carom::io::run_metadata::StopReason;
 use carom::io::{Compression, LogOptions, Stop};
 use carom::run::{resume, run, Control, ResumeOptions, RunError};
 use mcap_common::*;
@@ -209,6 +210,45 @@ fn resume_errors_are_clear() {
     )
     .unwrap_err();
     assert!(e.to_string().contains("stop.time"), "{e}");
+    // A stop time that would write more than 10⁹ records (a mistyped exponent):
+    // the smallest interval, thermo's 0.5, names the latest stop time allowed.
+    for until in [1e12, 3.0 + 0.5e9 * (1.0 + 1e-9)] {
+        let e = resume(
+            &path,
+            &out,
+            &ResumeOptions {
+                stop: Some(Stop::Time(until)),
+            },
+            Control::default(),
+        )
+        .unwrap_err();
+        let text = e.to_string();
+        assert!(
+            text.contains("stop.time")
+                && text.contains("records")
+                && text.contains("log.thermo_interval")
+                && text.contains("the latest stop time is 500000003"),
+            "{text}"
+        );
+        assert!(!out.exists());
+    }
+    // Exactly 10⁹ records is allowed: the resume starts (and stops at once on
+    // the raised stop flag, with its log finished).
+    let stop = std::sync::atomic::AtomicBool::new(true);
+    let s = resume(
+        &path,
+        &out,
+        &ResumeOptions {
+            stop: Some(Stop::Time(3.0 + 0.5e9)),
+        },
+        Control {
+            stop: Some(&stop),
+            ..Control::default()
+        },
+    )
+    .unwrap();
+    assert_eq!(s.stop_reason, StopReason::Interrupted);
+    std::fs::remove_file(&out).unwrap();
     // A missing file.
     let e = resume(
         &tmp("missing.mcap"),

@@ -412,7 +412,7 @@ fn relaxed_placement_reports_progress_and_the_stop_flag_ends_it_before_the_log()
         ..Control::default()
     };
     let e = run(
-        &spec(system, Stop::Time(0.1), log_opts(Compression::None)),
+        &spec(system.clone(), Stop::Time(0.1), log_opts(Compression::None)),
         &out,
         control,
     )
@@ -422,4 +422,17 @@ fn relaxed_placement_reports_progress_and_the_stop_flag_ends_it_before_the_log()
         "{e}"
     );
     assert!(!out.exists());
+    // Options are checked before placement, not a minute later.
+    let mut show = |p: &PlacementProgress| panic!("placement started: {p:?}");
+    let control = Control {
+        placing: Some(&mut show),
+        ..Control::default()
+    };
+    let e = run(
+        &spec(system, Stop::Time(1e12), log_opts(Compression::None)),
+        &out,
+        control,
+    )
+    .unwrap_err();
+    assert!(e.to_string().contains("stop.time"), "{e}");
 }
