@@ -46,7 +46,7 @@ fn crash_child() {
         return;
     };
     run(
-        &spec(crash_system(), Stop::Time(1e12), log_opts()),
+        &spec(crash_system(), Stop::Time(1e9), log_opts()),
         Path::new(&path),
         Control::default(),
     )

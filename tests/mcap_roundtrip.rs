@@ -261,7 +261,7 @@ fn collision_budget_and_stop_flag() {
         ..Control::default()
     };
     let s = run(
-        &spec(system, Stop::Time(1e9), log_opts(Compression::Zstd)),
+        &spec(system, Stop::Time(1e8), log_opts(Compression::Zstd)),
         &out,
         control,
     )
