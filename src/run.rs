@@ -531,6 +531,8 @@ struct Driver<'a> {
     start_collisions: u64,
     started: Instant,
     last_progress: Instant,
+    /// The state written by the last snapshot, kept to reuse its arrays.
+    snapshot: Option<State>,
 }
 
 impl<'a> Driver<'a> {
@@ -556,6 +558,7 @@ impl<'a> Driver<'a> {
             start_collisions: collisions,
             started: Instant::now(),
             last_progress: Instant::now(),
+            snapshot: None,
         }
     }
 
@@ -664,6 +667,18 @@ impl<'a> Driver<'a> {
         }
     }
 
+    fn write_snapshot(&mut self) -> Result<(), RunError> {
+        let state = match &mut self.snapshot {
+            Some(s) => {
+                self.engine.state_into(s);
+                s
+            }
+            none => none.insert(self.engine.state()),
+        };
+        self.writer.write_snapshot(state)?;
+        Ok(())
+    }
+
     fn write_thermo(&mut self) -> Result<(), RunError> {
         let th = self.thermo();
         self.writer.write_thermo(&th)?;
@@ -762,7 +777,7 @@ impl<'a> Driver<'a> {
                         TAG_SNAPSHOT => {
                             let interval = self.log.snapshot_interval;
                             self.schedule_next(TAG_SNAPSHOT, k, interval)?;
-                            self.writer.write_snapshot(&self.engine.state())?;
+                            self.write_snapshot()?;
                         }
                         TAG_THERMO => {
                             let interval = self.log.thermo_interval;

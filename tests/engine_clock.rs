@@ -132,3 +132,31 @@ fn a_drifting_pair_meets_at_contact_however_far_it_drifted() {
     // 3e-15 off with the restarts; 2.2e-12 on one clock.
     assert!((d - 1.0).abs() <= 1e-13, "distance {d} at contact, σ = 1");
 }
+
+#[test]
+fn the_state_holds_each_discs_own_position_and_velocity() {
+    // After renumberings (every 65 536 pair collisions) the engine stores the
+    // discs in another order than their indices: the state must still list each
+    // disc's own position and velocity, also when written into a reused state.
+    let mut e = start(0.0);
+    let mut reused = SystemSpec::periodic_fluid(900, 0.3, 2).build().unwrap();
+    for _ in 0..3 {
+        e.run_collisions(70_000).unwrap();
+        let s = e.state();
+        assert_eq!(s.len(), N);
+        assert_eq!(s.time, e.now());
+        for i in 0..N {
+            assert_eq!(
+                s.positions[i].to_array().map(f64::to_bits),
+                e.position(i).to_array().map(f64::to_bits)
+            );
+            assert_eq!(
+                s.velocities[i].to_array().map(f64::to_bits),
+                e.velocity(i).to_array().map(f64::to_bits)
+            );
+            assert!((0..2).all(|k| (0.0..s.sim_box.size[k]).contains(&s.positions[i][k])));
+        }
+        e.state_into(&mut reused);
+        assert_eq!(reused, s);
+    }
+}

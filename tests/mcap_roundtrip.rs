@@ -436,3 +436,92 @@ fn relaxed_placement_reports_progress_and_the_stop_flag_ends_it_before_the_log()
     .unwrap_err();
     assert!(e.to_string().contains("stop.time"), "{e}");
 }
+
+#[test]
+fn snapshots_and_checkpoints_reuse_their_buffers_without_mixing_them_up() {
+    // Snapshots and checkpoints are encoded into buffers handed back by the
+    // writer once written: on the writer thread and inline alike, every message
+    // must hold its own state, also when a checkpoint (larger) and snapshots of
+    // another engine (another N) alternate.
+    use carom::io::log_writer::{LogWriter, WriterOptions, WriterPosition};
+    use std::collections::BTreeMap;
+    for background in [true, false] {
+        let out = tmp("reuse.mcap");
+        let opts = WriterOptions {
+            background,
+            ..WriterOptions::default()
+        };
+        let meta = carom::io::run_metadata::RunMetadata {
+            log_format: carom::io::schema::LOG_FORMAT_VERSION.into(),
+            carom_version: "test".into(),
+            config: "{}".into(),
+            seed: 1,
+            start_time: "2024-01-01T00:00:00.000Z".into(),
+            n_discs: 500,
+            stop: Stop::Time(1.0),
+            log: LogOptions::default(),
+            resumed_from: None,
+            resumed_at: None,
+        };
+        let mut w =
+            LogWriter::create(&out, opts, &meta.to_map(), WriterPosition::default()).unwrap();
+        let mut a = Engine::new(
+            system(500, 0.4, false, false, 1).build().unwrap(),
+            EngineParams::default(),
+        )
+        .unwrap();
+        let mut b = Engine::new(
+            system(90, 0.3, true, true, 2).build().unwrap(),
+            EngineParams::default(),
+        )
+        .unwrap();
+        let mut states = Vec::new();
+        let mut checkpoints = Vec::new();
+        for k in 0..6 {
+            a.run_collisions(2000).unwrap();
+            b.run_collisions(300).unwrap();
+            let s = if k % 2 == 0 { a.state() } else { b.state() };
+            w.write_snapshot(&s).unwrap();
+            states.push(s);
+            if k % 3 == 1 {
+                let c = a.checkpoint();
+                w.write_checkpoint(c.clone(), 0.0).unwrap();
+                checkpoints.push(c);
+            }
+        }
+        w.finish(&BTreeMap::new()).unwrap();
+        let mut r = LogReader::open(&out).unwrap();
+        let snaps: Vec<_> = r
+            .snapshots()
+            .map(|m| match m.unwrap() {
+                LogMessage::Snapshot(s) => s,
+                other => panic!("{other:?}"),
+            })
+            .collect();
+        assert_eq!(snaps.len(), states.len(), "background {background}");
+        for (s, st) in snaps.iter().zip(&states) {
+            assert_eq!(s.time, st.time);
+            assert_eq!(
+                bits(&s.positions),
+                bits(&st.positions),
+                "background {background}"
+            );
+            assert_eq!(bits(&s.velocities), bits(&st.velocities));
+            assert_eq!(s.species, st.species_of);
+        }
+        let mut r = LogReader::open(&out).unwrap();
+        let cps: Vec<_> = r
+            .checkpoints()
+            .map(|m| match m.unwrap() {
+                LogMessage::Checkpoint(c) => c.engine,
+                other => panic!("{other:?}"),
+            })
+            .collect();
+        assert_eq!(cps.len(), checkpoints.len(), "background {background}");
+        assert!(
+            cps == checkpoints,
+            "background {background}: checkpoints differ"
+        );
+        std::fs::remove_file(&out).unwrap();
+    }
+}

@@ -123,6 +123,11 @@ impl SimBox {
             if self.boundary(axis).is_periodic() {
                 let l = self.length(axis);
                 let k = axis.index();
+                if (0.0..l).contains(&r[k]) {
+                    // Already inside, where rem_euclid (a libm fmod call) returns
+                    // it unchanged.
+                    continue;
+                }
                 r[k] = r[k].rem_euclid(l);
                 if r[k] >= l {
                     // rem_euclid of a tiny negative number rounds up to l.

@@ -113,6 +113,21 @@ impl CdrWriter {
         self.buf
     }
 
+    /// Take the encoded bytes, leaving the writer empty (call
+    /// [`CdrWriter::reset`] before writing again): no copy of a large message.
+    pub fn take_bytes(&mut self) -> Vec<u8> {
+        std::mem::take(&mut self.buf)
+    }
+
+    /// Write into `buf`'s allocation from now on (its contents are dropped) if it
+    /// is larger than the writer's own; call [`CdrWriter::reset`] before writing.
+    pub fn reuse(&mut self, mut buf: Vec<u8>) {
+        if buf.capacity() > self.buf.capacity() {
+            buf.clear();
+            self.buf = buf;
+        }
+    }
+
     /// Reserve room for `additional` more bytes.
     pub fn reserve(&mut self, additional: usize) {
         self.buf.reserve(additional);

@@ -617,6 +617,35 @@ pub struct Snapshot {
     pub velocities: Vec<DVec2>,
 }
 
+/// The CDR form of a snapshot (`SNAPSHOT_MSG`): (time, box size, boundary codes),
+/// each species' (radius, mass), then each disc's species, x, y, vx and vy.
+fn encode_snapshot<'a>(
+    w: &mut CdrWriter,
+    (time, box_size, boundary): (f64, DVec2, [u8; 2]),
+    (radius, mass): (
+        impl ExactSizeIterator<Item = &'a f64>,
+        impl ExactSizeIterator<Item = &'a f64>,
+    ),
+    species: &[u16],
+    positions: &[DVec2],
+    velocities: &[DVec2],
+) {
+    w.reset();
+    w.reserve(64 + positions.len() * 34 + radius.len() * 16);
+    w.put(time);
+    w.put(box_size.x);
+    w.put(box_size.y);
+    w.put(boundary[0]);
+    w.put(boundary[1]);
+    w.seq_iter(radius.copied());
+    w.seq_iter(mass.copied());
+    w.seq(species);
+    w.seq_iter(positions.iter().map(|p| p.x));
+    w.seq_iter(positions.iter().map(|p| p.y));
+    w.seq_iter(velocities.iter().map(|p| p.x));
+    w.seq_iter(velocities.iter().map(|p| p.y));
+}
+
 impl Snapshot {
     /// The snapshot of an engine state.
     pub fn from_state(s: &State) -> Self {
@@ -652,20 +681,36 @@ impl Snapshot {
 
     /// Encode as CDR into `w` (which is reset first).
     pub fn encode(&self, w: &mut CdrWriter) {
-        w.reset();
-        w.reserve(64 + self.len() * 34 + self.species_mass.len() * 16);
-        w.put(self.time);
-        w.put(self.box_size.x);
-        w.put(self.box_size.y);
-        w.put(self.boundary[0]);
-        w.put(self.boundary[1]);
-        w.seq(&self.species_radius);
-        w.seq(&self.species_mass);
-        w.seq(&self.species);
-        w.seq_iter(self.positions.iter().map(|p| p.x));
-        w.seq_iter(self.positions.iter().map(|p| p.y));
-        w.seq_iter(self.velocities.iter().map(|p| p.x));
-        w.seq_iter(self.velocities.iter().map(|p| p.y));
+        encode_snapshot(
+            w,
+            (self.time, self.box_size, self.boundary),
+            (self.species_radius.iter(), self.species_mass.iter()),
+            &self.species,
+            &self.positions,
+            &self.velocities,
+        );
+    }
+
+    /// Encode the snapshot of `state` into `w` (reset first): the same bytes as
+    /// [`Snapshot::from_state`] followed by [`Snapshot::encode`], without copying
+    /// the state's arrays first.
+    pub fn encode_state(state: &State, w: &mut CdrWriter) {
+        let b = &state.sim_box.boundary;
+        encode_snapshot(
+            w,
+            (
+                state.time,
+                state.sim_box.size,
+                [boundary_code(&b[0]), boundary_code(&b[1])],
+            ),
+            (
+                state.species.iter().map(|sp| &sp.radius),
+                state.species.iter().map(|sp| &sp.mass),
+            ),
+            &state.species_of,
+            &state.positions,
+            &state.velocities,
+        );
     }
 
     /// Decode from CDR, checking that the arrays are consistent.
@@ -844,6 +889,51 @@ mod tests {
             Err(CdrError::Invalid { field: "ny", .. })
         ));
         assert!(d.is_empty());
+    }
+
+    #[test]
+    fn a_state_encodes_as_its_snapshot() {
+        use carom_core::{Boundary, SimBox, Species};
+        let state = State {
+            sim_box: SimBox {
+                size: DVec2::new(7.5, 4.0),
+                boundary: [Boundary::Periodic, Boundary::Walls { restitution: 0.9 }],
+            },
+            species: vec![
+                Species {
+                    count: 2,
+                    radius: 0.5,
+                    mass: 1.0,
+                },
+                Species {
+                    count: 1,
+                    radius: 0.7,
+                    mass: 2.5,
+                },
+            ],
+            species_of: vec![0, 0, 1],
+            positions: vec![
+                DVec2::new(1.0, 1.0),
+                DVec2::new(3.0, 2.0),
+                DVec2::new(5.5, 2.5),
+            ],
+            velocities: vec![
+                DVec2::new(0.1, -0.2),
+                DVec2::new(-1.5, 0.25),
+                DVec2::new(0.0, 3.0),
+            ],
+            time: 2.75,
+        };
+        let (mut a, mut b) = (CdrWriter::new(), CdrWriter::new());
+        Snapshot::from_state(&state).encode(&mut a);
+        // Into a writer that held an earlier, longer message.
+        b.reuse(vec![0xAB; 4096]);
+        Snapshot::encode_state(&state, &mut b);
+        assert_eq!(a.bytes(), b.bytes());
+        assert_eq!(
+            Snapshot::decode(b.bytes()).unwrap(),
+            Snapshot::from_state(&state)
+        );
     }
 
     #[test]
