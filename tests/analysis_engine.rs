@@ -15,6 +15,19 @@ fn analyse(
     dt: f64,
     opts: AnalysisOptions,
 ) -> Report {
+    analyse_with_rate(spec, params, t_end, dt, opts, None)
+}
+
+/// [`analyse`], with the pair collision rate known beforehand (as `carom analyze`
+/// knows it from the log's thermo records).
+fn analyse_with_rate(
+    spec: SystemSpec,
+    params: EngineParams,
+    t_end: f64,
+    dt: f64,
+    opts: AnalysisOptions,
+    pair_rate: Option<f64>,
+) -> Report {
     let state = spec.build().unwrap();
     let run = RunDescription {
         species: spec.species.clone(),
@@ -24,6 +37,7 @@ fn analyse(
         totals_from_thermo: false,
         t_start: 0.0,
         t_end,
+        pair_rate,
     };
     let mut a = Analyzer::new(run, opts).unwrap();
     let mut engine = Engine::new(state, params).unwrap();
@@ -280,4 +294,68 @@ fn a_relaxed_dense_mixture_is_maxwell_boltzmann_from_the_first_time_unit() {
             m.species, m.chi_square, m.ks
         );
     }
+}
+
+#[test]
+fn snapshots_closer_than_a_few_collisions_are_thinned_by_default() {
+    // Snapshots 0.02 apart at η = 0.5 are 0.14 pair collisions per disc apart: a
+    // disc's velocity has barely changed between them, and pooling them all makes
+    // the Maxwell–Boltzmann tests reject an exact equilibrium run. Given the
+    // collision rate, the analysis uses snapshots DECORRELATION_COLLISIONS
+    // collision times apart by default, and the same run passes.
+    use carom::analysis::report::DECORRELATION_COLLISIONS;
+    let spec = fluid(2000, 0.5, 4, Velocities::MaxwellBoltzmann);
+    let (t_end, dt) = (30.0, 0.02);
+    let mut e = Engine::new(spec.build().unwrap(), EngineParams::default()).unwrap();
+    e.run_until(t_end).unwrap();
+    let omega = 2.0 * e.stats().pair_collisions as f64 / (2000.0 * t_end);
+    let opts = |every| AnalysisOptions {
+        equilibrate: Some(3.0),
+        every,
+        ..Default::default()
+    };
+    let all = analyse_with_rate(
+        spec.clone(),
+        EngineParams::default(),
+        t_end,
+        dt,
+        opts(Some(0.0)),
+        Some(omega),
+    );
+    let mb = &all.maxwell_boltzmann[0];
+    assert!(mb.snapshots > 1300, "{}", mb.snapshots);
+    assert!(
+        !mb.passed && mb.chi_square.p_value < 1e-10,
+        "{:?}",
+        mb.chi_square
+    );
+    assert!(!all.window.every_default);
+    let spacing = all.window.spacing_collisions.unwrap();
+    let measured = dt * all.collision_rate.per_disc;
+    assert!(
+        (spacing - measured).abs() < 1e-6 * spacing,
+        "{spacing} vs {measured}"
+    );
+    assert!(
+        (spacing - dt * omega).abs() < 0.01 * spacing,
+        "{spacing} vs {}",
+        dt * omega
+    );
+
+    let thinned = analyse_with_rate(
+        spec,
+        EngineParams::default(),
+        t_end,
+        dt,
+        opts(None),
+        Some(omega),
+    );
+    let mb = &thinned.maxwell_boltzmann[0];
+    assert!(thinned.window.every_default);
+    assert_eq!(thinned.window.every, Some(DECORRELATION_COLLISIONS / omega));
+    let spacing = thinned.window.spacing_collisions.unwrap();
+    // (ω measured over the window differs slightly from the run's average.)
+    assert!(spacing >= 0.99 * DECORRELATION_COLLISIONS, "{spacing}");
+    assert!((30..=40).contains(&mb.snapshots), "{}", mb.snapshots);
+    assert!(mb.passed, "{:?} {:?}", mb.chi_square, mb.ks);
 }

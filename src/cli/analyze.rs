@@ -7,10 +7,12 @@
 
 use std::process::ExitCode;
 
-use carom::analysis::report::{AnalysisOptions, Analyzer, Report, RunDescription};
+use carom::analysis::report::{
+    AnalysisOptions, Analyzer, Report, RunDescription, DECORRELATION_COLLISIONS,
+};
 use carom::core::{Boundary, DVec2, Restitution, SimBox, Species};
 use carom::io::config::Config;
-use carom::io::log_reader::{scan, LogEnd, LogMessage, LogReader};
+use carom::io::log_reader::{scan, LogEnd, LogInfo, LogMessage, LogReader};
 use carom::io::schema::{Snapshot, KIND_PAIR};
 
 use super::{AnalyzeArgs, CliError, Num};
@@ -71,6 +73,22 @@ fn describe(
     }
 }
 
+/// The pair collision rate ω (pair collisions per disc per unit time) over the
+/// log, from its first and last `/thermo` records, or else from its summary
+/// (counts since the run's start at `t_start`); `None` if neither tells.
+fn pair_rate(info: &LogInfo, n: usize, t_start: f64) -> Option<f64> {
+    let from_thermo = info.thermo_counts.and_then(|[(t0, p0, _), (t1, p1, _)]| {
+        (t1 > t0 && p1 > p0).then(|| 2.0 * (p1 - p0) as f64 / (n as f64 * (t1 - t0)))
+    });
+    let from_summary = info.summary.as_ref().and_then(|s| {
+        (s.sim_time > t_start && s.pair_collisions > 0)
+            .then(|| 2.0 * s.pair_collisions as f64 / (n as f64 * (s.sim_time - t_start)))
+    });
+    from_thermo
+        .or(from_summary)
+        .filter(|w| w.is_finite() && *w > 0.0)
+}
+
 /// Read the log and compute the report. Returns it with whether the log is
 /// complete.
 pub fn read_report(args: &AnalyzeArgs) -> Result<(Report, bool), CliError> {
@@ -107,7 +125,9 @@ pub fn read_report(args: &AnalyzeArgs) -> Result<(Report, bool), CliError> {
         None
     };
     let (species, sim_box, restitution) = describe(&info.run.config, first_snapshot.as_ref())?;
+    let n: usize = species.iter().map(|s| s.count).sum();
     let run = RunDescription {
+        pair_rate: pair_rate(&info, n, t_start),
         species,
         sim_box,
         restitution,
@@ -249,10 +269,24 @@ pub fn text(r: &Report, args: &AnalyzeArgs, complete: bool) -> String {
         w.snapshot_times.len(),
         w.snapshots_seen,
         match w.every {
-            Some(e) => format!(", ≥ {e} apart"),
+            Some(e) if w.every_default => format!(
+                ", ≥ {:.4} apart: the default, {} pair collisions per disc; --every to change",
+                Num(e),
+                DECORRELATION_COLLISIONS
+            ),
+            Some(e) => format!(", ≥ {} apart", Num(e)),
             None => String::new(),
         }
     );
+    if let Some(c) = w.spacing_collisions.filter(|&c| c < 4.0) {
+        let _ = writeln!(
+            s,
+            "  warning: snapshots used only {c:.2} pair collisions per disc apart: velocities \
+             that close are correlated, and the Maxwell–Boltzmann tests below reject too often \
+             (use --every {:.4} or more)",
+            Num(DECORRELATION_COLLISIONS / r.collision_rate.per_disc)
+        );
+    }
     let t = &r.temperature;
     let _ = writeln!(
         s,

@@ -112,7 +112,9 @@ pub struct AnalyzeArgs {
     #[arg(long, value_name = "T")]
     pub equilibrate: Option<f64>,
     /// Use snapshots at least this far apart (simulated time) for the velocity
-    /// distribution; default: every snapshot after --equilibrate.
+    /// distribution; default: 5 pair collisions per disc, from the log's collision
+    /// rate (every snapshot after --equilibrate if the log has no collision counts).
+    /// Closer snapshots hold correlated velocities: the tests then reject too often.
     #[arg(long, value_name = "DT")]
     pub every: Option<f64>,
     /// Bins of the speed histograms (at least 4: the χ² test fits one parameter

@@ -911,6 +911,9 @@ pub struct LogInfo {
     pub time_span: [Option<(f64, f64)>; 4],
     /// Simulated time of the last checkpoint (time).
     pub last_checkpoint_time: Option<f64>,
+    /// (time, pair collisions, wall collisions) of the first and the last `/thermo`
+    /// record (counts since the run's start); `None` without thermo records.
+    pub thermo_counts: Option<[(f64, u64, u64); 2]>,
     /// File size (bytes).
     pub file_bytes: u64,
 }
@@ -930,6 +933,7 @@ pub fn scan(path: &Path) -> Result<LogInfo, ReadError> {
     let mut span: [Option<(f64, f64)>; 4] = [None; 4];
     let mut logged = 0u64;
     let mut last_cp = None;
+    let mut thermo: Option<[(f64, u64, u64); 2]> = None;
     while let Some(m) = r.next_raw()? {
         messages[m.channel] += 1;
         let (t0, t1) = simulated_times(&m);
@@ -944,6 +948,12 @@ pub fn scan(path: &Path) -> Result<LogInfo, ReadError> {
         if m.channel == CH_CHECKPOINT {
             last_cp = Some(t0);
         }
+        if m.channel == CH_THERMO {
+            if let Ok(t) = Thermo::decode(m.data) {
+                let now = (t.time, t.pair_collisions, t.wall_collisions);
+                thermo = Some([thermo.map_or(now, |[first, _]| first), now]);
+            }
+        }
     }
     Ok(LogInfo {
         run: r.run.clone(),
@@ -954,6 +964,7 @@ pub fn scan(path: &Path) -> Result<LogInfo, ReadError> {
         logged_collisions: logged,
         time_span: span,
         last_checkpoint_time: last_cp,
+        thermo_counts: thermo,
         file_bytes,
     })
 }
