@@ -782,3 +782,53 @@ fn a_truncated_log_is_analysed_up_to_the_cut_with_a_warning() {
     assert!(t_end > 5.0 && t_end < 40.0, "{t_end}");
     assert!(f(&r["pressure"]["z"]) > 1.8 && f(&r["pressure"]["z"]) < 2.4);
 }
+
+#[test]
+fn analyze_spaces_snapshots_five_collisions_apart_unless_told_and_warns_when_closer() {
+    let dir = scratch("spacing");
+    ok(&carom(
+        &dir,
+        &[
+            "run",
+            "--quiet",
+            "--out",
+            "dense.mcap",
+            "--set",
+            "species.0.count=400",
+            "--set",
+            "stop.duration=10",
+            "--set",
+            "log.snapshot_interval=0.02",
+        ],
+    ));
+    let text = ok(&carom(&dir, &["analyze", "dense.mcap"]));
+    assert!(
+        text.contains("apart: the default, 5 pair collisions per disc; --every to change"),
+        "{text}"
+    );
+    assert!(!text.contains("warning"), "{text}");
+    let r = json_of(&carom(&dir, &["analyze", "dense.mcap", "--json"]));
+    let w = &r["window"];
+    assert_eq!(w["every_default"], true);
+    let omega = f(&r["collision_rate"]["per_disc"]);
+    // The rate from the thermo records (whole log) and the one measured over the
+    // window agree to a few per cent.
+    assert!((f(&w["every"]) * omega / 5.0 - 1.0).abs() < 0.05, "{w}");
+    assert!(f(&w["spacing_collisions"]) >= 4.5, "{w}");
+    // Every snapshot, 0.02 apart (about 0.14 collisions per disc): a warning.
+    let text = ok(&carom(&dir, &["analyze", "dense.mcap", "--every", "0"]));
+    assert!(
+        text.contains("warning: snapshots used only") && text.contains("reject too often"),
+        "{text}"
+    );
+    let r = json_of(&carom(
+        &dir,
+        &["analyze", "dense.mcap", "--json", "--every", "0"],
+    ));
+    assert_eq!(r["window"]["every_default"], false);
+    assert!(
+        f(&r["window"]["spacing_collisions"]) < 0.5,
+        "{}",
+        r["window"]
+    );
+}

@@ -47,10 +47,14 @@ pub struct RunDescription {
 /// tests use by default. A disc's speed stays correlated with itself over about
 /// one collision, and correlated samples make both tests reject too often: in
 /// elastic runs of 10⁴ discs (η = 0.5, three seeds, and η = 0.7, two seeds, 20–60
-/// time units) χ² over 39 degrees of freedom was 230–470 with snapshots 0.35–0.2
-/// collisions per disc apart, 64–86 at 1, 38–57 at 2 and 26–47 from 4 on; the
+/// time units) χ² over 39 degrees of freedom was 230–470 with snapshots 0.2–0.35
+/// collisions per disc apart, 66–106 at 1, 38–64 at 2 and 26–47 from 4 on; the
 /// KS tests failed likewise below 2.
 pub const DECORRELATION_COLLISIONS: f64 = 5.0;
+
+/// Snapshots closer than this many pair collisions per disc hold correlated
+/// velocities (see [`DECORRELATION_COLLISIONS`]): `carom analyze` warns.
+pub const CORRELATED_SPACING: f64 = 4.0;
 
 impl RunDescription {
     /// Number of discs N.

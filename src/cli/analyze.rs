@@ -8,7 +8,7 @@
 use std::process::ExitCode;
 
 use carom::analysis::report::{
-    AnalysisOptions, Analyzer, Report, RunDescription, DECORRELATION_COLLISIONS,
+    AnalysisOptions, Analyzer, Report, RunDescription, CORRELATED_SPACING, DECORRELATION_COLLISIONS,
 };
 use carom::core::{Boundary, DVec2, Restitution, SimBox, Species};
 use carom::io::config::Config;
@@ -278,13 +278,17 @@ pub fn text(r: &Report, args: &AnalyzeArgs, complete: bool) -> String {
             None => String::new(),
         }
     );
-    if let Some(c) = w.spacing_collisions.filter(|&c| c < 4.0) {
+    let rate = r.collision_rate.per_disc;
+    if let Some(c) = w
+        .spacing_collisions
+        .filter(|&c| c < CORRELATED_SPACING && rate > 0.0)
+    {
         let _ = writeln!(
             s,
             "  warning: snapshots used only {c:.2} pair collisions per disc apart: velocities \
              that close are correlated, and the Maxwell–Boltzmann tests below reject too often \
              (use --every {:.4} or more)",
-            Num(DECORRELATION_COLLISIONS / r.collision_rate.per_disc)
+            Num(DECORRELATION_COLLISIONS / rate)
         );
     }
     let t = &r.temperature;
