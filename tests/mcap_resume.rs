@@ -163,18 +163,7 @@ fn a_finished_run_extends_like_a_longer_run() {
 fn resume_errors_are_clear() {
     // A log without any checkpoint.
     let path = tmp("nocheckpoint.mcap");
-    let meta = carom::io::run_metadata::RunMetadata {
-        log_format: carom::io::schema::LOG_FORMAT_VERSION.into(),
-        carom_version: "test".into(),
-        config: "{}".into(),
-        seed: 1,
-        start_time: "2024-01-01T00:00:00.000Z".into(),
-        n_discs: 1,
-        stop: Stop::Time(1.0),
-        log: LogOptions::default(),
-        resumed_from: None,
-        resumed_at: None,
-    };
+    let meta = test_run_metadata(1);
     let mut w = LogWriter::create(
         &path,
         WriterOptions::default(),

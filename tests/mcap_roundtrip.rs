@@ -451,18 +451,7 @@ fn snapshots_and_checkpoints_reuse_their_buffers_without_mixing_them_up() {
             background,
             ..WriterOptions::default()
         };
-        let meta = carom::io::run_metadata::RunMetadata {
-            log_format: carom::io::schema::LOG_FORMAT_VERSION.into(),
-            carom_version: "test".into(),
-            config: "{}".into(),
-            seed: 1,
-            start_time: "2024-01-01T00:00:00.000Z".into(),
-            n_discs: 500,
-            stop: Stop::Time(1.0),
-            log: LogOptions::default(),
-            resumed_from: None,
-            resumed_at: None,
-        };
+        let meta = test_run_metadata(500);
         let mut w =
             LogWriter::create(&out, opts, &meta.to_map(), WriterPosition::default()).unwrap();
         let mut a = Engine::new(

@@ -56,6 +56,22 @@ pub fn spec(system: SystemSpec, stop: Stop, log: LogOptions) -> RunSpec {
     }
 }
 
+/// `carom.run` metadata for a log written directly with a `LogWriter` in a test.
+pub fn test_run_metadata(n_discs: u64) -> carom::io::run_metadata::RunMetadata {
+    carom::io::run_metadata::RunMetadata {
+        log_format: carom::io::schema::LOG_FORMAT_VERSION.into(),
+        carom_version: "test".into(),
+        config: "{}".into(),
+        seed: 1,
+        start_time: "2024-01-01T00:00:00.000Z".into(),
+        n_discs,
+        stop: Stop::Time(1.0),
+        log: LogOptions::default(),
+        resumed_from: None,
+        resumed_at: None,
+    }
+}
+
 /// Every collision of a bare engine (no log) up to and including time `t_end`.
 pub fn reference_collisions(
     system: &SystemSpec,
