@@ -280,7 +280,10 @@ pub fn ks_test(samples: &[f64], cdf: impl Fn(f64) -> f64) -> Result<KsTest, Stat
         return Err(StatsError::InvalidArgument("NaN sample".into()));
     }
     let mut x = samples.to_vec();
-    x.sort_by(f64::total_cmp);
+    // Equal under total_cmp means equal bits, so an unstable sort gives the same
+    // order as a stable one, and faster (the sort dominated `carom analyze` on
+    // 10⁷ speeds).
+    x.sort_unstable_by(f64::total_cmp);
     let nf = n as f64;
     let d = x
         .iter()
