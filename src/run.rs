@@ -243,9 +243,9 @@ fn check_interval(field: &'static str, v: Option<f64>) -> Result<(), RunError> {
 }
 
 fn validate(log: &LogOptions, stop: &Stop, now: f64) -> Result<(), RunError> {
-    check_interval("log.snapshot_interval", log.snapshot_interval)?;
-    check_interval("log.thermo_interval", log.thermo_interval)?;
-    check_interval("log.checkpoint_interval", log.checkpoint_interval)?;
+    for (field, v) in log.intervals() {
+        check_interval(field, v)?;
+    }
     if log.collision_every == 0 {
         return Err(RunError::Invalid {
             field: "log.collision_every",
@@ -271,14 +271,11 @@ fn validate(log: &LogOptions, stop: &Stop, now: f64) -> Result<(), RunError> {
         // A stop time mistyped by some orders of magnitude (`resume --until 1e12`)
         // would otherwise fill the disk with records, as a mistyped interval would
         // (the configuration checks those against stop.duration).
-        let smallest = [
-            ("log.snapshot_interval", log.snapshot_interval),
-            ("log.thermo_interval", log.thermo_interval),
-            ("log.checkpoint_interval", log.checkpoint_interval),
-        ]
-        .into_iter()
-        .filter_map(|(name, x)| Some((name, x?)))
-        .min_by(|a, b| a.1.total_cmp(&b.1));
+        let smallest = log
+            .intervals()
+            .into_iter()
+            .filter_map(|(name, x)| Some((name, x?)))
+            .min_by(|a, b| a.1.total_cmp(&b.1));
         if let Some((name, x)) = smallest {
             let records = (t - now) / x;
             if records > MAX_RECORDS {

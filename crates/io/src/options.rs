@@ -49,6 +49,18 @@ impl Default for LogOptions {
     }
 }
 
+impl LogOptions {
+    /// The three record intervals with their configuration names: snapshot,
+    /// thermo and checkpoint (time; `None` for none).
+    pub fn intervals(&self) -> [(&'static str, Option<f64>); 3] {
+        [
+            ("log.snapshot_interval", self.snapshot_interval),
+            ("log.thermo_interval", self.thermo_interval),
+            ("log.checkpoint_interval", self.checkpoint_interval),
+        ]
+    }
+}
+
 /// When a run ends.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum Stop {
