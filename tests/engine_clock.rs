@@ -142,6 +142,9 @@ fn the_state_holds_each_discs_own_position_and_velocity() {
     let mut reused = SystemSpec::periodic_fluid(900, 0.3, 2).build().unwrap();
     for _ in 0..3 {
         e.run_collisions(70_000).unwrap();
+        // The records are stored out of index order (else the test proves nothing).
+        let labels = e.checkpoint().labels;
+        assert!(labels.iter().enumerate().any(|(k, &l)| l as usize != k));
         let s = e.state();
         assert_eq!(s.len(), N);
         assert_eq!(s.time, e.now());
