@@ -272,11 +272,16 @@ fn info_describes_a_complete_log_and_run_refuses_to_overwrite_it() {
     );
     assert_eq!(i["channels"]["/collisions"]["defined"], true);
     assert_eq!(i["run"]["config"]["species"][0]["count"], 2);
-    let text = ok(&carom(&dir, &["info", "two-discs.mcap"]));
+    let out = carom(&dir, &["info", "two-discs.mcap"]);
+    let text = ok(&out);
     assert!(
         text.contains("complete") && text.contains("/snapshot"),
         "{text}"
     );
+    // A read shorter than the progress interval shows no progress; --quiet none
+    // at all, and changes nothing else.
+    assert_eq!(String::from_utf8_lossy(&out.stderr), "");
+    assert_eq!(ok(&carom(&dir, &["info", "-q", "two-discs.mcap"])), text);
     // Running again into the same file needs --force.
     let out = carom(&dir, &["run", "--quiet", two.to_str().unwrap()]);
     assert_eq!(out.status.code(), Some(2));
@@ -545,8 +550,14 @@ fn a_species_with_too_few_speeds_is_reported_untested_not_fatal() {
     assert_eq!(u.as_array().unwrap().len(), 1, "{r}");
     assert_eq!(u[0]["species"], 1);
     assert!(f(&r["pressure"]["z"]) > 3.0, "{r}");
-    let text = ok(&carom(&dir, &["analyze", "m.mcap"]));
+    let out = carom(&dir, &["analyze", "m.mcap"]);
+    let text = ok(&out);
     assert!(text.contains("species 1: not tested"), "{text}");
+    assert!(
+        !String::from_utf8_lossy(&out.stderr).contains("reading m.mcap"),
+        "a short read shows no progress"
+    );
+    assert_eq!(ok(&carom(&dir, &["analyze", "--quiet", "m.mcap"])), text);
 }
 
 /// Start `carom ARGS` in `dir`, send it `signal` (a `kill` signal name) after

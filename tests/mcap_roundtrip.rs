@@ -6,7 +6,9 @@
 mod mcap_common;
 
 use carom::events::{Engine, EngineParams, Event, SystemSpec};
-use carom::io::log_reader::{scan, LogEnd, LogEvent, LogMessage, LogReader};
+use carom::io::log_reader::{
+    scan, scan_observed, LogEnd, LogEvent, LogMessage, LogReader, ReadProgress,
+};
 use carom::io::run_metadata::StopReason;
 use carom::io::schema::{CollisionRecord, KIND_WALL};
 use carom::io::{Compression, LogOptions, Stop};
@@ -171,6 +173,33 @@ fn log_holds_exactly_what_the_engine_did() {
     assert_eq!(info.last_checkpoint_time, Some(5.0));
     assert_eq!(info.channels, [true; 4]);
     assert!(info.summary.is_some());
+
+    // The scan reports how far through the file it is: rising, ending at the
+    // file's length, and otherwise the same scan.
+    let mut seen: Vec<ReadProgress> = Vec::new();
+    let observed = scan_observed(&out, &mut |p| seen.push(p)).unwrap();
+    assert_eq!(observed, info);
+    let bytes = std::fs::metadata(&out).unwrap().len();
+    assert!(seen.len() >= 2, "{seen:?}");
+    assert!(seen.iter().all(|p| p.file_bytes == bytes));
+    assert!(seen.windows(2).all(|w| w[0].bytes_read <= w[1].bytes_read));
+    assert!(seen[0].bytes_read < bytes);
+    assert_eq!(seen.last().unwrap().bytes_read, bytes);
+    assert_eq!(seen.last().unwrap().fraction(), 1.0);
+    // So does a reader, message by message.
+    let mut r = LogReader::open(&out).unwrap();
+    let mut last = r.progress();
+    assert!(last.bytes_read > 0 && last.bytes_read <= bytes);
+    while r.next_raw().unwrap().is_some() {
+        let now = r.progress();
+        assert!(now.bytes_read >= last.bytes_read);
+        last = now;
+    }
+    assert!(
+        last.bytes_read < bytes,
+        "the index records at the end are still unread"
+    );
+    assert_eq!(r.progress().bytes_read, bytes, "reading has ended");
     std::fs::remove_file(&out).unwrap();
 }
 

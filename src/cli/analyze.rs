@@ -12,9 +12,10 @@ use carom::analysis::report::{
 };
 use carom::core::{Boundary, DVec2, Restitution, SimBox, Species};
 use carom::io::config::Config;
-use carom::io::log_reader::{scan, LogEnd, LogInfo, LogMessage, LogReader};
+use carom::io::log_reader::{scan_observed, LogEnd, LogInfo, LogMessage, LogReader};
 use carom::io::schema::{Snapshot, KIND_PAIR};
 
+use super::reading::ReadDisplay;
 use super::{AnalyzeArgs, CliError, Num};
 
 /// The run's species, box and collision rule: from the configuration stored in the
@@ -22,6 +23,7 @@ use super::{AnalyzeArgs, CliError, Num};
 fn describe(
     config: &str,
     first: Option<&Snapshot>,
+    display: &mut ReadDisplay,
 ) -> Result<(Vec<Species>, SimBox, Restitution), CliError> {
     match Config::from_json_str(config).and_then(|c| c.to_run_spec()) {
         Ok(spec) => Ok((
@@ -35,7 +37,7 @@ fn describe(
                     "the log's configuration cannot be read ({e}) and it has no snapshot"
                 ))
             })?;
-            eprintln!("warning: the log's configuration cannot be read ({e}); using its first snapshot and assuming elastic collisions");
+            display.warn(&format!("warning: the log's configuration cannot be read ({e}); using its first snapshot and assuming elastic collisions"));
             let mut counts = vec![0usize; s.species_radius.len()];
             for &k in &s.species {
                 *counts.get_mut(k as usize).ok_or_else(|| {
@@ -89,12 +91,23 @@ fn pair_rate(info: &LogInfo, n: usize, t_start: f64) -> Option<f64> {
         .filter(|w| w.is_finite() && *w > 0.0)
 }
 
-/// Read the log and compute the report. Returns it with whether the log is
-/// complete.
+/// Read the log and compute the report, showing the progress of both passes.
+/// Returns the report with whether the log is complete.
 pub fn read_report(args: &AnalyzeArgs) -> Result<(Report, bool), CliError> {
-    let info = scan(&args.file)?;
+    let mut display = ReadDisplay::new(args.quiet, &args.file.display().to_string());
+    let report = read_report_shown(args, &mut display);
+    display.finish();
+    report
+}
+
+fn read_report_shown(
+    args: &AnalyzeArgs,
+    display: &mut ReadDisplay,
+) -> Result<(Report, bool), CliError> {
+    display.pass("scanning");
+    let info = scan_observed(&args.file, &mut |p| display.update(p))?;
     if let Some(w) = info.end.warning() {
-        eprintln!("warning: {w}");
+        display.warn(&format!("warning: {w}"));
     }
     let complete = info.end == LogEnd::Complete;
     let (mut t_start, mut t_end) = (f64::INFINITY, f64::NEG_INFINITY);
@@ -124,7 +137,8 @@ pub fn read_report(args: &AnalyzeArgs) -> Result<(Report, bool), CliError> {
     } else {
         None
     };
-    let (species, sim_box, restitution) = describe(&info.run.config, first_snapshot.as_ref())?;
+    let (species, sim_box, restitution) =
+        describe(&info.run.config, first_snapshot.as_ref(), display)?;
     let n: usize = species.iter().map(|s| s.count).sum();
     let run = RunDescription {
         pair_rate: pair_rate(&info, n, t_start),
@@ -159,7 +173,15 @@ pub fn read_report(args: &AnalyzeArgs) -> Result<(Report, bool), CliError> {
     let mut a = Analyzer::new(run, opts)?;
     let mut previous_thermo: Option<(f64, f64, f64, u64)> = None;
     let (mut vx, mut vy) = (Vec::new(), Vec::new());
-    while let Some(m) = next(&mut reader)? {
+    display.pass("reading");
+    let mut shown = 0;
+    loop {
+        let progress = reader.progress();
+        if progress.bytes_read != shown {
+            shown = progress.bytes_read;
+            display.update(progress);
+        }
+        let Some(m) = next(&mut reader)? else { break };
         match m {
             LogMessage::Collisions(b) => {
                 for k in 0..b.time.len() {

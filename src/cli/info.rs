@@ -2,13 +2,14 @@
 
 use std::process::ExitCode;
 
-use carom::io::log_reader::{scan, LogEnd, LogInfo};
+use carom::io::log_reader::{scan_observed, LogEnd, LogInfo};
 use carom::io::log_writer::TOPICS;
 use carom::io::Stop;
 use std::fmt::Write;
 
 use serde_json::{json, Value};
 
+use super::reading::ReadDisplay;
 use super::{CliError, InfoArgs, Num};
 
 fn stop_json(s: &Stop) -> Value {
@@ -88,7 +89,11 @@ pub fn info_json(path: &str, i: &LogInfo) -> Value {
 
 /// `carom info`.
 pub fn info(args: InfoArgs) -> Result<ExitCode, CliError> {
-    let i = scan(&args.file)?;
+    let mut display = ReadDisplay::new(args.quiet, &args.file.display().to_string());
+    display.pass("scanning");
+    let i = scan_observed(&args.file, &mut |p| display.update(p));
+    display.finish();
+    let i = i?;
     let path = args.file.display().to_string();
     if args.json {
         super::emit(&format!("{}\n", info_json(&path, &i)))?;

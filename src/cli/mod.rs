@@ -7,10 +7,12 @@
 mod analyze;
 mod info;
 mod plot;
+mod reading;
 mod run;
 
 use std::path::PathBuf;
 use std::process::ExitCode;
+use std::time::Duration;
 
 use carom::io::config::ConfigError;
 use clap::{Args, Parser, Subcommand};
@@ -122,6 +124,9 @@ pub struct AnalyzeArgs {
     #[arg(long, value_name = "N", default_value_t = 40,
           value_parser = clap::value_parser!(u32).range(4..))]
     pub bins: u32,
+    /// No progress display.
+    #[arg(short, long)]
+    pub quiet: bool,
 }
 
 /// Arguments of `carom info`.
@@ -132,7 +137,14 @@ pub struct InfoArgs {
     /// Print one JSON object instead of text.
     #[arg(long)]
     pub json: bool,
+    /// No progress display.
+    #[arg(short, long)]
+    pub quiet: bool,
 }
+
+/// Interval of the plain progress lines written when standard error is not a
+/// terminal.
+pub(crate) const PLAIN_EVERY: Duration = Duration::from_secs(5);
 
 /// Why a command failed.
 #[derive(Debug, Error)]

@@ -8,7 +8,7 @@ use std::io::IsTerminal;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 use std::sync::atomic::{AtomicBool, Ordering};
-use std::time::{Duration, Instant};
+use std::time::Instant;
 
 use carom::events::PlacementProgress;
 use carom::io::config::{self, ConfigError};
@@ -17,7 +17,7 @@ use carom::io::Stop;
 use carom::run::{Control, Progress, ResumeOptions, RunError, RunSummary};
 use indicatif::{ProgressBar, ProgressStyle};
 
-use super::{CliError, Num, ResumeArgs, RunArgs};
+use super::{CliError, Num, ResumeArgs, RunArgs, PLAIN_EVERY};
 
 /// Raised by Ctrl-C, SIGTERM or SIGHUP; the run stops at its next event and
 /// finishes the log.
@@ -53,8 +53,6 @@ struct Display {
     /// The placement spinner (terminal only) and when placement started.
     placing: Option<(Option<ProgressBar>, Instant)>,
 }
-
-const PLAIN_EVERY: Duration = Duration::from_secs(5);
 
 fn stop_text(s: &Stop) -> String {
     match s {

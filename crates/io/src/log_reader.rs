@@ -278,6 +278,10 @@ pub struct LogReader<R: Read + Seek = BufReader<File>> {
     end: LogEnd,
     messages: u64,
     batch: CollisionBatch,
+    /// Bytes taken from the source so far.
+    bytes_read: u64,
+    /// The source's length (bytes).
+    source_bytes: u64,
 }
 
 impl<R: Read + Seek> std::fmt::Debug for LogReader<R> {
@@ -363,6 +367,8 @@ impl<R: Read + Seek> LogReader<R> {
             end: LogEnd::Reading,
             messages: 0,
             batch: CollisionBatch::default(),
+            bytes_read: 0,
+            source_bytes: len,
         };
         r.read_run_metadata()?;
         Ok(r)
@@ -428,6 +434,7 @@ impl<R: Read + Seek> LogReader<R> {
                         }
                     };
                     self.linear.notify_read(n);
+                    self.bytes_read += n as u64;
                 }
                 LinearReadEvent::Record { data, opcode } => {
                     self.record.clear();
@@ -640,6 +647,21 @@ impl<R: Read + Seek> LogReader<R> {
     /// Carom messages read so far.
     pub fn messages_read(&self) -> u64 {
         self.messages
+    }
+
+    /// How far through the file reading has got: bytes taken from it so far (in
+    /// steps of a record or a chunk, at most 1 MiB) and its length. Once reading
+    /// has ended (see [`LogReader::end`]) the whole file counts as read: the index
+    /// records at its end are not needed.
+    pub fn progress(&self) -> ReadProgress {
+        ReadProgress {
+            bytes_read: if self.end == LogEnd::Reading {
+                self.bytes_read.min(self.source_bytes)
+            } else {
+                self.source_bytes
+            },
+            file_bytes: self.source_bytes,
+        }
     }
 
     /// Whether each channel (see [`TOPICS`]) has been defined so far.
@@ -892,6 +914,26 @@ impl<R: Read + Seek> Iterator for Events<'_, R> {
     }
 }
 
+/// How far a reader has got through its file (see [`LogReader::progress`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct ReadProgress {
+    /// Bytes read from the file so far.
+    pub bytes_read: u64,
+    /// The file's length (bytes).
+    pub file_bytes: u64,
+}
+
+impl ReadProgress {
+    /// The fraction of the file read, in [0, 1] (1 for an empty file).
+    pub fn fraction(&self) -> f64 {
+        if self.file_bytes == 0 {
+            1.0
+        } else {
+            (self.bytes_read as f64 / self.file_bytes as f64).min(1.0)
+        }
+    }
+}
+
 /// What a scan of a whole log found (for `carom info`).
 #[derive(Debug, Clone, PartialEq)]
 pub struct LogInfo {
@@ -922,6 +964,15 @@ pub struct LogInfo {
 /// counts, time spans, how it ends. Corruption is an error; a cut is reported in
 /// [`LogInfo::end`].
 pub fn scan(path: &Path) -> Result<LogInfo, ReadError> {
+    scan_observed(path, &mut |_| {})
+}
+
+/// [`scan`], calling `observe` with the reader's [`ReadProgress`] each time it has
+/// read more of the file (about once per MiB) and once at the end.
+pub fn scan_observed(
+    path: &Path,
+    observe: &mut dyn FnMut(ReadProgress),
+) -> Result<LogInfo, ReadError> {
     let file_bytes = std::fs::metadata(path)
         .map_err(|source| ReadError::Io {
             file: path.display().to_string(),
@@ -934,7 +985,14 @@ pub fn scan(path: &Path) -> Result<LogInfo, ReadError> {
     let mut logged = 0u64;
     let mut last_cp = None;
     let mut thermo: Option<[(f64, u64, u64); 2]> = None;
-    while let Some(m) = r.next_raw()? {
+    let mut seen = 0;
+    loop {
+        let progress = r.progress();
+        if progress.bytes_read != seen {
+            seen = progress.bytes_read;
+            observe(progress);
+        }
+        let Some(m) = r.next_raw()? else { break };
         messages[m.channel] += 1;
         let (t0, t1) = simulated_times(&m);
         let s = &mut span[m.channel];
@@ -955,6 +1013,7 @@ pub fn scan(path: &Path) -> Result<LogInfo, ReadError> {
             }
         }
     }
+    observe(r.progress());
     Ok(LogInfo {
         run: r.run.clone(),
         summary: r.summary()?,
