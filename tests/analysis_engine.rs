@@ -38,6 +38,7 @@ fn analyse_with_rate(
         t_start: 0.0,
         t_end,
         pair_rate,
+        snapshot_interval: Some(dt),
     };
     let mut a = Analyzer::new(run, opts).unwrap();
     let mut engine = Engine::new(state, params).unwrap();
@@ -352,10 +353,57 @@ fn snapshots_closer_than_a_few_collisions_are_thinned_by_default() {
     );
     let mb = &thinned.maxwell_boltzmann[0];
     assert!(thinned.window.every_default);
+    assert!(!thinned.window.every_from_budget);
     assert_eq!(thinned.window.every, Some(DECORRELATION_COLLISIONS / omega));
     let spacing = thinned.window.spacing_collisions.unwrap();
     // (ω measured over the window differs slightly from the run's average.)
     assert!(spacing >= 0.99 * DECORRELATION_COLLISIONS, "{spacing}");
     assert!((30..=40).contains(&mb.snapshots), "{}", mb.snapshots);
     assert!(mb.passed, "{:?} {:?}", mb.chi_square, mb.ks);
+}
+
+#[test]
+fn the_default_spacing_keeps_at_most_the_velocities_allowed() {
+    // 2000 discs, snapshots 0.02 apart over t ∈ [3, 30]: 1351 snapshots, 5 pair
+    // collisions per disc apart about 38 of them. Allowed 10 snapshots' worth of
+    // velocities, the default spacing becomes the window over 9; an --every asked
+    // for is used as it is.
+    let spec = fluid(2000, 0.5, 5, Velocities::MaxwellBoltzmann);
+    let (t_end, dt) = (30.0, 0.02);
+    let opts = |every| AnalysisOptions {
+        equilibrate: Some(3.0),
+        every,
+        max_velocities: 10 * 2000 + 1999,
+        ..Default::default()
+    };
+    let omega = 7.0; // about the rate at η = 0.5 (only its order matters here)
+    let bounded = analyse_with_rate(
+        spec.clone(),
+        EngineParams::default(),
+        t_end,
+        dt,
+        opts(None),
+        Some(omega),
+    );
+    let w = &bounded.window;
+    assert!(w.every_default && w.every_from_budget, "{w:?}");
+    assert_eq!(w.max_velocities, 21999);
+    assert_eq!(w.every, Some(27.0 / 9.0));
+    let mb = &bounded.maxwell_boltzmann[0];
+    assert_eq!(mb.snapshots, 10, "{:?}", w.snapshot_times);
+    assert_eq!(mb.samples, 10 * 2000);
+    assert!(mb.samples <= w.max_velocities);
+    assert!(mb.passed, "{:?} {:?}", mb.chi_square, mb.ks);
+    assert!(w.snapshot_times.windows(2).all(|p| p[1] - p[0] > 2.99));
+
+    let asked = analyse_with_rate(
+        spec,
+        EngineParams::default(),
+        t_end,
+        dt,
+        opts(Some(1.0)),
+        Some(omega),
+    );
+    assert!(!asked.window.every_default && !asked.window.every_from_budget);
+    assert_eq!(asked.maxwell_boltzmann[0].snapshots, 28);
 }

@@ -41,6 +41,11 @@ pub struct RunDescription {
     /// records; it sets the default spacing of the snapshots used for the velocity
     /// distribution (see [`AnalysisOptions::every`]). `None`: unknown.
     pub pair_rate: Option<f64>,
+    /// Time between the log's snapshots (time), from its configuration; `None`:
+    /// unknown. With it the default spacing is widened only when the snapshots
+    /// would otherwise hold more than [`AnalysisOptions::max_velocities`]
+    /// velocities; without it, whenever a window full of snapshots could.
+    pub snapshot_interval: Option<f64>,
 }
 
 /// Pair collisions per disc between the snapshots that the Maxwell–Boltzmann
@@ -51,6 +56,15 @@ pub struct RunDescription {
 /// collisions per disc apart, 66–106 at 1, 38–64 at 2 and 26–47 from 4 on; the
 /// KS tests failed likewise below 2.
 pub const DECORRELATION_COLLISIONS: f64 = 5.0;
+
+/// Velocities (one per disc and snapshot used) that the Maxwell–Boltzmann tests keep
+/// in memory by default: 32 bytes each (speed and components, and a sorted copy
+/// of one of them for a KS test), so about 640 MB. When the default spacing would
+/// use more, the snapshots are spaced further apart (see
+/// [`AnalysisOptions::max_velocities`]). 2·10⁷ velocities resolve a difference of
+/// 3·10⁻⁴ between the measured and the Maxwell–Boltzmann distribution functions
+/// (the KS test's critical distance 1.36/√n at p = 0.05).
+pub const MAX_VELOCITIES: usize = 20_000_000;
 
 /// Snapshots closer than this many pair collisions per disc hold correlated
 /// velocities (see [`DECORRELATION_COLLISIONS`]): `carom analyze` warns.
@@ -127,8 +141,13 @@ pub struct AnalysisOptions {
     /// Use snapshots at least this far apart for the velocity distribution (time).
     /// `None`: [`DECORRELATION_COLLISIONS`] collision times apart when
     /// [`RunDescription::pair_rate`] is known, otherwise every snapshot after
-    /// `equilibrate`.
+    /// `equilibrate`; either way spaced further apart when that would keep more
+    /// than `max_velocities` velocities.
     pub every: Option<f64>,
+    /// The most velocities (discs × snapshots used) that the default spacing keeps
+    /// in memory; an `every` asked for is used as it is. Default
+    /// [`MAX_VELOCITIES`].
+    pub max_velocities: usize,
     /// Bins of the speed histograms (before merging for χ²).
     pub speed_bins: usize,
     /// Time bins for the pressure and collision-rate series (a power of two suits
@@ -141,6 +160,7 @@ impl Default for AnalysisOptions {
         AnalysisOptions {
             equilibrate: None,
             every: None,
+            max_velocities: MAX_VELOCITIES,
             speed_bins: 40,
             time_bins: 1024,
         }
@@ -158,6 +178,32 @@ struct TimeBin {
     walls: u64,
     /// Pair collisions from [`Analyzer::increment`] (already scaled, fractional).
     pairs_weighted: f64,
+}
+
+/// The spacing (time) of snapshots in a window of length `window` that keeps at
+/// most `max_velocities` velocities of `n` discs, or `None` if snapshots
+/// `spacing` apart (`None`: any distance apart) keep no more than that. With room
+/// for fewer than two snapshots, the spacing is the whole window, which keeps one
+/// (or two, at its very ends).
+fn budget_spacing(
+    n: usize,
+    max_velocities: usize,
+    window: f64,
+    spacing: Option<f64>,
+) -> Option<f64> {
+    // Snapshots at least `s` apart in a window of length `window` number at most
+    // ⌊window/s⌋ + 1.
+    let room = max_velocities / n.max(1);
+    if let Some(s) = spacing.filter(|s| *s > 0.0) {
+        let snapshots = (window / s).floor() + 1.0;
+        if snapshots <= room as f64 {
+            return None;
+        }
+    }
+    Some(match room {
+        0 | 1 => window,
+        m => window / (m - 1) as f64,
+    })
 }
 
 /// Accumulates a run's events and produces a [`Report`].
@@ -182,8 +228,12 @@ pub struct Analyzer {
     mb_kinetic: f64,
     snapshots_used: Vec<f64>,
     snapshots_seen: usize,
-    /// Whether `opts.every` was set from the collision rate.
+    /// Whether `opts.every` was chosen here (from the collision rate or the memory
+    /// bound) rather than asked for.
     every_default: bool,
+    /// Whether the memory bound set `opts.every` (spacing the snapshots further
+    /// apart than the collision rate asks).
+    every_from_budget: bool,
 }
 
 impl Analyzer {
@@ -207,14 +257,36 @@ impl Analyzer {
         }
         let nbins = opts.time_bins.max(16);
         let ns = run.species.len();
-        let every_default =
-            opts.every.is_none() && run.pair_rate.is_some_and(|w| w > 0.0 && w.is_finite());
         let mut opts = opts;
-        if every_default {
-            opts.every = run.pair_rate.map(|w| DECORRELATION_COLLISIONS / w);
-        }
+        let (every_default, every_from_budget) = match opts.every {
+            Some(_) => (false, false),
+            None => {
+                let decorrelated = run
+                    .pair_rate
+                    .filter(|w| *w > 0.0 && w.is_finite())
+                    .map(|w| DECORRELATION_COLLISIONS / w);
+                let budget = budget_spacing(
+                    run.n(),
+                    opts.max_velocities,
+                    run.t_end - t_eq,
+                    match (decorrelated, run.snapshot_interval) {
+                        (Some(d), Some(i)) => Some(d.max(i)),
+                        (d, i) => d.or(i),
+                    },
+                );
+                opts.every = match (decorrelated, budget) {
+                    (Some(d), Some(b)) => Some(d.max(b)),
+                    (d, b) => d.or(b),
+                };
+                (
+                    opts.every.is_some(),
+                    budget.is_some_and(|b| decorrelated.is_none_or(|d| b > d)),
+                )
+            }
+        };
         Ok(Analyzer {
             every_default,
+            every_from_budget,
             bin_width: (run.t_end - t_eq) / nbins as f64,
             bins: vec![TimeBin::default(); nbins],
             t_eq,
@@ -626,6 +698,8 @@ impl Analyzer {
                 equilibrate: self.t_eq,
                 every: self.opts.every,
                 every_default: self.every_default,
+                every_from_budget: self.every_from_budget,
+                max_velocities: self.opts.max_velocities,
                 spacing_collisions: self
                     .snapshots_used
                     .windows(2)
@@ -843,9 +917,15 @@ pub struct WindowReport {
     /// Minimum spacing of the snapshots used for the velocity distribution (time);
     /// `null`: every snapshot.
     pub every: Option<f64>,
-    /// Whether `every` is the default, [`DECORRELATION_COLLISIONS`] collision
-    /// times from the log's collision rate, rather than asked for.
+    /// Whether `every` is the default rather than asked for: [`DECORRELATION_COLLISIONS`]
+    /// collision times from the log's collision rate, or more when that would keep
+    /// more than `max_velocities` velocities.
     pub every_default: bool,
+    /// Whether the default `every` was widened to keep at most `max_velocities`
+    /// velocities in memory.
+    pub every_from_budget: bool,
+    /// The most velocities (discs × snapshots) the default spacing keeps.
+    pub max_velocities: usize,
     /// The smallest spacing of the snapshots used, in pair collisions per disc (ω
     /// times the spacing, with the measured ω); `null` with fewer than two. Below
     /// about 4, the velocities of consecutive snapshots are correlated and the
@@ -1112,7 +1192,26 @@ mod tests {
             t_start: 0.0,
             t_end: 10.0,
             pair_rate: None,
+            snapshot_interval: None,
         }
+    }
+
+    #[test]
+    fn the_memory_bound_spaces_snapshots_only_when_they_would_exceed_it() {
+        // 100 discs, room for 10 snapshots, a window of 9.
+        let b = |spacing| budget_spacing(100, 1000, 9.0, spacing);
+        // Snapshots 1 apart: 10 of them fit; 0.5 apart: 19 would not.
+        assert_eq!(b(Some(1.0)), None);
+        assert_eq!(b(Some(0.5)), Some(1.0));
+        // Spacing unknown: assume a window full of snapshots.
+        assert_eq!(b(None), Some(1.0));
+        assert_eq!(b(Some(0.0)), Some(1.0));
+        // Room for one snapshot or none: the whole window apart.
+        assert_eq!(budget_spacing(100, 150, 9.0, Some(0.5)), Some(9.0));
+        assert_eq!(budget_spacing(100, 50, 9.0, None), Some(9.0));
+        // Room for two: the window's two ends.
+        assert_eq!(budget_spacing(100, 200, 9.0, Some(0.5)), Some(9.0));
+        assert_eq!(budget_spacing(100, 300, 9.0, Some(0.5)), Some(4.5));
     }
 
     #[test]

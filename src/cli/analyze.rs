@@ -142,6 +142,7 @@ fn read_report_shown(
     let n: usize = species.iter().map(|s| s.count).sum();
     let run = RunDescription {
         pair_rate: pair_rate(&info, n, t_start),
+        snapshot_interval: info.run.log.snapshot_interval,
         species,
         sim_box,
         restitution,
@@ -291,6 +292,13 @@ pub fn text(r: &Report, args: &AnalyzeArgs, complete: bool) -> String {
         w.snapshot_times.len(),
         w.snapshots_seen,
         match w.every {
+            Some(e) if w.every_from_budget => format!(
+                ", ≥ {:.4} apart so as to keep at most {} velocities in memory ({} discs); \
+                 --every to change",
+                Num(e),
+                w.max_velocities,
+                r.n
+            ),
             Some(e) if w.every_default => format!(
                 ", ≥ {:.4} apart: the default, {} pair collisions per disc; --every to change",
                 Num(e),
