@@ -10,7 +10,7 @@
 mod mcap_common;
 
 use carom::events::EngineParams;
-use carom::io::log_reader::{scan, LogEnd, LogEvent, LogReader};
+use carom::io::log_reader::{scan, scan_indexed, LogEnd, LogEvent, LogReader};
 use carom::io::log_writer::CH_CHECKPOINT;
 use carom::io::run_metadata::StopReason;
 use carom::io::schema::CollisionRecord;
@@ -110,6 +110,8 @@ fn sigkill_mid_run_leaves_a_readable_resumable_log() {
     let warning = info.end.warning().unwrap();
     assert!(warning.contains("truncated"), "{warning}");
     assert!(info.summary.is_none());
+    // A cut log has no index to read instead.
+    assert_eq!(scan_indexed(&path).unwrap(), None);
     let (events, end) = all_events(&path);
     assert!(matches!(end, LogEnd::Truncated { .. }));
     let logged = collisions_of(&events);

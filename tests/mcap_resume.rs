@@ -6,7 +6,7 @@
 
 mod mcap_common;
 
-use carom::io::log_reader::{LogEnd, LogEvent, LogReader, ReadError};
+use carom::io::log_reader::{scan, scan_indexed, LogEnd, LogEvent, LogReader, ReadError};
 use carom::io::log_writer::{LogWriter, WriterOptions, WriterPosition};
 use carom::io::run_metadata::StopReason;
 use carom::io::{Compression, LogOptions, Stop};
@@ -154,6 +154,10 @@ fn a_finished_run_extends_like_a_longer_run() {
     let n = r.collisions().count() as u64;
     let sm = r.summary().unwrap().unwrap();
     assert_eq!(sm.pair_collisions + sm.wall_collisions, n);
+    // Its index tells what a scan of the whole file does.
+    for p in [&short, &extended] {
+        assert_eq!(scan_indexed(p).unwrap(), Some(scan(p).unwrap()));
+    }
     for p in [&short, &extended, &long] {
         std::fs::remove_file(p).unwrap();
     }

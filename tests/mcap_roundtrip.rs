@@ -7,7 +7,7 @@ mod mcap_common;
 
 use carom::events::{Engine, EngineParams, Event, SystemSpec};
 use carom::io::log_reader::{
-    scan, scan_observed, LogEnd, LogEvent, LogMessage, LogReader, ReadProgress,
+    scan, scan_indexed, scan_observed, LogEnd, LogEvent, LogMessage, LogReader, ReadProgress,
 };
 use carom::io::run_metadata::StopReason;
 use carom::io::schema::{CollisionRecord, KIND_WALL};
@@ -174,6 +174,9 @@ fn log_holds_exactly_what_the_engine_did() {
     assert_eq!(info.channels, [true; 4]);
     assert!(info.summary.is_some());
 
+    // The index of a finished log gives the same, reading only a few chunks.
+    assert_eq!(scan_indexed(&out).unwrap(), Some(info.clone()));
+
     // The scan reports how far through the file it is: rising, ending at the
     // file's length, and otherwise the same scan.
     let mut seen: Vec<ReadProgress> = Vec::new();
@@ -218,6 +221,11 @@ fn compressions_and_every_kth_collision() {
         .unwrap();
         let recs = read_collisions(&out);
         assert_eq!(recs.len(), events.len());
+        assert_eq!(
+            scan_indexed(&out).unwrap(),
+            Some(scan(&out).unwrap()),
+            "{c:?}"
+        );
         match &first {
             None => first = Some(recs),
             Some(f) => assert_eq!(f, &recs, "{c:?}"),
@@ -237,6 +245,7 @@ fn compressions_and_every_kth_collision() {
     .unwrap();
     let recs = read_collisions(&out);
     assert_eq!(recs.len(), events.len().div_ceil(3));
+    assert_eq!(scan_indexed(&out).unwrap(), Some(scan(&out).unwrap()));
     for r in &recs {
         assert_eq!(r.ordinal % 3, 0);
         assert!(matches_event(r, &events[r.ordinal as usize]));
@@ -253,6 +262,9 @@ fn compressions_and_every_kth_collision() {
     )
     .unwrap();
     assert!(read_collisions(&out).is_empty());
+    let indexed = scan_indexed(&out).unwrap().expect("a finished log");
+    assert_eq!(indexed.time_span[0], None);
+    assert_eq!(indexed, scan(&out).unwrap());
     std::fs::remove_file(&out).unwrap();
 }
 

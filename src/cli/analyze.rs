@@ -1,6 +1,7 @@
-//! `carom analyze`: read a log in two streaming passes (a scan for the time span,
-//! then every message) into an [`Analyzer`], and print its [`Report`] as text or
-//! JSON.
+//! `carom analyze`: read a log into an [`Analyzer`] and print its [`Report`] as
+//! text or JSON. The time span and collision rate, which the analysis needs
+//! first, come from a finished log's index, or from a scan of a log cut short; then
+//! every message is read in one streaming pass.
 //!
 //! The JSON object is the [`Report`] (see its field documentation) with two more
 //! fields: `file` (the log) and `log_complete` (false for a log cut short).
@@ -12,7 +13,7 @@ use carom::analysis::report::{
 };
 use carom::core::{Boundary, DVec2, Restitution, SimBox, Species};
 use carom::io::config::Config;
-use carom::io::log_reader::{scan_observed, LogEnd, LogInfo, LogMessage, LogReader};
+use carom::io::log_reader::{scan_indexed, scan_observed, LogEnd, LogInfo, LogMessage, LogReader};
 use carom::io::schema::{Snapshot, KIND_PAIR};
 
 use super::reading::ReadDisplay;
@@ -104,8 +105,16 @@ fn read_report_shown(
     args: &AnalyzeArgs,
     display: &mut ReadDisplay,
 ) -> Result<(Report, bool), CliError> {
-    display.pass("scanning");
-    let info = scan_observed(&args.file, &mut |p| display.update(p))?;
+    // A finished log's index tells the time span and collision counts at once; a
+    // log cut short is scanned. (Either way the pass below reads and checks every
+    // message.)
+    let info = match scan_indexed(&args.file)? {
+        Some(info) => info,
+        None => {
+            display.pass("scanning");
+            scan_observed(&args.file, &mut |p| display.update(p))?
+        }
+    };
     if let Some(w) = info.end.warning() {
         display.warn(&format!("warning: {w}"));
     }
