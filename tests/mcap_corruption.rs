@@ -4,7 +4,9 @@
 
 mod mcap_common;
 
-use carom::io::log_reader::{LogEnd, LogEvent, LogReader, ReadError, ReadOptions};
+use carom::io::log_reader::{
+    scan, scan_indexed, LogEnd, LogEvent, LogReader, ReadError, ReadOptions,
+};
 use carom::io::mcap;
 use carom::io::run_metadata::RunMetadata;
 use carom::io::schema::{LOG_FORMAT_VERSION, METADATA_RUN};
@@ -167,6 +169,48 @@ fn random_corruptions_never_panic_and_never_pass_silently() {
     }
     eprintln!("corruptions: {complete_same} harmless, {cut} read as cut, {errors} errors");
     assert!(errors > 1000, "most corruptions are detected: {errors}");
+}
+
+#[test]
+fn damaged_indexes_never_panic_and_agree_with_a_full_scan_when_both_read() {
+    // scan_indexed trusts a finished log's index; damage must make it give up (or
+    // fail with an error naming the file), never panic or ask for absurd memory,
+    // and whatever it returns for a file that a full scan finds intact must equal
+    // the scan.
+    let mut rng = Rng(0x1DE7_5CA7);
+    let path = tmp("index-mutant.mcap");
+    let (mut agreed, mut gave_up, mut elsewhere) = (0, 0, 0);
+    for compression in [Compression::Zstd, Compression::None] {
+        let src = valid_log(compression);
+        std::fs::write(&path, &src).unwrap();
+        assert_eq!(
+            scan_indexed(&path).unwrap(),
+            Some(scan(&path).unwrap()),
+            "{compression:?}: the intact log"
+        );
+        for trial in 0..400 {
+            let (bytes, what) = mutate(&mut rng, &src);
+            std::fs::write(&path, &bytes).unwrap();
+            let indexed = catch_unwind(AssertUnwindSafe(|| scan_indexed(&path)))
+                .unwrap_or_else(|_| panic!("{compression:?} trial {trial}: panicked after {what}"));
+            match (indexed, scan(&path)) {
+                (Ok(Some(i)), Ok(full)) if full.end == LogEnd::Complete => {
+                    assert_eq!(i, full, "{compression:?} trial {trial}: {what}");
+                    agreed += 1;
+                }
+                (Ok(None), _) => gave_up += 1,
+                (Err(e), _) => assert!(e.to_string().contains("index-mutant"), "{e}"),
+                // Damage outside what the index reads: found by the full read.
+                (Ok(Some(_)), _) => elsewhere += 1,
+            }
+        }
+    }
+    std::fs::remove_file(&path).unwrap();
+    eprintln!(
+        "index mutants: {agreed} agreed with the scan, {gave_up} gave up, {elsewhere} damaged \
+         elsewhere"
+    );
+    assert!(gave_up > 100 && elsewhere > 100, "{gave_up} {elsewhere}");
 }
 
 #[test]

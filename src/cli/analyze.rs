@@ -92,7 +92,7 @@ fn pair_rate(info: &LogInfo, n: usize, t_start: f64) -> Option<f64> {
         .filter(|w| w.is_finite() && *w > 0.0)
 }
 
-/// Read the log and compute the report, showing the progress of both passes.
+/// Read the log and compute the report, showing how far reading has got.
 /// Returns the report with whether the log is complete.
 pub fn read_report(args: &AnalyzeArgs) -> Result<(Report, bool), CliError> {
     let mut display = ReadDisplay::new(args.quiet, &args.file.display().to_string());

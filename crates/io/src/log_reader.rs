@@ -257,6 +257,13 @@ const MESSAGE_HEADER_LEN: usize = 2 + 4 + 8 + 8;
 /// Most bytes handed to the MCAP reader per read call.
 const READ_STEP: usize = 1 << 20;
 
+/// The longest record (bytes, compressed or not) accepted in a file of `len`
+/// bytes: a length read from a damaged file must not ask for an absurd allocation,
+/// and a chunk compresses physical data well under 64-fold.
+fn record_length_limit(len: u64) -> usize {
+    len.saturating_mul(64).clamp(64 << 20, 16 << 30) as usize
+}
+
 /// A streaming reader of one carom log.
 pub struct LogReader<R: Read + Seek = BufReader<File>> {
     source: R,
@@ -329,7 +336,7 @@ impl<R: Read + Seek> LogReader<R> {
         source.seek(SeekFrom::Start(0)).map_err(io)?;
         let limit = opts
             .record_length_limit
-            .unwrap_or_else(|| (len.saturating_mul(64)).clamp(64 << 20, 16 << 30) as usize);
+            .unwrap_or_else(|| record_length_limit(len));
         let linear = LinearReader::new_with_options(
             LinearReaderOptions::default()
                 .with_prevalidate_chunk_crcs(true)
@@ -1165,14 +1172,16 @@ pub fn scan_indexed(path: &Path) -> Result<Option<LogInfo>, ReadError> {
     else {
         return Ok(None);
     };
+    // (An index pointing outside the file is damage: left to the full scan, as is
+    // any other inconsistency below.)
+    if index.length < 9 || index.offset.saturating_add(index.length) > file_bytes {
+        return Ok(None);
+    }
     let mut record = vec![0u8; index.length as usize];
     file.seek(SeekFrom::Start(index.offset)).map_err(io)?;
     file.read_exact(&mut record).map_err(io)?;
     // A record is its opcode, its length (u64) and its body.
-    let Some(Ok(Record::Metadata(m))) = record
-        .get(9..)
-        .map(|body| mcap::parse_record(record[0], body))
-    else {
+    let Ok(Record::Metadata(m)) = mcap::parse_record(record[0], &record[9..]) else {
         return Ok(None);
     };
     let Ok(carom_summary) = SummaryMetadata::from_map(&m.metadata) else {
@@ -1211,7 +1220,9 @@ pub fn scan_indexed(path: &Path) -> Result<Option<LogInfo>, ReadError> {
             };
             let Ok(mut reader) = IndexedReader::new_with_options(
                 &one,
-                IndexedReaderOptions::new().with_order(ReadOrder::File),
+                IndexedReaderOptions::new()
+                    .with_order(ReadOrder::File)
+                    .with_record_length_limit(record_length_limit(file_bytes)),
             ) else {
                 return Ok(None);
             };
@@ -1221,6 +1232,9 @@ pub fn scan_indexed(path: &Path) -> Result<Option<LogInfo>, ReadError> {
                 let Ok(event) = event else { return Ok(None) };
                 match event {
                     IndexedReadEvent::ReadChunkRequest { offset, length } => {
+                        if offset.saturating_add(length as u64) > file_bytes {
+                            return Ok(None);
+                        }
                         file.seek(SeekFrom::Start(offset)).map_err(io)?;
                         buf.resize(length, 0);
                         file.read_exact(&mut buf).map_err(io)?;
