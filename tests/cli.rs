@@ -4,7 +4,7 @@
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output, Stdio};
 
-use serde_json::Value;
+use serde_json::{json, Value};
 
 const BIN: &str = env!("CARGO_BIN_EXE_carom");
 
@@ -261,8 +261,19 @@ fn info_describes_a_complete_log_and_run_refuses_to_overwrite_it() {
     let two = Path::new(env!("CARGO_MANIFEST_DIR")).join("data/two-discs.json");
     ok(&carom(&dir, &["run", "--quiet", two.to_str().unwrap()]));
     assert!(dir.join("two-discs.mcap").exists());
-    let i = json_of(&carom(&dir, &["info", "two-discs.mcap", "--json"]));
+    let mut i = json_of(&carom(&dir, &["info", "two-discs.mcap", "--json"]));
     assert_eq!(i["complete"], true);
+    // From the index; --verify reads every message and finds the same.
+    assert_eq!(i["verified"], false);
+    let mut v = json_of(&carom(
+        &dir,
+        &["info", "--verify", "two-discs.mcap", "--json"],
+    ));
+    assert_eq!(v["verified"], true);
+    for x in [&mut i, &mut v] {
+        x.as_object_mut().unwrap().remove("verified");
+    }
+    assert_eq!(i, v);
     assert_eq!(i["run"]["n_discs"], 2);
     assert_eq!(i["summary"]["stop_reason"], "collisions");
     assert_eq!(
@@ -783,7 +794,33 @@ fn a_truncated_log_is_analysed_up_to_the_cut_with_a_warning() {
     std::fs::write(dir.join("cut.mcap"), &bytes[..bytes.len() * 6 / 10]).unwrap();
     let i = json_of(&carom(&dir, &["info", "cut.mcap", "--json"]));
     assert_eq!(i["complete"], false);
+    assert_eq!(
+        i["verified"], true,
+        "a cut log has no index: every message is read"
+    );
     assert!(i["summary"].is_null());
+    // Damage inside a finished log: its index still reads, but reading every
+    // message (info --verify, analyze) finds it.
+    let mut damaged = bytes.clone();
+    damaged[bytes.len() / 2] ^= 0x10;
+    std::fs::write(dir.join("damaged.mcap"), &damaged).unwrap();
+    let i = json_of(&carom(&dir, &["info", "damaged.mcap", "--json"]));
+    assert_eq!(
+        (&i["complete"], &i["verified"]),
+        (&json!(true), &json!(false))
+    );
+    for args in [
+        &["info", "--verify", "damaged.mcap"][..],
+        &["analyze", "damaged.mcap"],
+    ] {
+        let out = carom(&dir, args);
+        let stderr = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(1), "{args:?}: {stderr}");
+        assert!(
+            stderr.contains("damaged.mcap is corrupted"),
+            "{args:?}: {stderr}"
+        );
+    }
     let out = carom(&dir, &["analyze", "cut.mcap", "--json"]);
     let stderr = String::from_utf8_lossy(&out.stderr).to_string();
     assert!(stderr.contains("truncated"), "{stderr}");

@@ -1,8 +1,10 @@
-//! `carom info`: what a log holds, from a scan that does not decode collisions.
+//! `carom info`: what a log holds: from a finished log's index, or from a scan of
+//! every message (which does not decode collisions) for a log cut short or with
+//! `--verify`.
 
 use std::process::ExitCode;
 
-use carom::io::log_reader::{scan_observed, LogEnd, LogInfo};
+use carom::io::log_reader::{scan_indexed, scan_observed, LogEnd, LogInfo};
 use carom::io::log_writer::TOPICS;
 use carom::io::Stop;
 use std::fmt::Write;
@@ -30,7 +32,9 @@ fn end_text(e: &LogEnd) -> (bool, String) {
 /// The scan as one JSON object: `file`, `bytes`, `complete`, `end`, `run`
 /// (version, start time, seed, N, stop, resumed_from/at, config), `channels`
 /// (topic → defined, messages, time span), `logged_collisions`,
-/// `last_checkpoint_time`, `summary` (null for a cut-off log).
+/// `last_checkpoint_time`, `summary` (null for a cut-off log). `carom info --json`
+/// adds `verified`: whether every message was read (a log cut short, or
+/// `--verify`) rather than the file's index.
 pub fn info_json(path: &str, i: &LogInfo) -> Value {
     let (complete, end) = end_text(&i.end);
     let config: Value =
@@ -89,19 +93,43 @@ pub fn info_json(path: &str, i: &LogInfo) -> Value {
 
 /// `carom info`.
 pub fn info(args: InfoArgs) -> Result<ExitCode, CliError> {
-    let mut display = ReadDisplay::new(args.quiet, &args.file.display().to_string());
-    display.pass("scanning");
-    let i = scan_observed(&args.file, &mut |p| display.update(p));
-    display.finish();
-    let i = i?;
+    // A finished log's index says it all at once; a log cut short, or --verify,
+    // reads every message.
+    let indexed = if args.verify {
+        None
+    } else {
+        scan_indexed(&args.file)?
+    };
+    let verified = indexed.is_none();
+    let i = match indexed {
+        Some(i) => i,
+        None => {
+            let mut display = ReadDisplay::new(args.quiet, &args.file.display().to_string());
+            display.pass("scanning");
+            let i = scan_observed(&args.file, &mut |p| display.update(p));
+            display.finish();
+            i?
+        }
+    };
     let path = args.file.display().to_string();
     if args.json {
-        super::emit(&format!("{}\n", info_json(&path, &i)))?;
+        let mut v = info_json(&path, &i);
+        v["verified"] = Value::Bool(verified);
+        super::emit(&format!("{v}\n"))?;
         return Ok(ExitCode::SUCCESS);
     }
     let mut s = String::new();
     let (_, end) = end_text(&i.end);
-    let _ = writeln!(s, "{path}: {:.2} MB, {end}", i.file_bytes as f64 / 1e6);
+    let _ = writeln!(
+        s,
+        "{path}: {:.2} MB, {end}{}",
+        i.file_bytes as f64 / 1e6,
+        if verified {
+            ""
+        } else {
+            " (from its index; --verify reads every message)"
+        }
+    );
     let _ = writeln!(
         s,
         "  written by carom {} (log format {}), started {}",

@@ -40,7 +40,8 @@ enum Command {
     /// standard errors, collision rate and the Enskog check, cooling.
     Analyze(AnalyzeArgs),
     /// Describe a log: configuration, channels, message counts, time span, and
-    /// whether it is complete.
+    /// whether it is complete (from a finished log's index; --verify reads every
+    /// message).
     Info(InfoArgs),
 }
 
@@ -137,6 +138,10 @@ pub struct InfoArgs {
     /// Print one JSON object instead of text.
     #[arg(long)]
     pub json: bool,
+    /// Read and check every message, also of a finished log (whose index alone
+    /// otherwise tells what it holds).
+    #[arg(long)]
+    pub verify: bool,
     /// No progress display.
     #[arg(short, long)]
     pub quiet: bool,
