@@ -1120,7 +1120,7 @@ pub fn last_checkpoint(path: &Path) -> Result<(LogCheckpoint, u64, RunMetadata),
 pub fn scan_indexed(path: &Path) -> Result<Option<LogInfo>, ReadError> {
     use mcap::sans_io::indexed_reader::ReadOrder;
     use mcap::sans_io::indexed_reader::{IndexedReadEvent, IndexedReader, IndexedReaderOptions};
-    use mcap::sans_io::summary_reader::{SummaryReadEvent, SummaryReader};
+    use mcap::sans_io::summary_reader::{SummaryReadEvent, SummaryReader, SummaryReaderOptions};
 
     let label = path.display().to_string();
     let io = |source| ReadError::Io {
@@ -1133,7 +1133,13 @@ pub fn scan_indexed(path: &Path) -> Result<Option<LogInfo>, ReadError> {
     if !head.has_end_magic {
         return Ok(None);
     }
-    let mut summary_reader = SummaryReader::new();
+    // Knowing the file's size, the summary reader never asks for more bytes than
+    // are left (a damaged length cannot make it allocate gigabytes).
+    let mut summary_reader = SummaryReader::new_with_options(
+        SummaryReaderOptions::default()
+            .with_file_size(file_bytes)
+            .with_record_length_limit(record_length_limit(file_bytes)),
+    );
     while let Some(event) = summary_reader.next_event() {
         let Ok(event) = event else { return Ok(None) };
         match event {
