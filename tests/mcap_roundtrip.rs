@@ -417,6 +417,17 @@ fn relaxed_placement_reports_progress_and_the_stop_flag_ends_it_before_the_log()
     // To the end: a report at every step (interval 0), the last one with nothing
     // left too close, then the run.
     let out = tmp("placed.mcap");
+    let place_and_run = |stop: f64, control: Control| {
+        run(
+            &spec(
+                system.clone(),
+                Stop::Time(stop),
+                log_opts(Compression::None),
+            ),
+            &out,
+            control,
+        )
+    };
     let mut seen: Vec<PlacementProgress> = Vec::new();
     let mut show = |p: &PlacementProgress| seen.push(*p);
     let control = Control {
@@ -424,12 +435,7 @@ fn relaxed_placement_reports_progress_and_the_stop_flag_ends_it_before_the_log()
         progress_interval: std::time::Duration::ZERO,
         ..Control::default()
     };
-    let s = run(
-        &spec(system.clone(), Stop::Time(0.1), log_opts(Compression::None)),
-        &out,
-        control,
-    )
-    .unwrap();
+    let s = place_and_run(0.1, control).unwrap();
     assert_eq!(s.stop_reason, StopReason::Time);
     let (last, before) = seen.split_last().unwrap();
     assert!(before.len() > 10, "{} reports", before.len());
@@ -452,12 +458,7 @@ fn relaxed_placement_reports_progress_and_the_stop_flag_ends_it_before_the_log()
         progress_interval: std::time::Duration::ZERO,
         ..Control::default()
     };
-    let e = run(
-        &spec(system.clone(), Stop::Time(0.1), log_opts(Compression::None)),
-        &out,
-        control,
-    )
-    .unwrap_err();
+    let e = place_and_run(0.1, control).unwrap_err();
     assert!(
         matches!(e, RunError::InterruptedPlacing { steps: 3 }),
         "{e}"
@@ -469,12 +470,7 @@ fn relaxed_placement_reports_progress_and_the_stop_flag_ends_it_before_the_log()
         placing: Some(&mut show),
         ..Control::default()
     };
-    let e = run(
-        &spec(system, Stop::Time(1e12), log_opts(Compression::None)),
-        &out,
-        control,
-    )
-    .unwrap_err();
+    let e = place_and_run(1e12, control).unwrap_err();
     assert!(e.to_string().contains("stop.time"), "{e}");
 }
 
