@@ -94,6 +94,25 @@ pub enum RunError {
     /// Writing the log failed.
     #[error(transparent)]
     Write(#[from] WriteError),
+    /// Writing the log failed during the run (a full disk, a file system gone):
+    /// the log is not finished, but readable up to its last flush, and `resume`
+    /// continues it from its last complete checkpoint.
+    #[error(
+        "{source}\nthe run stopped at simulated time {}; {log} is readable up to its last \
+         flush, and `carom resume {log}` continues it from its last complete checkpoint \
+         once the cause is removed (a full disk: free space, or resume with --out on \
+         another disk)",
+        // Seven digits are plenty to say where; the log has the exact times.
+        *.time as f32
+    )]
+    LogCut {
+        /// The writer's error.
+        source: WriteError,
+        /// Simulated time when the run stopped (time).
+        time: f64,
+        /// The log file.
+        log: PathBuf,
+    },
     /// Reading the log to resume failed.
     #[error(transparent)]
     Read(#[from] ReadError),
@@ -132,6 +151,21 @@ pub struct Progress {
     pub fraction: f64,
     /// The stop criterion.
     pub stop: Stop,
+    /// Bytes of the log file on disk so far (what has reached the file; the
+    /// writer's buffers and the chunk being filled are not counted yet).
+    pub log_bytes: u64,
+}
+
+impl Progress {
+    /// The size (bytes) the log would reach at the stop if it kept growing at the
+    /// rate it has so far, once that rate says something: from 1 % of the run, or
+    /// from 64 MB written (the first snapshot and checkpoint, written at the start,
+    /// would otherwise weigh too much). A log of a cooling gas grows more slowly
+    /// later, so this is an upper estimate there.
+    pub fn projected_log_bytes(&self) -> Option<f64> {
+        let sure = self.fraction >= 0.01 || self.log_bytes >= 64 << 20;
+        (sure && self.fraction > 0.0).then(|| self.log_bytes as f64 / self.fraction)
+    }
 }
 
 /// How the caller steers a run: a stop flag (for Ctrl-C) and a progress callback.
@@ -717,6 +751,7 @@ impl<'a> Driver<'a> {
             wall_seconds: wall,
             fraction,
             stop: self.stop,
+            log_bytes: std::fs::metadata(self.writer.path()).map_or(0, |m| m.len()),
         };
         if let Some(cb) = self.control.progress.as_mut() {
             cb(&p);
@@ -724,8 +759,21 @@ impl<'a> Driver<'a> {
         self.last_progress = Instant::now();
     }
 
-    /// The event loop; ends the log whatever happens.
+    /// The event loop; ends the log whatever happens, except when writing it fails:
+    /// that is reported as [`RunError::LogCut`].
     fn run_loop(mut self, log_path: &Path) -> Result<RunSummary, RunError> {
+        self.run_events(log_path).map_err(|e| match e {
+            RunError::Write(source) => RunError::LogCut {
+                source,
+                time: self.engine.now(),
+                log: log_path.to_path_buf(),
+            },
+            e => e,
+        })
+    }
+
+    /// The body of [`Driver::run_loop`].
+    fn run_events(&mut self, log_path: &Path) -> Result<RunSummary, RunError> {
         let stop_flag = self.control.stop;
         let max_collisions = match self.stop {
             Stop::Collisions(c) => c,

@@ -880,3 +880,42 @@ fn analyze_spaces_snapshots_five_collisions_apart_unless_told_and_warns_when_clo
         r["window"]
     );
 }
+
+/// A log that cannot be written to the end (here: a file size limit, as a full disk
+/// would do) stops the run with the operating system's reason, not the MCAP
+/// library's generic one, and says that the log is readable and how to continue
+/// it; `resume` then finishes the run into another file.
+#[cfg(unix)]
+#[test]
+fn a_log_cut_by_a_write_error_names_the_cause_and_resumes() {
+    let dir = scratch("write-error");
+    // RLIMIT_FSIZE of 20000 blocks (10 or 20 MB, as the shell counts them); SIGXFSZ
+    // ignored, so that a write past the limit fails with EFBIG instead of killing
+    // the process.
+    let script = format!(
+        "trap '' XFSZ; ulimit -f 20000; exec '{BIN}' run --out cut.mcap --quiet \
+         --set species.0.count=4000 --set stop.duration=40"
+    );
+    let out = Command::new("sh")
+        .args(["-c", &script])
+        .current_dir(&dir)
+        .stdin(Stdio::null())
+        .output()
+        .unwrap();
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(1), "{stderr}");
+    assert!(stderr.contains("File too large"), "{stderr}");
+    assert!(!stderr.contains("compression stream"), "{stderr}");
+    assert!(stderr.contains("carom resume cut.mcap"), "{stderr}");
+    assert!(!stderr.contains("panicked"), "{stderr}");
+    let size = std::fs::metadata(dir.join("cut.mcap")).unwrap().len();
+    assert!(size <= 20_000 * 1024, "{size} bytes");
+    let i = json_of(&carom(&dir, &["info", "cut.mcap", "--json"]));
+    assert_eq!(i["complete"], false);
+    let resume = ["resume", "cut.mcap", "--out", "whole.mcap", "--quiet"];
+    ok(&carom(&dir, &resume));
+    let j = json_of(&carom(&dir, &["info", "whole.mcap", "--json"]));
+    assert_eq!(j["complete"], true);
+    assert_eq!(j["summary"]["stop_reason"], "time");
+    assert_eq!(f(&j["summary"]["sim_time"]), 40.0);
+}

@@ -109,6 +109,25 @@ pub enum WriteError {
     Finished(PathBuf),
 }
 
+impl WriteError {
+    /// The error for an MCAP failure while writing `path`. The MCAP library wraps
+    /// the operating system's errors in a message of its own ("I/O error from
+    /// writing, or reading a compression stream") that hides the cause; those are
+    /// unwrapped, so that a full disk says "No space left on device".
+    pub fn from_mcap(path: &Path, source: mcap::McapError) -> WriteError {
+        match source {
+            mcap::McapError::Io(source) => WriteError::Io {
+                path: path.to_path_buf(),
+                source,
+            },
+            source => WriteError::Mcap {
+                path: path.to_path_buf(),
+                source,
+            },
+        }
+    }
+}
+
 /// How a log is written (the writer's view of [`LogOptions`] plus tuning knobs).
 #[derive(Debug, Clone, PartialEq)]
 pub struct WriterOptions {
@@ -243,10 +262,7 @@ struct Sink {
 
 impl Sink {
     fn err(&self, source: mcap::McapError) -> WriteError {
-        WriteError::Mcap {
-            path: self.path.clone(),
-            source,
-        }
+        WriteError::from_mcap(&self.path, source)
     }
 
     /// Handle one command; an emptied record buffer, and a written message's
@@ -420,10 +436,7 @@ impl LogWriter {
             Compression::Lz4 => Some(mcap::Compression::Lz4),
             Compression::None => None,
         };
-        let mcap_err = |source| WriteError::Mcap {
-            path: path.to_path_buf(),
-            source,
-        };
+        let mcap_err = |source| WriteError::from_mcap(path, source);
         let mut mcap = mcap::WriteOptions::new()
             .compression(compression)
             // The mcap crate takes the level as u32 and hands it to zstd as i32
@@ -782,5 +795,22 @@ impl Drop for LogWriter {
             }
             Backend::Done => {}
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn mcap_io_errors_show_the_operating_systems_reason() {
+        let io = std::io::Error::from(std::io::ErrorKind::StorageFull);
+        let text = io.to_string();
+        let e = WriteError::from_mcap(Path::new("run.mcap"), mcap::McapError::Io(io));
+        assert!(matches!(e, WriteError::Io { .. }), "{e:?}");
+        assert_eq!(e.to_string(), format!("cannot write log run.mcap: {text}"));
+        // Other MCAP errors keep the library's own message.
+        let e = WriteError::from_mcap(Path::new("run.mcap"), mcap::McapError::TooManyChannels);
+        assert!(matches!(e, WriteError::Mcap { .. }), "{e:?}");
     }
 }
