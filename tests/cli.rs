@@ -919,3 +919,51 @@ fn a_log_cut_by_a_write_error_names_the_cause_and_resumes() {
     assert_eq!(j["summary"]["stop_reason"], "time");
     assert_eq!(f(&j["summary"]["sim_time"]), 40.0);
 }
+
+/// A single disc cannot be given a temperature (zero total momentum leaves it at
+/// rest): the configuration is refused naming `temperature`. Placed at rest
+/// explicitly, it runs, and `analyze` reports its velocities as untested (no
+/// thermal motion) instead of failing.
+#[test]
+fn a_disc_at_rest_is_refused_a_temperature_and_analysed_without_error() {
+    let dir = scratch("at-rest");
+    let out = carom(
+        &dir,
+        &[
+            "run",
+            "--set",
+            "species.0.count=1",
+            "--out",
+            "one.mcap",
+            "-q",
+        ],
+    );
+    assert_eq!(out.status.code(), Some(2));
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        stderr.contains("temperature") && stderr.contains("single disc"),
+        "{stderr}"
+    );
+    let config = json!({
+        "species": [{"count": 1, "radius": 0.5, "mass": 1.0}],
+        "box": {"size": [4.0, 4.0]},
+        "placement": {"explicit": [[1.0, 2.0]]},
+        "velocities": {"explicit": [[0.0, 0.0]]},
+        "stop": {"duration": 5.0},
+        "log": {"snapshot_interval": 0.5}
+    });
+    std::fs::write(dir.join("rest.json"), config.to_string()).unwrap();
+    ok(&carom(&dir, &["run", "rest.json", "-q"]));
+    let a = json_of(&carom(&dir, &["analyze", "rest.mcap", "--json", "-q"]));
+    assert_eq!(f(&a["temperature"]["kt"]), 0.0);
+    assert_eq!(a["maxwell_boltzmann"], json!([]));
+    let untested = &a["maxwell_boltzmann_untested"][0];
+    assert_eq!(untested["species"], 0);
+    assert!(
+        untested["reason"]
+            .as_str()
+            .unwrap()
+            .contains("no thermal motion"),
+        "{untested}"
+    );
+}

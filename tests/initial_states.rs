@@ -993,6 +993,34 @@ fn invalid_temperature_is_an_error_naming_the_field() {
 }
 
 #[test]
+fn a_single_disc_cannot_be_given_a_temperature() {
+    // Zero total momentum leaves one disc at rest, so kT > 0 cannot be met.
+    for velocities in [Velocities::MaxwellBoltzmann, Velocities::EqualSpeed] {
+        let sp = SystemSpec {
+            species: mono(1),
+            velocities: velocities.clone(),
+            ..base()
+        };
+        assert_err_names(build(&sp, "one disc"), "temperature", "one disc at kT = 1");
+        // At rest is what it gets, and what kT = 0 asks for.
+        let cold = SystemSpec {
+            temperature: 0.0,
+            ..sp
+        };
+        let s = build(&cold, "one disc at rest").expect("kT = 0 for one disc");
+        assert_eq!(s.velocities, vec![DVec2::ZERO]);
+    }
+    // Explicit velocities need no temperature.
+    let moving = SystemSpec {
+        species: mono(1),
+        velocities: Velocities::Explicit(vec![DVec2::new(0.3, -0.1)]),
+        ..base()
+    };
+    let s = build(&moving, "one disc, explicit").expect("explicit velocity");
+    assert_eq!(s.velocities, vec![DVec2::new(0.3, -0.1)]);
+}
+
+#[test]
 fn speeds_that_would_overflow_the_arithmetic_are_errors() {
     // Speed × box edge must stay ≤ 1e150, so that squares of separations times
     // relative velocities (and kinetic energies) stay finite. The base box is about

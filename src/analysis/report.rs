@@ -521,6 +521,16 @@ impl Analyzer {
                 if self.speeds[s].len() < 2 {
                     continue;
                 }
+                // Discs at rest (one disc in a periodic box, whose momentum is
+                // zero) have no distribution to test.
+                if kt <= 0.0 {
+                    maxwell_boltzmann_untested.push(SpeciesUntested {
+                        species: s,
+                        samples: self.speeds[s].len(),
+                        reason: format!("no thermal motion (kT = {kt})"),
+                    });
+                    continue;
+                }
                 // A species with too few speeds for the χ² test (a handful of
                 // discs in a short window) is reported as untested; the other
                 // species and the rest of the analysis go on.

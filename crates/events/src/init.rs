@@ -336,6 +336,22 @@ impl SystemSpec {
                 "finite kT ≥ 0",
             ));
         }
+        // Drawn velocities have zero total momentum, which leaves a single disc at
+        // rest: a temperature above 0 would be silently ignored.
+        let discs: usize = self.species.iter().map(|s| s.count).sum();
+        if discs == 1
+            && self.temperature > 0.0
+            && !matches!(self.velocities, Velocities::Explicit(_))
+        {
+            return Err(InitError::invalid(
+                "temperature",
+                format!(
+                    "kT = {} for a single disc, which zero total momentum leaves at rest",
+                    self.temperature
+                ),
+                "at least two discs, or explicit velocities",
+            ));
+        }
         let eta = packing_fraction(&self.species, &self.sim_box);
         if eta >= std::f64::consts::PI / (2.0 * 3f64.sqrt()) {
             return Err(InitError::invalid(
