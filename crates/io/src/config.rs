@@ -252,7 +252,8 @@ pub struct Config {
     pub sim_box: BoxConfig,
     /// Temperature kT (energy) of the initial velocities: after drawing, velocities
     /// are scaled so that 2K/f = kT exactly (physics.md §5). Default 1; allowed:
-    /// finite, > 0. Ignored for explicit velocities.
+    /// finite, > 0, and at least two discs (drawn velocities have zero total
+    /// momentum, which leaves a single disc at rest). Ignored for explicit velocities.
     #[serde(default = "one")]
     pub temperature: f64,
     /// Seed of the random generator (placement and velocities). Default 0; any
