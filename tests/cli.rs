@@ -967,3 +967,24 @@ fn a_disc_at_rest_is_refused_a_temperature_and_analysed_without_error() {
         "{untested}"
     );
 }
+
+/// A directory given as a log is named as such (Linux opens it like a file and
+/// then fails to read it with "Invalid argument").
+#[test]
+fn a_directory_given_as_a_log_is_named_as_one() {
+    let dir = scratch("directory");
+    std::fs::create_dir_all(dir.join("logs")).unwrap();
+    for args in [
+        &["analyze", "logs"][..],
+        &["info", "logs"],
+        &["resume", "logs", "--out", "x.mcap"],
+    ] {
+        let out = carom(&dir, args);
+        let stderr = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(1), "{args:?}: {stderr}");
+        assert!(
+            stderr.contains("logs: a directory, not a log file"),
+            "{args:?}: {stderr}"
+        );
+    }
+}

@@ -310,10 +310,20 @@ impl LogReader<BufReader<File>> {
     /// [`LogReader::open`] with options.
     pub fn open_with(path: &Path, opts: ReadOptions) -> Result<Self, ReadError> {
         let label = path.display().to_string();
-        let file = File::open(path).map_err(|source| ReadError::Io {
-            file: label.clone(),
-            source,
-        })?;
+        // A directory opens like a file on Linux and then fails to read with
+        // "Invalid argument": say what it is instead.
+        let file = File::open(path)
+            .and_then(|f| match f.metadata()?.is_dir() {
+                true => Err(std::io::Error::new(
+                    std::io::ErrorKind::IsADirectory,
+                    "a directory, not a log file",
+                )),
+                false => Ok(f),
+            })
+            .map_err(|source| ReadError::Io {
+                file: label.clone(),
+                source,
+            })?;
         Self::new(BufReader::with_capacity(1 << 20, file), label, opts)
     }
 }
