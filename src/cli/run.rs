@@ -131,7 +131,7 @@ impl Display {
 
     /// Warn once when the log, growing as it has so far, will not fit in the room
     /// left on its disk before the stop: the run would end in a write error (a
-    /// log of every collision of a dense crystal grew by 15 MB/s towards 220 GB).
+    /// log of every collision of a dense crystal grew by 150 MB/s towards 220 GB).
     /// The run goes on; the warning says how to make the log smaller. Given with
     /// `--quiet` too, which only silences the progress display.
     fn warn_if_disk_too_small(&mut self, p: &Progress, projected: Option<f64>) {
