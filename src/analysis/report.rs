@@ -521,8 +521,8 @@ impl Analyzer {
                 if self.speeds[s].len() < 2 {
                     continue;
                 }
-                // Discs at rest (one disc in a periodic box, whose momentum is
-                // zero) have no distribution to test.
+                // Discs at rest (placed so with explicit velocities) have no
+                // distribution to test.
                 if kt <= 0.0 {
                     maxwell_boltzmann_untested.push(SpeciesUntested {
                         species: s,
