@@ -988,3 +988,36 @@ fn a_directory_given_as_a_log_is_named_as_one() {
         );
     }
 }
+
+/// A negative time option is refused by the option's own check, naming it, rather
+/// than taken for an unknown flag by the argument parser.
+#[test]
+fn negative_times_are_refused_naming_the_option() {
+    let dir = scratch("negative");
+    ok(&carom(
+        &dir,
+        &[
+            "run",
+            "--set",
+            "species.0.count=200",
+            "--set",
+            "stop.duration=2",
+            "--out",
+            "small.mcap",
+            "-q",
+        ],
+    ));
+    for (args, named) in [
+        (
+            &["analyze", "small.mcap", "--every", "-1"][..],
+            "--every -1",
+        ),
+        (&["resume", "small.mcap", "--until", "-3"], "stop time -3"),
+    ] {
+        let out = carom(&dir, args);
+        let stderr = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(2), "{args:?}: {stderr}");
+        assert!(stderr.contains(named), "{args:?}: {stderr}");
+        assert!(!stderr.contains("unexpected argument"), "{stderr}");
+    }
+}

@@ -84,7 +84,12 @@ pub struct ResumeArgs {
     #[arg(short, long, value_name = "FILE")]
     pub out: Option<PathBuf>,
     /// Run until this simulated time instead of the log's own stop.
-    #[arg(long, value_name = "T", conflicts_with = "collisions")]
+    #[arg(
+        long,
+        value_name = "T",
+        conflicts_with = "collisions",
+        allow_negative_numbers = true
+    )]
     pub until: Option<f64>,
     /// Run until this many collisions in total instead of the log's own stop.
     #[arg(long, value_name = "N")]
@@ -112,13 +117,13 @@ pub struct AnalyzeArgs {
     pub plot: Option<PathBuf>,
     /// Ignore everything before this simulated time; default: the first 10 % of
     /// the log.
-    #[arg(long, value_name = "T")]
+    #[arg(long, value_name = "T", allow_negative_numbers = true)]
     pub equilibrate: Option<f64>,
     /// Use snapshots at least this far apart (simulated time) for the velocity
     /// distribution; default: 5 pair collisions per disc, from the log's collision
     /// rate (every snapshot after --equilibrate if the log has no collision counts).
     /// Closer snapshots hold correlated velocities: the tests then reject too often.
-    #[arg(long, value_name = "DT")]
+    #[arg(long, value_name = "DT", allow_negative_numbers = true)]
     pub every: Option<f64>,
     /// Bins of the speed histograms (at least 4: the χ² test fits one parameter
     /// and needs a degree of freedom left).
