@@ -45,7 +45,7 @@ use carom_events::state::degrees_of_freedom;
 use carom_events::{Engine, EngineError, Event, InitError, PlacementProgress, State, SystemSpec};
 use carom_io::checkpoint_codec::LogCheckpoint;
 use carom_io::config::MAX_RECORDS;
-use carom_io::log_reader::{last_checkpoint, LogReader, ReadError};
+use carom_io::log_reader::{last_checkpoint_observed, LogReader, ReadError, ReadProgress};
 use carom_io::log_writer::{LogWriter, WriteError, WriterOptions, WriterPosition, CH_THERMO};
 use carom_io::run_metadata::{now_rfc3339, RunMetadata, StopReason, SummaryMetadata};
 use carom_io::schema::{Thermo, LOG_FORMAT_VERSION};
@@ -178,8 +178,33 @@ pub struct Control<'a> {
     /// Called about every `progress_interval` of wall time while relaxed placement
     /// minimizes (before the run starts and its log exists), and once when it ends.
     pub placing: Option<&'a mut dyn FnMut(&PlacementProgress)>,
+    /// Called while [`resume`] reads its input, before the run goes on: in each
+    /// [`ResumePass`] with the input reader's progress, about once per MiB read and
+    /// at the end of the pass (the whole log is read once and most of it copied,
+    /// about a minute each for a log of 10⁶ discs).
+    pub reading: Option<&'a mut dyn FnMut(ResumePass, ReadProgress)>,
     /// Wall time between progress calls.
     pub progress_interval: Duration,
+}
+
+/// What [`resume`] is doing with its input before the run goes on.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum ResumePass {
+    /// Reading the whole log to find its last complete checkpoint.
+    FindingCheckpoint,
+    /// Copying the messages up to that checkpoint into the output.
+    Copying,
+}
+
+impl ResumePass {
+    /// One word for people, to stand before the file's name ("searching
+    /// run.mcap", "copying run.mcap").
+    pub fn as_str(self) -> &'static str {
+        match self {
+            ResumePass::FindingCheckpoint => "searching",
+            ResumePass::Copying => "copying",
+        }
+    }
 }
 
 impl Default for Control<'_> {
@@ -188,6 +213,7 @@ impl Default for Control<'_> {
             stop: None,
             progress: None,
             placing: None,
+            reading: None,
             progress_interval: Duration::from_millis(200),
         }
     }
@@ -200,6 +226,7 @@ impl<'a> Control<'a> {
             stop: Some(stop),
             progress: Some(progress),
             placing: None,
+            reading: None,
             progress_interval: Duration::from_millis(200),
         }
     }
@@ -211,6 +238,7 @@ impl std::fmt::Debug for Control<'_> {
             .field("stop", &self.stop)
             .field("progress", &self.progress.is_some())
             .field("placing", &self.placing.is_some())
+            .field("reading", &self.reading.is_some())
             .field("progress_interval", &self.progress_interval)
             .finish()
     }
@@ -418,9 +446,15 @@ pub fn resume(
     input: &Path,
     out: &Path,
     opts: &ResumeOptions,
-    control: Control<'_>,
+    mut control: Control<'_>,
 ) -> Result<RunSummary, RunError> {
-    let (cp, prefix, mut meta) = last_checkpoint(input)?;
+    let mut reading = |pass: ResumePass, p: ReadProgress| {
+        if let Some(show) = control.reading.as_mut() {
+            show(pass, p);
+        }
+    };
+    let (cp, prefix, mut meta) =
+        last_checkpoint_observed(input, &mut |p| reading(ResumePass::FindingCheckpoint, p))?;
     let LogCheckpoint { driver, engine } = cp;
     let stop = opts.stop.unwrap_or(meta.stop);
     validate(&meta.log, &stop, engine.now)?;
@@ -467,7 +501,13 @@ pub fn resume(
     let mut reader = LogReader::open(input)?;
     let mut copied = 0u64;
     let mut last_thermo_at = None;
+    let mut seen = 0;
     while copied < prefix {
+        let progress = reader.progress();
+        if progress.bytes_read != seen {
+            seen = progress.bytes_read;
+            reading(ResumePass::Copying, progress);
+        }
         let Some(m) = reader.next_raw()? else {
             break;
         };
@@ -480,6 +520,7 @@ pub fn resume(
         copied += 1;
         writer.maybe_flush()?;
     }
+    reading(ResumePass::Copying, reader.progress());
     drop(reader);
     writer.flush()?;
     let mut d = Driver::new(engine, writer, meta.log.clone(), stop, control);

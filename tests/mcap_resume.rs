@@ -6,11 +6,13 @@
 
 mod mcap_common;
 
-use carom::io::log_reader::{scan, scan_indexed, LogEnd, LogEvent, LogReader, ReadError};
+use carom::io::log_reader::{
+    scan, scan_indexed, LogEnd, LogEvent, LogReader, ReadError, ReadProgress,
+};
 use carom::io::log_writer::{LogWriter, WriterOptions, WriterPosition};
 use carom::io::run_metadata::StopReason;
 use carom::io::{Compression, LogOptions, Stop};
-use carom::run::{resume, run, Control, ResumeOptions, RunError};
+use carom::run::{resume, run, Control, ResumeOptions, ResumePass, RunError};
 use mcap_common::*;
 use std::collections::BTreeMap;
 use std::path::Path;
@@ -61,7 +63,33 @@ fn a_cut_log_resumes_to_the_same_bytes() {
         let cut = tmp("cut.mcap");
         std::fs::write(&cut, &bytes[..(bytes.len() as f64 * frac) as usize]).unwrap();
         let out = tmp("resumed.mcap");
-        let s = resume(&cut, &out, &ResumeOptions::default(), Control::default()).unwrap();
+        // The reading of the input is reported: the search for the checkpoint
+        // through the whole file, then the copy up to it.
+        let mut reads: Vec<(ResumePass, ReadProgress)> = Vec::new();
+        let mut reading = |pass, p| reads.push((pass, p));
+        let control = Control {
+            reading: Some(&mut reading),
+            ..Control::default()
+        };
+        let s = resume(&cut, &out, &ResumeOptions::default(), control).unwrap();
+        let cut_bytes = std::fs::metadata(&cut).unwrap().len();
+        let copying = reads
+            .iter()
+            .position(|r| r.0 == ResumePass::Copying)
+            .expect("the copy is reported");
+        let (search, copy) = reads.split_at(copying);
+        assert!(!search.is_empty(), "cut at {frac}: the search is reported");
+        assert!(search.iter().all(|r| r.0 == ResumePass::FindingCheckpoint));
+        assert!(copy.iter().all(|r| r.0 == ResumePass::Copying));
+        for pass in [search, copy] {
+            assert!(pass
+                .windows(2)
+                .all(|w| w[0].1.bytes_read <= w[1].1.bytes_read));
+            assert!(pass.iter().all(|r| r.1.file_bytes == cut_bytes));
+        }
+        assert_eq!(search.last().unwrap().1.bytes_read, cut_bytes);
+        let copied = copy.last().unwrap().1.bytes_read;
+        assert!(copied > 0 && copied <= cut_bytes, "{copied} of {cut_bytes}");
         assert!(s.collisions_this_process > 0);
         assert_eq!(
             (s.pair_collisions, s.wall_collisions, s.sim_time),

@@ -12,11 +12,13 @@ use std::time::Instant;
 
 use carom::events::PlacementProgress;
 use carom::io::config::{self, ConfigError};
+use carom::io::log_reader::ReadProgress;
 use carom::io::run_metadata::StopReason;
 use carom::io::Stop;
-use carom::run::{Control, Progress, ResumeOptions, RunError, RunSummary};
+use carom::run::{Control, Progress, ResumeOptions, ResumePass, RunError, RunSummary};
 use indicatif::{DecimalBytes, ProgressBar, ProgressStyle};
 
+use super::reading::ReadDisplay;
 use super::{CliError, Num, ResumeArgs, RunArgs, PLAIN_EVERY};
 
 /// Raised by Ctrl-C, SIGTERM or SIGHUP; the run stops at its next event and
@@ -352,13 +354,41 @@ pub fn resume(args: ResumeArgs) -> Result<ExitCode, CliError> {
     }
     install_ctrlc();
     let mut display = Display::new(args.quiet, &out);
-    let mut progress = |p: &Progress| display.update(p);
+    // Reading the input (the whole log, then most of it again to copy it) comes
+    // first, with a display of its own that ends when the run's begins.
+    let reads = RefCell::new(Some(ReadDisplay::new(
+        args.quiet,
+        &args.file.display().to_string(),
+    )));
+    let end_reads = || {
+        if let Some(mut r) = reads.borrow_mut().take() {
+            r.finish();
+        }
+    };
+    let mut pass_now = None;
+    let mut reading = |pass: ResumePass, p: ReadProgress| {
+        if let Some(r) = reads.borrow_mut().as_mut() {
+            if pass_now != Some(pass) {
+                r.pass(pass.as_str());
+                pass_now = Some(pass);
+            }
+            r.update(p);
+        }
+    };
+    let mut progress = |p: &Progress| {
+        end_reads();
+        display.update(p)
+    };
     let summary = carom::run::resume(
         &args.file,
         &out,
         &ResumeOptions { stop },
-        Control::new(&STOP, &mut progress),
+        Control {
+            reading: Some(&mut reading),
+            ..Control::new(&STOP, &mut progress)
+        },
     );
+    end_reads();
     display.finish();
     Ok(report(&summary.map_err(run_error)?))
 }

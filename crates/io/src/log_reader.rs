@@ -1084,10 +1084,26 @@ fn batch_times(data: &[u8]) -> Option<(usize, f64, f64)> {
 /// messages precede it, counting the checkpoint itself (the prefix a resumed log
 /// copies). Streams the whole file, keeping only the latest checkpoint's bytes.
 pub fn last_checkpoint(path: &Path) -> Result<(LogCheckpoint, u64, RunMetadata), ReadError> {
+    last_checkpoint_observed(path, &mut |_| {})
+}
+
+/// [`last_checkpoint`], calling `observe` with the reader's [`ReadProgress`] each
+/// time it has read more of the file (about once per MiB) and once at the end: the
+/// whole log is read, which takes a minute for a log of 10⁶ discs.
+pub fn last_checkpoint_observed(
+    path: &Path,
+    observe: &mut dyn FnMut(ReadProgress),
+) -> Result<(LogCheckpoint, u64, RunMetadata), ReadError> {
     let mut r = LogReader::open(path)?;
     let mut best: Option<(Vec<u8>, u64, u32, u64)> = None;
     let mut count = 0u64;
+    let mut seen = 0;
     loop {
+        let progress = r.progress();
+        if progress.bytes_read != seen {
+            seen = progress.bytes_read;
+            observe(progress);
+        }
         let m = match r.next_raw() {
             Ok(Some(m)) => m,
             Ok(None) => break,
@@ -1109,6 +1125,7 @@ pub fn last_checkpoint(path: &Path) -> Result<(LogCheckpoint, u64, RunMetadata),
             best = Some((buf, count, seq, t));
         }
     }
+    observe(r.progress());
     let Some((bytes, prefix, seq, t)) = best else {
         return Err(ReadError::NoCheckpoint {
             file: r.label.clone(),
