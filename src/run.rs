@@ -503,10 +503,8 @@ pub fn resume(
     let mut last_thermo_at = None;
     let mut seen = 0;
     while copied < prefix {
-        let progress = reader.progress();
-        if progress.bytes_read != seen {
-            seen = progress.bytes_read;
-            reading(ResumePass::Copying, progress);
+        if let Some(p) = reader.progress_since(&mut seen) {
+            reading(ResumePass::Copying, p);
         }
         let Some(m) = reader.next_raw()? else {
             break;

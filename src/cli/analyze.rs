@@ -186,10 +186,8 @@ fn read_report_shown(
     display.pass("reading");
     let mut shown = 0;
     loop {
-        let progress = reader.progress();
-        if progress.bytes_read != shown {
-            shown = progress.bytes_read;
-            display.update(progress);
+        if let Some(p) = reader.progress_since(&mut shown) {
+            display.update(p);
         }
         let Some(m) = next(&mut reader)? else { break };
         match m {

@@ -681,6 +681,18 @@ impl<R: Read + Seek> LogReader<R> {
         }
     }
 
+    /// [`LogReader::progress`] if the reader has read more of the file since
+    /// `shown` bytes (which is then updated): for displays that show progress
+    /// only when it has moved (about once per MiB), whatever the number of
+    /// messages read in between.
+    pub fn progress_since(&self, shown: &mut u64) -> Option<ReadProgress> {
+        let p = self.progress();
+        (p.bytes_read != *shown).then(|| {
+            *shown = p.bytes_read;
+            p
+        })
+    }
+
     /// Whether each channel (see [`TOPICS`]) has been defined so far.
     pub fn channels_seen(&self) -> [bool; 4] {
         self.seen
@@ -1004,10 +1016,8 @@ pub fn scan_observed(
     let mut thermo: Option<[(f64, u64, u64); 2]> = None;
     let mut seen = 0;
     loop {
-        let progress = r.progress();
-        if progress.bytes_read != seen {
-            seen = progress.bytes_read;
-            observe(progress);
+        if let Some(p) = r.progress_since(&mut seen) {
+            observe(p);
         }
         let Some(m) = r.next_raw()? else { break };
         messages[m.channel] += 1;
@@ -1099,10 +1109,8 @@ pub fn last_checkpoint_observed(
     let mut count = 0u64;
     let mut seen = 0;
     loop {
-        let progress = r.progress();
-        if progress.bytes_read != seen {
-            seen = progress.bytes_read;
-            observe(progress);
+        if let Some(p) = r.progress_since(&mut seen) {
+            observe(p);
         }
         let m = match r.next_raw() {
             Ok(Some(m)) => m,
