@@ -183,9 +183,41 @@ pub struct Control<'a> {
     /// at the end of the pass (the whole log is read once and most of it copied,
     /// about a minute each for a log of 10⁶ discs).
     pub reading: Option<&'a mut dyn FnMut(ResumePass, ReadProgress)>,
-    /// Wall time between progress calls.
+    /// How many bytes the disk of the log file given as argument still has free for
+    /// this user, asked with every progress report (also without a callback). `None`
+    /// asks the file system (`fs4::available_space` of the log's directory); a
+    /// caller with a quota of its own, or a test, answers here. When the room left
+    /// falls to what finishing the log needs (see [`disk_low`]) the run stops
+    /// with [`StopReason::DiskFull`] and a finished log, instead of dying later with
+    /// a write error and a log cut at its last flush.
+    pub free_space: Option<&'a mut FreeSpace<'a>>,
+    /// Wall time between progress calls, and between looks at the room left on
+    /// the log's disk.
     pub progress_interval: Duration,
 }
+
+/// Whether a log must stop now to be finished: its disk has `free` bytes, finishing
+/// it would write up to `finish` bytes ([`LogWriter::finish_bound`]), and it grew by
+/// `growth` bytes since the last look, a [`Control::progress_interval`] ago. Twice
+/// that growth is kept in hand, as the next look comes one interval later and the
+/// writer may have fallen behind by as much.
+pub fn disk_low(free: u64, finish: u64, growth: u64) -> bool {
+    free <= finish.saturating_add(growth.saturating_mul(2))
+}
+
+/// The bytes free for this user on the disk that holds (or will hold) the file
+/// `path` (`fs4::available_space` of its directory).
+pub fn free_space_for(path: &Path) -> std::io::Result<u64> {
+    let dir = match path.parent() {
+        Some(d) if !d.as_os_str().is_empty() => d,
+        _ => Path::new("."),
+    };
+    fs4::available_space(dir)
+}
+
+/// A caller's answer to "how many bytes are free for the log at this path"
+/// ([`Control::free_space`]).
+pub type FreeSpace<'a> = dyn FnMut(&Path) -> std::io::Result<u64> + 'a;
 
 /// What [`resume`] is doing with its input before the run goes on.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -214,6 +246,7 @@ impl Default for Control<'_> {
             progress: None,
             placing: None,
             reading: None,
+            free_space: None,
             progress_interval: Duration::from_millis(200),
         }
     }
@@ -227,6 +260,7 @@ impl<'a> Control<'a> {
             progress: Some(progress),
             placing: None,
             reading: None,
+            free_space: None,
             progress_interval: Duration::from_millis(200),
         }
     }
@@ -238,6 +272,7 @@ impl std::fmt::Debug for Control<'_> {
             .field("stop", &self.stop)
             .field("progress", &self.progress.is_some())
             .field("placing", &self.placing.is_some())
+            .field("free_space", &self.free_space.is_some())
             .field("reading", &self.reading.is_some())
             .field("progress_interval", &self.progress_interval)
             .finish()
@@ -603,6 +638,8 @@ struct Driver<'a> {
     last_progress: Instant,
     /// The state written by the last snapshot, kept to reuse its arrays.
     snapshot: Option<State>,
+    /// The log's size (bytes) when the room on its disk was last looked at.
+    bytes_at_disk_check: u64,
 }
 
 impl<'a> Driver<'a> {
@@ -629,6 +666,7 @@ impl<'a> Driver<'a> {
             started: Instant::now(),
             last_progress: Instant::now(),
             snapshot: None,
+            bytes_at_disk_check: 0,
         }
     }
 
@@ -790,12 +828,31 @@ impl<'a> Driver<'a> {
             wall_seconds: wall,
             fraction,
             stop: self.stop,
-            log_bytes: std::fs::metadata(self.writer.path()).map_or(0, |m| m.len()),
+            log_bytes: self.log_bytes(),
         };
         if let Some(cb) = self.control.progress.as_mut() {
             cb(&p);
         }
         self.last_progress = Instant::now();
+    }
+
+    /// The log file's size on disk (bytes; 0 if it cannot be read).
+    fn log_bytes(&self) -> u64 {
+        std::fs::metadata(self.writer.path()).map_or(0, |m| m.len())
+    }
+
+    /// Look at the room left on the log's disk: whether the run must stop now to
+    /// finish its log ([`disk_low`]). A disk whose room cannot be told is never low.
+    fn disk_low(&mut self) -> bool {
+        let bytes = self.log_bytes();
+        let growth = bytes.saturating_sub(self.bytes_at_disk_check);
+        self.bytes_at_disk_check = bytes;
+        let path = self.writer.path().to_path_buf();
+        let free = match self.control.free_space.as_mut() {
+            Some(ask) => ask(&path),
+            None => free_space_for(&path),
+        };
+        free.is_ok_and(|free| disk_low(free, self.writer.finish_bound(bytes), growth))
     }
 
     /// The event loop; ends the log whatever happens, except when writing it fails:
@@ -829,6 +886,7 @@ impl<'a> Driver<'a> {
         };
         let mut failure = None;
         let mut tick: u32 = 0;
+        self.bytes_at_disk_check = self.log_bytes();
         while reason.is_none() {
             if stop_flag.is_some_and(|f| f.load(Ordering::Relaxed)) {
                 reason = Some(StopReason::Interrupted);
@@ -893,10 +951,11 @@ impl<'a> Driver<'a> {
             tick = tick.wrapping_add(1);
             if tick.is_multiple_of(1024) {
                 self.writer.maybe_flush()?;
-                if self.control.progress.is_some()
-                    && self.last_progress.elapsed() >= self.control.progress_interval
-                {
+                if self.last_progress.elapsed() >= self.control.progress_interval {
                     self.progress();
+                    if reason.is_none() && self.disk_low() {
+                        reason = Some(StopReason::DiskFull);
+                    }
                 }
             }
         }
@@ -956,5 +1015,23 @@ impl<'a> Driver<'a> {
             energy_lost: s.energy_lost,
             file_bytes,
         })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::disk_low;
+
+    #[test]
+    fn a_disk_is_low_when_its_room_no_longer_covers_finishing_and_two_more_intervals() {
+        // 100 MB to finish, growing 10 MB per interval: stop at 120 MB free.
+        let mb = 1_000_000;
+        assert!(!disk_low(121 * mb, 100 * mb, 10 * mb));
+        assert!(disk_low(120 * mb, 100 * mb, 10 * mb));
+        assert!(disk_low(0, 0, 0));
+        // No growth: only the finish is kept.
+        assert!(!disk_low(100 * mb + 1, 100 * mb, 0));
+        // Huge numbers saturate instead of wrapping round to "plenty of room".
+        assert!(disk_low(u64::MAX - 1, u64::MAX / 2, u64::MAX / 2));
     }
 }

@@ -191,6 +191,82 @@ fn a_finished_run_extends_like_a_longer_run() {
     }
 }
 
+/// The events of a log other than checkpoints and thermo records (a run stopped
+/// early writes one of each more, at its stop).
+fn observations(path: &Path) -> Vec<LogEvent> {
+    events(path)
+        .into_iter()
+        .filter(|e| matches!(e, LogEvent::Collision(_) | LogEvent::Snapshot(_)))
+        .collect()
+}
+
+#[test]
+fn a_run_stops_with_a_finished_log_before_its_disk_fills() {
+    let system = system(1000, 0.45, false, true, 5);
+    let stop = Stop::Time(80.0);
+    let full = tmp("roomy.mcap");
+    run(
+        &spec(system.clone(), stop, log_opts()),
+        &full,
+        Control::default(),
+    )
+    .unwrap();
+    let full_bytes = std::fs::metadata(&full).unwrap().len();
+    // A disk with room for 12 MB of log (less than the whole run's log: the run must
+    // stop), told through the caller's free-space answer.
+    const ROOM: u64 = 12_000_000;
+    assert!(
+        full_bytes > ROOM + ROOM / 2,
+        "the test needs a bigger log: {full_bytes}"
+    );
+    let cut = tmp("tight.mcap");
+    let mut looks = 0;
+    let mut free = |p: &Path| -> std::io::Result<u64> {
+        looks += 1;
+        Ok(ROOM.saturating_sub(std::fs::metadata(p)?.len()))
+    };
+    let s = run(
+        &spec(system, stop, log_opts()),
+        &cut,
+        Control {
+            free_space: Some(&mut free),
+            progress_interval: std::time::Duration::ZERO,
+            ..Control::default()
+        },
+    )
+    .unwrap();
+    assert!(looks > 10, "the disk was looked at {looks} times");
+    assert_eq!(s.stop_reason, StopReason::DiskFull);
+    assert!(s.sim_time > 0.0 && s.sim_time < 80.0, "{}", s.sim_time);
+    // What the run kept in hand was enough to finish the log: it fits the room,
+    // and it is complete, with its summary.
+    let cut_bytes = std::fs::metadata(&cut).unwrap().len();
+    assert!(cut_bytes <= ROOM, "the finished log took {cut_bytes} bytes");
+    assert!(
+        cut_bytes > ROOM / 3,
+        "stopped far too early: {cut_bytes} bytes"
+    );
+    let mut r = LogReader::open(&cut).unwrap();
+    let logged = r.collisions().count() as u64;
+    assert_eq!(*r.end(), LogEnd::Complete);
+    let sm = r
+        .summary()
+        .unwrap()
+        .expect("a finished log has its summary");
+    assert_eq!(sm.stop_reason, StopReason::DiskFull);
+    assert_eq!(sm.logged_collisions, logged);
+    assert_eq!(sm.sim_time, s.sim_time);
+    // Resumed on a disk with room, it continues from the stop itself (its last
+    // checkpoint) to the same collisions and snapshots as the run with room.
+    let out = tmp("tight-resumed.mcap");
+    let r = resume(&cut, &out, &ResumeOptions::default(), Control::default()).unwrap();
+    assert_eq!(r.stop_reason, StopReason::Time);
+    assert_eq!(observations(&out), observations(&full));
+    for p in [&full, &cut, &out] {
+        std::fs::remove_file(p).unwrap();
+    }
+}
+
 #[test]
 fn resume_errors_are_clear() {
     // A log without any checkpoint.

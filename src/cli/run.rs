@@ -132,9 +132,9 @@ impl Display {
     }
 
     /// Warn once when the log, growing as it has so far, will not fit in the room
-    /// left on its disk before the stop: the run would end in a write error (a
-    /// log of every collision of a dense crystal grew by 150 MB/s towards 220 GB).
-    /// The run goes on; the warning says how to make the log smaller. Given with
+    /// left on its disk before the stop: the run would stop early (a log of every
+    /// collision of a dense crystal grew by 150 MB/s towards 220 GB). The run goes
+    /// on; the warning says how to make the log smaller. Given with
     /// `--quiet` too, which only silences the progress display.
     fn warn_if_disk_too_small(&mut self, p: &Progress, projected: Option<f64>) {
         if self.warned_full {
@@ -143,20 +143,17 @@ impl Display {
         let Some(total) = projected else {
             return;
         };
-        let dir = match self.log.parent() {
-            Some(d) if !d.as_os_str().is_empty() => d,
-            _ => Path::new("."),
-        };
-        let Ok(free) = fs4::available_space(dir) else {
+        let Ok(free) = carom::run::free_space_for(&self.log) else {
             return;
         };
         if outgrows(p.log_bytes, total, free) {
             self.warned_full = true;
             self.say(&format!(
                 "warning: at this rate the log will grow to about {} by the stop, but its \
-                 disk has {} free, so the run would end in a write error; log fewer \
-                 collisions (log.collision_every, log.collisions = false) or stop sooner. \
-                 Ctrl-C stops now with a finished log that `carom resume {}` continues",
+                 disk has {} free, so the run will stop early, while there is still room to \
+                 finish the log, which `carom resume {}` then continues (with --out on \
+                 another disk); to avoid that, log fewer collisions (log.collision_every, \
+                 log.collisions = false) or stop sooner",
                 DecimalBytes(total as u64),
                 DecimalBytes(free),
                 self.log.display()
@@ -278,6 +275,19 @@ fn report(summary: &RunSummary) -> ExitCode {
                 summary.log.display()
             );
             ExitCode::from(130)
+        }
+        StopReason::DiskFull => {
+            eprintln!(
+                "stopped early: the disk of {log} was nearly full (room was kept to finish \
+                 the log, which is complete); free some space, or continue on another disk \
+                 with `carom resume {log} --out OTHER_DISK/{name}`",
+                log = summary.log.display(),
+                name = summary
+                    .log
+                    .file_name()
+                    .map_or("run.mcap".into(), |n| n.to_string_lossy()),
+            );
+            ExitCode::FAILURE
         }
         StopReason::Error => ExitCode::FAILURE,
         _ => ExitCode::SUCCESS,

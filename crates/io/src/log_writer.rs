@@ -203,6 +203,9 @@ pub struct WriterStats {
     pub logged_collisions: u64,
     /// Messages sent per channel by this writer (see [`TOPICS`]).
     pub messages: [u64; 4],
+    /// Encoded size of the largest snapshot, thermo or checkpoint message sent so
+    /// far (bytes, before compression).
+    pub largest_message: u64,
 }
 
 /// Where a writer starts counting (a fresh run starts at zero; a resumed run at the
@@ -541,6 +544,25 @@ impl LogWriter {
         &self.opts
     }
 
+    /// An upper estimate (bytes) of how much a file of `file_bytes` bytes on disk
+    /// may still grow if a final checkpoint is written and the writer finished now:
+    /// the messages that may be waiting for the writer thread ([`QUEUE_DEPTH`] full
+    /// collision batches, each at most 128 bytes per collision before compression)
+    /// and the chunk being filled, the final checkpoint (taken as twice the largest
+    /// message so far, which is at least the run's first checkpoint), and the
+    /// summary section, whose chunk index takes well under 1/512 of the file, plus
+    /// 1 MiB for the rest of it. Before the first checkpoint is written this
+    /// underestimates; the run writes one at its start.
+    pub fn finish_bound(&self, file_bytes: u64) -> u64 {
+        let batch = (self.opts.batch_size as u64).saturating_mul(128);
+        (QUEUE_DEPTH as u64 + 1)
+            .saturating_mul(batch)
+            .saturating_add(self.opts.chunk_size)
+            .saturating_add(self.stats.largest_message.saturating_mul(2))
+            .saturating_add(file_bytes / 512)
+            .saturating_add(1 << 20)
+    }
+
     /// The writer thread's error after it stopped (or a generic one).
     fn thread_failure(&mut self) -> WriteError {
         match std::mem::replace(&mut self.backend, Backend::Done) {
@@ -653,6 +675,7 @@ impl LogWriter {
 
     fn send_message(&mut self, ch: usize, t: f64, data: Vec<u8>) -> Result<(), WriteError> {
         self.write_batch()?;
+        self.stats.largest_message = self.stats.largest_message.max(data.len() as u64);
         let sequence = self.take_sequence(ch);
         let t = log_time_ns(t);
         self.send(Cmd::Message {

@@ -229,6 +229,10 @@ pub enum StopReason {
     Exhausted,
     /// The engine failed (`error`); `error` in the summary says how.
     Error,
+    /// The log's disk was about to fill up (`disk_full`): the run stopped while
+    /// there was still room for a final checkpoint and the summary, so the log is
+    /// finished and a resume loses nothing.
+    DiskFull,
 }
 
 impl StopReason {
@@ -240,6 +244,7 @@ impl StopReason {
             StopReason::Interrupted => "interrupted",
             StopReason::Exhausted => "exhausted",
             StopReason::Error => "error",
+            StopReason::DiskFull => "disk_full",
         }
     }
 
@@ -250,6 +255,7 @@ impl StopReason {
             "interrupted" => StopReason::Interrupted,
             "exhausted" => StopReason::Exhausted,
             "error" => StopReason::Error,
+            "disk_full" => StopReason::DiskFull,
             _ => return None,
         })
     }
@@ -378,6 +384,24 @@ mod tests {
         assert_eq!(rfc3339(0, 0), "1970-01-01T00:00:00.000Z");
         assert_eq!(rfc3339(951_782_400, 5), "2000-02-29T00:00:00.005Z");
         assert_eq!(rfc3339(1_700_000_000, 0), "2023-11-14T22:13:20.000Z");
+    }
+
+    #[test]
+    fn stop_reasons_round_trip_under_distinct_names() {
+        let all = [
+            StopReason::Time,
+            StopReason::Collisions,
+            StopReason::Interrupted,
+            StopReason::Exhausted,
+            StopReason::Error,
+            StopReason::DiskFull,
+        ];
+        for r in all {
+            assert_eq!(StopReason::parse(r.as_str()), Some(r));
+        }
+        let names: std::collections::BTreeSet<_> = all.iter().map(|r| r.as_str()).collect();
+        assert_eq!(names.len(), all.len());
+        assert_eq!(StopReason::parse("disk full"), None);
     }
 
     #[test]
