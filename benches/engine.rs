@@ -8,17 +8,12 @@
 //! `cargo bench --bench engine -- 'eta=0.50/N=10000$'`.
 //! The setup also prints the engine's heap bytes per disc for each case.
 
-use carom::events::{Engine, EngineParams, SystemSpec};
+mod common;
+
+use carom::events::Engine;
+use common::equilibrated_fluid as engine;
 use criterion::{criterion_group, criterion_main, Criterion, Throughput};
 use std::time::{Duration, Instant};
-
-fn engine(n: usize, eta: f64) -> Engine {
-    let spec = SystemSpec::periodic_fluid(n, eta, 42);
-    let mut e = Engine::new(spec.build().expect("valid system"), EngineParams::default())
-        .expect("engine starts");
-    e.run_collisions(10 * n as u64).expect("equilibration runs");
-    e
-}
 
 fn bench(c: &mut Criterion) {
     for eta in [0.5, 0.7] {

@@ -21,7 +21,10 @@
 //! than wall time, so that time spent descheduled is not counted; elsewhere it falls
 //! back to wall time.
 
-use carom::events::{Engine, EngineParams, SystemSpec};
+mod common;
+
+use carom::events::Engine;
+use common::equilibrated_fluid as engine;
 use std::time::Instant;
 
 /// Discs of the small system (its state, 1.5 MB, runs from the caches).
@@ -35,15 +38,6 @@ const SMALL_BATCH: u64 = 3_000_000;
 const LARGE_BATCH: u64 = 2_000_000;
 /// Alternating pairs per packing fraction.
 const PAIRS: usize = 8;
-
-/// An equilibrated periodic fluid of `n` discs at packing fraction `eta`.
-fn engine(n: usize, eta: f64) -> Engine {
-    let spec = SystemSpec::periodic_fluid(n, eta, 42);
-    let mut e = Engine::new(spec.build().expect("valid system"), EngineParams::default())
-        .expect("engine starts");
-    e.run_collisions(10 * n as u64).expect("equilibration runs");
-    e
-}
 
 /// CPU time of this thread so far (s), or wall time where that is not available.
 fn cpu_seconds(start: Instant) -> f64 {
