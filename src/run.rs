@@ -123,6 +123,23 @@ pub enum RunError {
         /// Minimization steps taken.
         steps: usize,
     },
+    /// The disk that is to hold the resumed log has too little room for even the
+    /// copy of the input up to its last checkpoint (nothing was written).
+    #[error(
+        "cannot resume into {out}: its disk has {free} bytes free, and the copy of {input} \
+         up to its last checkpoint needs about {need}; free some space, or resume with \
+         --out on another disk"
+    )]
+    NoRoom {
+        /// The log being resumed.
+        input: PathBuf,
+        /// The file the resumed log was to be written to.
+        out: PathBuf,
+        /// Bytes the copy needs (taken as the input's size).
+        need: u64,
+        /// Bytes free on the output's disk.
+        free: u64,
+    },
     /// Renaming the finished resumed log over the input failed.
     #[error("cannot move the resumed log {from} over {to}: {source}")]
     Rename {
@@ -522,6 +539,23 @@ pub fn resume(
     } else {
         out.to_path_buf()
     };
+    // The copy alone takes about as much room as the input up to its last
+    // checkpoint, most of the file: refuse at once when the input's size is not
+    // free, rather than fail part way (a log stopped because its disk was full,
+    // resumed in place, would).
+    let need = std::fs::metadata(input).map_or(0, |m| m.len());
+    let free = match control.free_space.as_mut() {
+        Some(ask) => ask(&target),
+        None => free_space_for(&target),
+    };
+    if let Some(free) = free.ok().filter(|&free| free < need) {
+        return Err(RunError::NoRoom {
+            input: input.to_path_buf(),
+            out: out.to_path_buf(),
+            need,
+            free,
+        });
+    }
     let mut writer = LogWriter::create(
         &target,
         WriterOptions::from_log_options(&meta.log),

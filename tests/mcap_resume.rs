@@ -256,6 +256,30 @@ fn a_run_stops_with_a_finished_log_before_its_disk_fills() {
     assert_eq!(sm.stop_reason, StopReason::DiskFull);
     assert_eq!(sm.logged_collisions, logged);
     assert_eq!(sm.sim_time, s.sim_time);
+    // Resumed in place on a disk with less room than the log takes, it is refused
+    // at once: the copy would not fit.
+    let before = std::fs::read(&cut).unwrap();
+    let mut left = |_: &Path| -> std::io::Result<u64> { Ok(cut_bytes - 1) };
+    let e = resume(
+        &cut,
+        &cut,
+        &ResumeOptions::default(),
+        Control {
+            free_space: Some(&mut left),
+            ..Control::default()
+        },
+    )
+    .unwrap_err();
+    assert!(
+        matches!(e, RunError::NoRoom { need, .. } if need == cut_bytes),
+        "{e:?}"
+    );
+    let msg = e.to_string();
+    assert!(msg.contains("--out on another disk"), "{msg}");
+    assert_eq!(std::fs::read(&cut).unwrap(), before);
+    let mut tmpname = cut.file_name().unwrap().to_os_string();
+    tmpname.push(".resume-tmp");
+    assert!(!cut.with_file_name(tmpname).exists());
     // Resumed on a disk with room, it continues from the stop itself (its last
     // checkpoint) to the same collisions and snapshots as the run with room.
     let out = tmp("tight-resumed.mcap");
