@@ -126,9 +126,11 @@ pub enum RunError {
     /// The disk that is to hold the resumed log has too little room for even the
     /// copy of the input up to its last checkpoint (nothing was written).
     #[error(
-        "cannot resume into {out}: its disk has {free} bytes free, and the copy of {input} \
-         up to its last checkpoint needs about {need}; free some space, or resume with \
-         --out on another disk"
+        "cannot resume into {out}: its disk has {} free, and the copy of {input} up to its \
+         last checkpoint needs about {}; free some space, or resume with --out on another \
+         disk",
+        indicatif::DecimalBytes(*.free),
+        indicatif::DecimalBytes(*.need)
     )]
     NoRoom {
         /// The log being resumed.
@@ -235,6 +237,16 @@ pub fn free_space_for(path: &Path) -> std::io::Result<u64> {
 /// A caller's answer to "how many bytes are free for the log at this path"
 /// ([`Control::free_space`]).
 pub type FreeSpace<'a> = dyn FnMut(&Path) -> std::io::Result<u64> + 'a;
+
+/// The bytes free for the file `path` on its disk: the caller's answer `ask`
+/// ([`Control::free_space`]) or, without one, the file system's
+/// ([`free_space_for`]).
+fn free_bytes(ask: &mut Option<&mut FreeSpace<'_>>, path: &Path) -> std::io::Result<u64> {
+    match ask {
+        Some(ask) => ask(path),
+        None => free_space_for(path),
+    }
+}
 
 /// What [`resume`] is doing with its input before the run goes on.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -544,11 +556,10 @@ pub fn resume(
     // free, rather than fail part way (a log stopped because its disk was full,
     // resumed in place, would).
     let need = std::fs::metadata(input).map_or(0, |m| m.len());
-    let free = match control.free_space.as_mut() {
-        Some(ask) => ask(&target),
-        None => free_space_for(&target),
-    };
-    if let Some(free) = free.ok().filter(|&free| free < need) {
+    if let Some(free) = free_bytes(&mut control.free_space, &target)
+        .ok()
+        .filter(|&free| free < need)
+    {
         return Err(RunError::NoRoom {
             input: input.to_path_buf(),
             out: out.to_path_buf(),
@@ -881,11 +892,7 @@ impl<'a> Driver<'a> {
         let bytes = self.log_bytes();
         let growth = bytes.saturating_sub(self.bytes_at_disk_check);
         self.bytes_at_disk_check = bytes;
-        let path = self.writer.path().to_path_buf();
-        let free = match self.control.free_space.as_mut() {
-            Some(ask) => ask(&path),
-            None => free_space_for(&path),
-        };
+        let free = free_bytes(&mut self.control.free_space, self.writer.path());
         free.is_ok_and(|free| disk_low(free, self.writer.finish_bound(bytes), growth))
     }
 
