@@ -289,6 +289,22 @@ fn lattice_reaches_072_in_periodic_boxes() {
     );
 }
 
+/// N = 7 in a square periodic box at η = 0.72 has no lattice arrangement, but an
+/// arrangement exists: the lattice refusal points to relaxed placement, which finds
+/// one.
+#[test]
+fn small_n_beyond_any_lattice_is_refused_with_relaxed_placement_named() {
+    let sp = spec(mono(7), 0.72, 1.0, Kind::Periodic, 4);
+    let msg = assert_err_names(build(&sp, "N = 7 lattice"), "packing_fraction", "N = 7");
+    assert!(msg.contains("relaxed placement"), "{msg}");
+    let relaxed = SystemSpec {
+        placement: Placement::Relaxed,
+        ..sp
+    };
+    let s = build(&relaxed, "N = 7 relaxed").expect("relaxed placement reaches η = 0.72");
+    validate(&s, &relaxed, "N = 7 relaxed");
+}
+
 /// Shortest non-zero vector of the lattice spanned by `u`, `v` (Lagrange–Gauss
 /// reduction, then a small search around the reduced basis to be safe).
 fn shortest_vector(mut u: DVec2, mut v: DVec2) -> f64 {

@@ -5,9 +5,14 @@
 //!   farthest apart, and leaves spare sites empty (spread evenly). In a fully periodic
 //!   box it searches every lattice that fits the torus (q rows of p sites with shear
 //!   k/q — the Hermite normal form — with up to 2N sites for N ≤ 500), so it reaches
-//!   packing fraction 0.72 for every N ≥ 2 and aspect ratio in [1/4, 4] where the box
-//!   edges exceed a diameter. With walls it uses square and triangular rows spread
-//!   to the walls.
+//!   packing fraction 0.72 at aspect ratios in [1/4, 4] for every N ≥ 34 tested
+//!   (34–300, 1000, 4096, 10007, 20000: `tests/initial_states.rs`), and for smaller N
+//!   wherever one of these lattices fits. Of N ≤ 33 at seven aspect ratios, 14 cases
+//!   have none: some because no arrangement at all reaches 0.72 (N = 3 in a square
+//!   box: about 0.631 at most, by a numerical search), others only because theirs is
+//!   not a lattice (N = 7 in a square box, which relaxed placement reaches, as the
+//!   refusal suggests). With walls it uses square and triangular rows spread to the
+//!   walls.
 //! * Random placement inserts discs one by one at uniformly random non-overlapping
 //!   positions, largest first (so that size-asymmetric mixtures place too); meant
 //!   for low density.
@@ -357,7 +362,7 @@ impl SystemSpec {
             return Err(InitError::invalid(
                 "packing_fraction",
                 format!("{eta:.4} is above hexagonal close packing"),
-                "η < 0.9069 (and ≤ 0.72 for lattice placement at any N)",
+                "η < 0.9069 (and ≤ 0.72 for lattice placement, at N ≥ 34 or where a lattice fits)",
             ));
         }
         Ok(())
@@ -700,7 +705,8 @@ fn lattice(
                 2.0 * a
             ),
             format!(
-                "η ≤ {:.4} for this N, box shape and boundaries",
+                "η ≤ {:.4} for this N, box shape and boundaries; relaxed placement, not \
+                 tied to a lattice, may reach more",
                 lattice_limit(spec)
             ),
         ));

@@ -414,8 +414,9 @@ impl<'de> Deserialize<'de> for BoundaryConfig {
 #[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
 #[serde(rename_all = "kebab-case", deny_unknown_fields)]
 pub enum PlacementConfig {
-    /// `"lattice"`: the best-fitting square or triangular lattice (any η ≤ 0.72; a
-    /// mixture's sites are spaced for its largest disc).
+    /// `"lattice"`: the best-fitting square or triangular lattice (any η ≤ 0.72 from
+    /// 34 discs on, and for fewer wherever a lattice fits; a mixture's sites are
+    /// spaced for its largest disc).
     #[default]
     Lattice,
     /// `"random"`: uniformly random without overlap, largest discs first (low
