@@ -37,7 +37,10 @@
 
 use carom::core::boundary::{Boundary, SimBox};
 use carom::core::{DVec2, Species};
-use carom::events::{box_size_for, InitError, Placement, State, SystemSpec, Velocities};
+use carom::events::{
+    box_size_for, Engine, EngineError, EngineParams, InitError, Placement, State, SystemSpec,
+    Velocities,
+};
 use std::ops::ControlFlow;
 use std::panic::{catch_unwind, AssertUnwindSafe};
 
@@ -303,6 +306,81 @@ fn small_n_beyond_any_lattice_is_refused_with_relaxed_placement_named() {
     };
     let s = build(&relaxed, "N = 7 relaxed").expect("relaxed placement reaches η = 0.72");
     validate(&s, &relaxed, "N = 7 relaxed");
+}
+
+/// A lattice exactly at its closest packing (1020 discs in a 30 × 30 box: rows of
+/// 30 sites one diameter apart) would start the discs in contact, in closed rows that
+/// collide forever at t = 0: lattice placement leaves a gap or refuses, saying why.
+/// A box a hair wider places, and the run advances.
+#[test]
+fn lattice_placement_never_starts_discs_in_contact() {
+    let square = |l: f64| SystemSpec {
+        species: mono(1020),
+        sim_box: SimBox {
+            size: DVec2::splat(l),
+            boundary: [Boundary::Periodic; 2],
+        },
+        temperature: 1.0,
+        seed: 2,
+        placement: Placement::Lattice,
+        velocities: Velocities::MaxwellBoltzmann,
+    };
+    let msg = assert_err_names(
+        build(&square(30.0), "30 × 30"),
+        "packing_fraction",
+        "30 × 30",
+    );
+    assert!(msg.contains("exactly one diameter"), "{msg}");
+    assert!(msg.contains("η < 0.890"), "{msg}");
+    let wider = square(30.0 + 1e-6);
+    let s = build(&wider, "30.000001²").expect("a box a hair wider has room");
+    validate(&s, &wider, "30.000001²");
+    let gap = closest_pair(&s).expect("pairs").2;
+    assert!(
+        gap >= 1.0 + 1e-9,
+        "closest pair {gap} contact distances apart"
+    );
+    let mut e = Engine::new(s, EngineParams::default()).unwrap();
+    assert_eq!(e.run_collisions(200_000).unwrap(), 200_000);
+    assert!(e.now() > 0.0);
+}
+
+/// Discs put in contact in a closed row by the caller (explicit positions) make an
+/// elastic run stall at t = 0; the runaway report then names that cause, not
+/// inelastic collapse.
+#[test]
+fn a_closed_row_of_touching_discs_is_reported_as_such() {
+    let n = 30;
+    let spec = SystemSpec {
+        species: mono(n),
+        sim_box: SimBox {
+            size: DVec2::new(n as f64, 5.0),
+            boundary: [Boundary::Periodic; 2],
+        },
+        temperature: 1.0,
+        seed: 0,
+        placement: Placement::Explicit((0..n).map(|k| DVec2::new(0.5 + k as f64, 2.5)).collect()),
+        velocities: Velocities::Explicit(
+            (0..n)
+                .map(|k| DVec2::new(if k == 0 { 1.0 } else { 0.0 }, 0.0))
+                .collect(),
+        ),
+    };
+    let s = build(&spec, "closed row").expect("touching is not overlapping");
+    let mut e = Engine::new(s, EngineParams::default()).unwrap();
+    let err = e.run_collisions(1_000_000).unwrap_err();
+    match &err {
+        EngineError::Stalled {
+            time, dissipative, ..
+        } => {
+            assert_eq!(*time, 0.0);
+            assert!(!dissipative);
+        }
+        other => panic!("expected a runaway, got {other:?}"),
+    }
+    let msg = err.to_string();
+    assert!(msg.contains("closed row of touching discs"), "{msg}");
+    assert!(!msg.contains("inelastic collapse"), "{msg}");
 }
 
 /// Shortest non-zero vector of the lattice spanned by `u`, `v` (Lagrange–Gauss

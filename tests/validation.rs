@@ -1367,6 +1367,7 @@ fn case5_inelastic_collapse() {
             time,
             events,
             limit,
+            ..
         }) => {
             frag.note(format!(
                 "Without TC: EngineError::Stalled after {} collisions at t = {time} \

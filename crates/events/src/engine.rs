@@ -803,6 +803,7 @@ impl Engine {
                     time: self.reported,
                     events: self.same_time_collisions,
                     limit: self.params.max_events_without_time_advance,
+                    dissipative: !self.params.restitution.is_elastic() && self.params.tc == 0.0,
                 });
             }
         }

@@ -55,9 +55,8 @@ pub enum EngineError {
     /// (physics.md §4) or a degenerate configuration.
     #[error(
         "runaway: {events} collisions at time {time} without time advancing \
-         (limit max_events_without_time_advance = {limit}); this is inelastic collapse — \
-         enable the TC model (tc > 0) or lengthen tc, raise the restitution, or lower the \
-         density"
+         (limit max_events_without_time_advance = {limit}); {}",
+        stall_cause(*.dissipative)
     )]
     Stalled {
         /// Simulation time at which the clock stopped (time).
@@ -66,6 +65,10 @@ pub enum EngineError {
         events: u64,
         /// The configured limit.
         limit: u64,
+        /// Whether the collisions dissipate energy (an inelastic rule without the
+        /// TC model): then the runaway is an inelastic collapse; otherwise discs
+        /// started, or were put, in contact in a way that never resolves.
+        dissipative: bool,
     },
     /// A caller asked for an observation before the current time.
     #[error("scheduled time {time} is before the current simulation time {now} (allowed: ≥ now, finite)")]
@@ -78,4 +81,18 @@ pub enum EngineError {
     /// A checkpoint could not be restored.
     #[error("checkpoint: {0}")]
     BadCheckpoint(String),
+}
+
+/// What a runaway of [`EngineError::Stalled`] is and what cures it, for a run whose
+/// collisions do (`dissipative`) or do not dissipate energy.
+fn stall_cause(dissipative: bool) -> &'static str {
+    if dissipative {
+        "this is inelastic collapse — enable the TC model (tc > 0) or lengthen tc, raise \
+         the restitution, or lower the density"
+    } else {
+        "without dissipation this means discs in contact whose collisions at one instant \
+         never end, such as a closed row of touching discs passing its momentum round — \
+         start with gaps between the discs (a slightly lower density, or relaxed \
+         placement)"
+    }
 }
