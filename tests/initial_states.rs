@@ -308,10 +308,10 @@ fn small_n_beyond_any_lattice_is_refused_with_relaxed_placement_named() {
     validate(&s, &relaxed, "N = 7 relaxed");
 }
 
-/// A lattice exactly at its closest packing (1020 discs in a 30 × 30 box: rows of
-/// 30 sites one diameter apart) would start the discs in contact, in closed rows that
-/// collide forever at t = 0: lattice placement leaves a gap or refuses, saying why.
-/// A box a hair wider places, and the run advances.
+/// A lattice exactly at its closest packing (1020 discs in a periodic 30 × 30 box:
+/// rows of 30 sites one diameter apart; 100 in a walled 10 × 10 box) would start the
+/// discs in contact, in rows that collide forever at t = 0: lattice placement leaves
+/// a gap or refuses, saying why. A box a hair wider places, and the run advances.
 #[test]
 fn lattice_placement_never_starts_discs_in_contact() {
     let square = |l: f64| SystemSpec {
@@ -342,6 +342,28 @@ fn lattice_placement_never_starts_discs_in_contact() {
     );
     let mut e = Engine::new(s, EngineParams::default()).unwrap();
     assert_eq!(e.run_collisions(200_000).unwrap(), 200_000);
+    assert!(e.now() > 0.0);
+    // The same between walls: 100 discs in a walled 10 × 10 box would fill rows
+    // from wall to wall.
+    let walled = |l: f64| SystemSpec {
+        species: mono(100),
+        sim_box: SimBox {
+            size: DVec2::splat(l),
+            boundary: boundaries(Kind::Walls),
+        },
+        ..square(l)
+    };
+    let msg = assert_err_names(
+        build(&walled(10.0), "walled 10²"),
+        "packing_fraction",
+        "walled",
+    );
+    assert!(msg.contains("from wall to wall"), "{msg}");
+    let wider = walled(10.0 + 1e-6);
+    let s = build(&wider, "walled 10.000001²").expect("a box a hair wider has room");
+    validate(&s, &wider, "walled 10.000001²");
+    let mut e = Engine::new(s, EngineParams::default()).unwrap();
+    assert_eq!(e.run_collisions(100_000).unwrap(), 100_000);
     assert!(e.now() > 0.0);
 }
 
@@ -379,7 +401,7 @@ fn a_closed_row_of_touching_discs_is_reported_as_such() {
         other => panic!("expected a runaway, got {other:?}"),
     }
     let msg = err.to_string();
-    assert!(msg.contains("closed row of touching discs"), "{msg}");
+    assert!(msg.contains("row of touching discs"), "{msg}");
     assert!(!msg.contains("inelastic collapse"), "{msg}");
 }
 

@@ -689,10 +689,11 @@ fn lattice_limit(spec: &SystemSpec) -> f64 {
 
 /// The relative gap (of the contact distance) that lattice placement leaves at
 /// least between the closest discs. Discs placed exactly at contact are not
-/// overlapping, but they are no state to start from: in a closed row of touching
-/// discs (a lattice exactly at its closest packing, such as 1020 discs in a
-/// 30 × 30 box) each collision at t = 0 sets off the next, and the momentum goes
-/// round the row forever without time advancing. The gap, far above the rounding
+/// overlapping, but they are no state to start from: in a row of touching discs
+/// round a periodic box or from wall to wall (a lattice exactly at its closest
+/// packing, such as 1020 discs in a periodic 30 × 30 box, or 100 in a walled
+/// 10 × 10 one) each collision at t = 0 sets off the next, and the momentum goes
+/// round or to and fro forever without time advancing. The gap, far above the rounding
 /// of the positions (about 10⁻¹⁶ of the box), lets time advance between them.
 const LATTICE_GAP: f64 = 1e-9;
 
@@ -716,8 +717,8 @@ fn lattice(
             format!(
                 "{eta:.6} is the density at which lattice placement for N = {n} in this box \
                  has its closest sites exactly one diameter ({}) apart: the discs would \
-                 start in contact, and a closed row of touching discs passes its momentum \
-                 round forever at one instant",
+                 start in contact, and a row of touching discs round the periodic box or \
+                 from wall to wall passes its momentum on forever at one instant",
                 2.0 * a
             )
         } else {
