@@ -246,9 +246,9 @@ fn default_out(config: Option<&Path>) -> PathBuf {
 /// Map a run error whose cause is the configuration to a [`ConfigError`] naming
 /// the configuration's field, and one whose cause is an option (such as a
 /// `resume --until` before the log's end) to a usage error: both exit with 2.
-fn run_error(e: RunError) -> CliError {
+fn run_error(e: RunError, config_json: &str) -> CliError {
     match e {
-        RunError::Init(init) => CliError::Config(ConfigError::from_init(init)),
+        RunError::Init(init) => CliError::Config(ConfigError::from_init_in(init, config_json)),
         e @ RunError::Invalid { .. } => CliError::Usage(e.to_string()),
         other => CliError::Run(other),
     }
@@ -330,7 +330,9 @@ pub fn run(args: RunArgs) -> Result<ExitCode, CliError> {
     };
     let summary = carom::run::run(&spec, &out, control);
     display.borrow().finish();
-    Ok(report(&summary.map_err(run_error)?))
+    Ok(report(
+        &summary.map_err(|e| run_error(e, &spec.config_json))?,
+    ))
 }
 
 /// Whether paths `a` and `b` name the same existing file.
@@ -400,7 +402,8 @@ pub fn resume(args: ResumeArgs) -> Result<ExitCode, CliError> {
     );
     end_reads();
     display.finish();
-    Ok(report(&summary.map_err(run_error)?))
+    // A resume builds no initial state: no configuration field to name.
+    Ok(report(&summary.map_err(|e| run_error(e, "{}"))?))
 }
 
 #[cfg(test)]

@@ -154,6 +154,30 @@ impl ConfigError {
     }
 }
 
+impl ConfigError {
+    /// [`ConfigError::from_init`] for the configuration `config_json` (the text in
+    /// [`RunSpec::config_json`](crate::RunSpec)): the builder's `packing_fraction`
+    /// is named as the setting that fixed it, `box.size` when the configuration
+    /// gives the box's size and `box.packing_fraction` otherwise.
+    pub fn from_init_in(e: InitError, config_json: &str) -> Self {
+        let mut e = ConfigError::from_init(e);
+        if let ConfigError::Invalid { field, .. } = &mut e {
+            if field == "box" {
+                let sized = serde_json::from_str::<serde_json::Value>(config_json)
+                    .ok()
+                    .is_some_and(|v| v.pointer("/box/size").is_some());
+                *field = if sized {
+                    "box.size"
+                } else {
+                    "box.packing_fraction"
+                }
+                .to_owned();
+            }
+        }
+        e
+    }
+}
+
 impl From<InitError> for ConfigError {
     fn from(e: InitError) -> Self {
         ConfigError::from_init(e)
@@ -1683,6 +1707,20 @@ mod tests {
         .unwrap();
         let e = ConfigError::from_init(spec.system.build().unwrap_err());
         assert_eq!(e.field(), Some("placement"), "{e}");
+        // A lattice that does not fit is the packing fraction's fault, or the
+        // box size's when the configuration gives that.
+        let too_dense = |sets: &[&str]| {
+            let sets: Vec<String> = sets.iter().map(|s| s.to_string()).collect();
+            let spec = Config::from_json_with_sets("{}", "t", &sets)
+                .unwrap()
+                .to_run_spec()
+                .unwrap();
+            ConfigError::from_init_in(spec.system.build().unwrap_err(), &spec.config_json)
+        };
+        let e = too_dense(&["species.0.count=7", "box.packing_fraction=0.72"]);
+        assert_eq!(e.field(), Some("box.packing_fraction"), "{e}");
+        let e = too_dense(&["species.0.count=1020", "box.size=[30, 30]"]);
+        assert_eq!(e.field(), Some("box.size"), "{e}");
         assert_eq!(
             init_field_to_config("species[1].radius"),
             "species.1.radius"
