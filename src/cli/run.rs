@@ -246,9 +246,12 @@ fn default_out(config: Option<&Path>) -> PathBuf {
 /// Map a run error whose cause is the configuration to a [`ConfigError`] naming
 /// the configuration's field, and one whose cause is an option (such as a
 /// `resume --until` before the log's end) to a usage error: both exit with 2.
-fn run_error(e: RunError, config_json: &str) -> CliError {
+fn run_error(e: RunError, config_json: Option<&str>) -> CliError {
     match e {
-        RunError::Init(init) => CliError::Config(ConfigError::from_init_in(init, config_json)),
+        RunError::Init(init) => CliError::Config(match config_json {
+            Some(json) => ConfigError::from_init_in(init, json),
+            None => ConfigError::from_init(init),
+        }),
         e @ RunError::Invalid { .. } => CliError::Usage(e.to_string()),
         other => CliError::Run(other),
     }
@@ -331,7 +334,7 @@ pub fn run(args: RunArgs) -> Result<ExitCode, CliError> {
     let summary = carom::run::run(&spec, &out, control);
     display.borrow().finish();
     Ok(report(
-        &summary.map_err(|e| run_error(e, &spec.config_json))?,
+        &summary.map_err(|e| run_error(e, Some(&spec.config_json)))?,
     ))
 }
 
@@ -402,8 +405,8 @@ pub fn resume(args: ResumeArgs) -> Result<ExitCode, CliError> {
     );
     end_reads();
     display.finish();
-    // A resume builds no initial state: no configuration field to name.
-    Ok(report(&summary.map_err(|e| run_error(e, "{}"))?))
+    // A resume builds no initial state, from no configuration.
+    Ok(report(&summary.map_err(|e| run_error(e, None))?))
 }
 
 #[cfg(test)]

@@ -91,9 +91,8 @@ fn stall_cause(dissipative: bool) -> &'static str {
          the restitution, or lower the density"
     } else {
         "without dissipation this means discs in contact whose collisions at one instant \
-         never end, such as a row of touching discs (round the periodic box, or from wall to \
-         wall) passing its momentum on forever — \
-         start with gaps between the discs (a slightly lower density, or relaxed \
-         placement)"
+         never end, such as a row of touching discs (round the periodic box, or from wall \
+         to wall) passing its momentum on forever — start with gaps between the discs (a \
+         slightly lower density, or relaxed placement)"
     }
 }

@@ -152,9 +152,7 @@ impl ConfigError {
             ),
         }
     }
-}
 
-impl ConfigError {
     /// [`ConfigError::from_init`] for the configuration `config_json` (the text in
     /// [`RunSpec::config_json`](crate::RunSpec)): the builder's `packing_fraction`
     /// is named as the setting that fixed it, `box.size` when the configuration

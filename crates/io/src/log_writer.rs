@@ -546,9 +546,9 @@ impl LogWriter {
 
     /// An upper estimate (bytes) of how much a file of `file_bytes` bytes on disk
     /// may still grow if a final checkpoint is written and the writer finished now:
-    /// the messages that may be waiting for the writer thread ([`QUEUE_DEPTH`] full
-    /// collision batches, each at most 128 bytes per collision before compression)
-    /// and the chunk being filled, the final checkpoint (taken as twice the largest
+    /// the collisions not yet on disk ([`QUEUE_DEPTH`] full batches waiting for the
+    /// writer thread and the one being gathered, each at most 128 bytes per
+    /// collision before compression) and the chunk being filled, the final checkpoint (taken as twice the largest
     /// message so far, which is at least the run's first checkpoint), and the
     /// summary section, whose chunk index takes well under 1/512 of the file, plus
     /// 1 MiB for the rest of it. Before the first checkpoint is written this
