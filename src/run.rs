@@ -204,7 +204,7 @@ pub struct Control<'a> {
     pub reading: Option<&'a mut dyn FnMut(ResumePass, ReadProgress)>,
     /// How many bytes the disk of the log file given as argument still has free for
     /// this user, asked with every progress report (also without a callback). `None`
-    /// asks the file system (`fs4::available_space` of the log's directory); a
+    /// asks the file system ([`free_space_for`]); a
     /// caller with a quota of its own, or a test, answers here. When the room left
     /// falls to what finishing the log needs (see [`disk_low`]) the run stops
     /// with [`StopReason::DiskFull`] and a finished log, instead of dying later with
@@ -225,13 +225,22 @@ pub fn disk_low(free: u64, finish: u64, growth: u64) -> bool {
 }
 
 /// The bytes free for this user on the disk that holds (or will hold) the file
-/// `path` (`fs4::available_space` of its directory).
+/// `path` (`fs4::statvfs` of its directory). A file system that reports a total
+/// size of zero (some FUSE mounts do not report sizes at all) gives an error of
+/// kind `Unsupported` rather than "0 bytes free", which would stop every run.
 pub fn free_space_for(path: &Path) -> std::io::Result<u64> {
     let dir = match path.parent() {
         Some(d) if !d.as_os_str().is_empty() => d,
         _ => Path::new("."),
     };
-    fs4::available_space(dir)
+    let stats = fs4::statvfs(dir)?;
+    if stats.total_space() == 0 {
+        return Err(std::io::Error::new(
+            std::io::ErrorKind::Unsupported,
+            "the file system reports no size",
+        ));
+    }
+    Ok(stats.available_space())
 }
 
 /// A caller's answer to "how many bytes are free for the log at this path"
@@ -1061,7 +1070,20 @@ impl<'a> Driver<'a> {
 
 #[cfg(test)]
 mod tests {
-    use super::disk_low;
+    use super::{disk_low, free_space_for};
+    use std::path::Path;
+
+    #[test]
+    fn a_file_system_that_reports_no_size_is_not_taken_for_a_full_disk() {
+        let here = free_space_for(Path::new("target/some.mcap")).expect("a real disk");
+        assert!(here > 0);
+        // procfs reports a total size of 0 blocks, as some FUSE mounts do.
+        #[cfg(target_os = "linux")]
+        {
+            let e = free_space_for(Path::new("/proc/some.mcap")).unwrap_err();
+            assert_eq!(e.kind(), std::io::ErrorKind::Unsupported);
+        }
+    }
 
     #[test]
     fn a_disk_is_low_when_its_room_no_longer_covers_finishing_and_two_more_intervals() {
