@@ -348,11 +348,12 @@ pub fn text(r: &Report, args: &AnalyzeArgs, complete: bool) -> String {
     for m in &r.maxwell_boltzmann {
         let _ = writeln!(
             s,
-            "  species {} (m = {}, a = {}): {} speeds; χ² = {:.2} / {} dof, p = {:.3e}; KS D = {:.4}, p = {:.3e}; vx KS p = {:.3e}, vy KS p = {:.3e}  → {}",
+            "  species {} (m = {}, a = {}): {} speeds{}; χ² = {:.2} / {} dof, p = {:.3e}; KS D = {:.4}, p = {:.3e}; vx KS p = {:.3e}, vy KS p = {:.3e}  → {}",
             m.species,
             Num(m.mass),
             Num(m.radius),
             m.samples,
+            thinned(m),
             m.chi_square.statistic,
             m.chi_square.dof,
             m.chi_square.p_value,
@@ -432,4 +433,25 @@ pub fn text(r: &Report, args: &AnalyzeArgs, complete: bool) -> String {
         }
     }
     s
+}
+
+/// How a species' snapshots were thinned, for the text report ("" when all of the
+/// window's snapshots were used).
+fn thinned(m: &carom::analysis::report::SpeciesMb) -> String {
+    match m.snapshot_correlation {
+        Some(rho) if m.snapshot_step > 1 => format!(
+            " from {} (its velocities correlate {rho:.3} from one snapshot to the next: {})",
+            if m.snapshots == 1 {
+                "1 snapshot".to_owned()
+            } else {
+                format!("{} snapshots", m.snapshots)
+            },
+            if m.snapshots == 1 {
+                "only the first used".to_owned()
+            } else {
+                format!("one in {} used", m.snapshot_step)
+            }
+        ),
+        _ => String::new(),
+    }
 }
