@@ -601,6 +601,66 @@ fn oracle_channel_mixture() {
     ]);
 }
 
+/// Small discs (diameter 1, mass 1) and a few much larger ones (diameter `ratio`,
+/// mass ∝ area): each size gets its own cell grid (see `carom::events::classes`).
+fn asymmetric(n_small: usize, n_large: usize, ratio: f64) -> Vec<Species> {
+    vec![
+        Species {
+            count: n_small,
+            radius: 0.5,
+            mass: 1.0,
+        },
+        Species {
+            count: n_large,
+            radius: 0.5 * ratio,
+            mass: ratio * ratio,
+        },
+    ]
+}
+
+/// Mixtures of very different sizes, where the engine keeps a cell grid per size
+/// class and every disc also scans the other class's grid: the same events as the
+/// brute-force reference, periodic, walled and in a channel. Each system is checked
+/// to have two grids, so that the test exercises the scans across grids.
+#[test]
+fn oracle_size_classes() {
+    let relaxed = |s: System| System {
+        placement: Placement::Relaxed,
+        ..s
+    };
+    let systems = [
+        relaxed(sys(
+            "periodic 200 + 4 diameter ratio 6 η=0.35",
+            asymmetric(200, 4, 6.0),
+            0.35,
+            1.0,
+            PERIODIC,
+            61,
+        )),
+        relaxed(sys(
+            "walled 200 + 3 diameter ratio 5 η=0.3",
+            asymmetric(200, 3, 5.0),
+            0.3,
+            1.0,
+            WALLED,
+            62,
+        )),
+        relaxed(sys(
+            "channel 240 + 4 diameter ratio 5 η=0.3",
+            asymmetric(240, 4, 5.0),
+            0.3,
+            1.5,
+            CHANNEL,
+            63,
+        )),
+    ];
+    for s in &systems {
+        let e = Engine::new(s.state(), EngineParams::default()).unwrap();
+        assert_eq!(e.grid_count(), 2, "{}: one grid per size class", s.name);
+    }
+    run_oracle(&systems);
+}
+
 /// The oracle check for random dynamics: 40 small systems (2–60 discs of one or two
 /// species, radii 0.5–1, masses 0.2–5, η = 0.05–0.45, aspect 1/2–2, each axis
 /// periodic or walled with restitution 1 or random, elastic pairs or either

@@ -143,13 +143,7 @@ impl CellGrid {
     /// wider cells cost a scan little there (few discs per cell) and save crossings.
     pub fn new(sim_box: &SimBox, min_width: f64, discs: usize) -> Self {
         let size = sim_box.size;
-        // A hair of margin so that rounding at a cell edge never hides a contact.
-        let w = min_width * (1.0 + 1e-9);
-        let count = |l: f64| ((l / w).floor() as u64).clamp(1, 1 << 15) as u32;
-        let n = cap_cells(
-            [count(size.x), count(size.y)],
-            CELLS_PER_DISC * discs.max(1) as u64,
-        );
+        let n = Self::shape(sim_box, min_width, discs);
         let width = DVec2::new(size.x / n[0] as f64, size.y / n[1] as f64);
         CellGrid {
             n,
@@ -161,6 +155,19 @@ impl CellGrid {
             ],
             head: memory::filled(n[0] as usize * n[1] as usize, NONE),
         }
+    }
+
+    /// Cells per axis of the grid [`CellGrid::new`] builds for these arguments
+    /// (without building it).
+    pub fn shape(sim_box: &SimBox, min_width: f64, discs: usize) -> [u32; 2] {
+        let size = sim_box.size;
+        // A hair of margin so that rounding at a cell edge never hides a contact.
+        let w = min_width * (1.0 + 1e-9);
+        let count = |l: f64| ((l / w).floor() as u64).clamp(1, 1 << 15) as u32;
+        cap_cells(
+            [count(size.x), count(size.y)],
+            CELLS_PER_DISC * discs.max(1) as u64,
+        )
     }
 
     /// The cell coordinates containing position `r` (clamped into the grid).
@@ -311,8 +318,20 @@ impl CellGrid {
     /// exactly once, in the list of the cell its record names. Returns what is wrong
     /// otherwise (for checkpoints read from disk, and the tests).
     pub fn check_lists<M: Member>(&self, members: &[M]) -> Result<(), String> {
+        self.check_lists_of(members, |_| true)
+    }
+
+    /// [`CellGrid::check_lists`] for a grid that holds only the discs `i` for
+    /// which `belongs(i)` (one size class of several, see [`crate::classes`]):
+    /// those discs are listed exactly once each, and no other disc is.
+    pub fn check_lists_of<M: Member>(
+        &self,
+        members: &[M],
+        belongs: impl Fn(usize) -> bool,
+    ) -> Result<(), String> {
         let n = members.len();
-        let mut seen = vec![false; n];
+        // Discs of other grids count as seen already.
+        let mut seen: Vec<bool> = (0..n).map(|i| !belongs(i)).collect();
         for cy in 0..self.n[1] {
             for cx in 0..self.n[0] {
                 let mut j = self.head[self.index([cx, cy])];
@@ -322,6 +341,11 @@ impl CellGrid {
                             "cell ({cx}, {cy}) lists disc {j}, beyond {n} discs"
                         ));
                     };
+                    if !belongs(j as usize) {
+                        return Err(format!(
+                            "cell ({cx}, {cy}) lists disc {j}, which belongs to another grid"
+                        ));
+                    }
                     if std::mem::replace(&mut seen[j as usize], true) {
                         return Err(format!("disc {j} is listed twice"));
                     }

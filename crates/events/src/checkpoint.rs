@@ -3,8 +3,9 @@
 //! their times, the cell lists in their exact order, running totals and the
 //! caller's scheduled events. Plain data: the io crate decides how to store it.
 
-use crate::cells::{CellGrid, Link};
-use crate::engine::{largest_radius, Body, Engine, EngineParams, Stats, KIND_CELL, KIND_PAIR};
+use crate::cells::Link;
+use crate::classes::Grids;
+use crate::engine::{Body, Engine, EngineParams, Stats, KIND_CELL, KIND_PAIR};
 use crate::error::EngineError;
 use crate::memory;
 use crate::queue::EventQueue;
@@ -136,9 +137,9 @@ impl Engine {
                     }
                 })
                 .collect(),
-            cell_head: self.grid.head.clone(),
+            cell_head: self.grids.heads(),
             cell_next: self.bodies.iter().map(|b| b.link.next).collect(),
-            cell_prev: self.grid.prev_links(&self.bodies),
+            cell_prev: self.grids.prev_links(&self.bodies),
             cell: self.bodies.iter().map(|b| b.link.coords()).collect(),
             scheduled,
             next_seq: self.next_seq,
@@ -224,32 +225,6 @@ impl Engine {
         for (k, &l) in cp.labels.iter().enumerate() {
             species_of_ext[l as usize] = cp.species_of[k];
         }
-        // The grid the engine builds for this state (the grid decides when
-        // crossings move the clock, so a resumed run must have the grid it was
-        // written with to continue bit for bit).
-        let a_max = largest_radius(&cp.species, &cp.species_of);
-        let mut grid = CellGrid::new(&cp.sim_box, 2.0 * a_max, n);
-        if cp.cell_head.len() != grid.head.len() {
-            return Err(bad(format!(
-                "{} cells stored, the box needs {} (a checkpoint of a dilute system, or \
-                 of one with a species of no discs, written before carom capped the \
-                 cells at {} per disc)",
-                cp.cell_head.len(),
-                grid.head.len(),
-                crate::cells::CELLS_PER_DISC
-            )));
-        }
-        // Disc indices in the lists are checked by `check_lists` below; the cells
-        // must exist before they are stored (as u16).
-        if cp
-            .cell
-            .iter()
-            .any(|c| c[0] >= grid.n[0] || c[1] >= grid.n[1])
-        {
-            return Err(bad("cell lists refer to cells that do not exist".into()));
-        }
-        // Copied into the engine's own arrays (allocated for huge pages).
-        grid.head.copy_from_slice(&cp.cell_head);
         let bodies: Vec<Body> = memory::collect(
             n,
             (0..n).map(|i| Body {
@@ -270,12 +245,13 @@ impl Engine {
                 },
             }),
         );
-        grid.check_lists(&bodies)
-            .map_err(|e| bad(format!("cell lists: {e}")))?;
-        // The lists are singly linked; the stored back links are only checked.
-        if grid.prev_links(&bodies) != cp.cell_prev {
-            return Err(bad("cell lists: back links do not match the lists".into()));
-        }
+        // The grids the engine builds for this state (the grids decide when
+        // crossings move the clock, so a resumed run must have the grids it was
+        // written with to continue bit for bit): one per size class, or one for
+        // all in a checkpoint written before carom had size classes.
+        let grids = restore_grids(&cp, &bodies, true)
+            .or_else(|e| restore_grids(&cp, &bodies, false).map_err(|_| e))
+            .map_err(bad)?;
         for (i, (&t, p)) in cp.event_times.iter().zip(&cp.pending).enumerate() {
             if t.is_nan() {
                 return Err(bad(format!("event time of disc {i} is NaN")));
@@ -304,14 +280,14 @@ impl Engine {
                 Ok(Reverse((t, seq, tag)))
             })
             .collect::<Result<_, EngineError>>()?;
-        let limit = crate::engine::origin_limit(cp.sim_box.size, grid.width);
+        let limit = crate::engine::origin_limit(cp.sim_box.size, grids.first.width);
         Ok(Engine {
             sim_box: cp.sim_box,
             species: cp.species,
             bodies,
             last_collision: memory::collect(n, cp.last_collision),
             queue,
-            grid,
+            grids,
             scheduled,
             next_seq: cp.next_seq,
             params: cp.params,
@@ -329,6 +305,46 @@ impl Engine {
             origin_limit: limit,
         })
     }
+}
+
+/// The cell grids of checkpoint `cp` (one per size class if `split`, else one for
+/// all), with the stored cell lists threaded through `bodies`, or what is wrong.
+fn restore_grids(cp: &Checkpoint, bodies: &[Body], split: bool) -> Result<Grids, String> {
+    let mut grids = Grids::new(&cp.sim_box, &cp.species, &cp.species_of, split);
+    let cells: usize = grids.iter().map(|g| g.head.len()).sum();
+    if cp.cell_head.len() != cells {
+        return Err(format!(
+            "{} cells stored, the box needs {cells} (a checkpoint of a dilute system, or \
+             of one with a species of no discs, written before carom capped the \
+             cells at {} per disc)",
+            cp.cell_head.len(),
+            crate::cells::CELLS_PER_DISC
+        ));
+    }
+    // Disc indices in the lists are checked by `check_lists_of` below; the cells
+    // must exist before they are stored (as u16).
+    for (i, c) in cp.cell.iter().enumerate() {
+        let grid = grids.get(grids.class(cp.species_of[i]));
+        if c[0] >= grid.n[0] || c[1] >= grid.n[1] {
+            return Err("cell lists refer to cells that do not exist".into());
+        }
+    }
+    // Copied into the engine's own arrays (allocated for huge pages).
+    let mut stored = cp.cell_head.as_slice();
+    for grid in grids.iter_mut() {
+        let (mine, rest) = stored.split_at(grid.head.len());
+        grid.head.copy_from_slice(mine);
+        stored = rest;
+    }
+    for (class, grid) in grids.iter().enumerate() {
+        grid.check_lists_of(bodies, |i| grids.class(cp.species_of[i]) as usize == class)
+            .map_err(|e| format!("cell lists: {e}"))?;
+    }
+    // The lists are singly linked; the stored back links are only checked.
+    if grids.prev_links(bodies) != cp.cell_prev {
+        return Err("cell lists: back links do not match the lists".into());
+    }
+    Ok(grids)
 }
 
 #[cfg(test)]

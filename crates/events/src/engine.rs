@@ -44,7 +44,8 @@
 //! recomputed at the head of the queue fell from 0.191 to 0.176 per collision, as
 //! a crossing now replaces an obsolete candidate at once.
 
-use crate::cells::{CellGrid, Link, NONE};
+use crate::cells::{Link, NONE};
+use crate::classes::{cells_along, Grids};
 use crate::error::EngineError;
 use crate::event::{Event, PairCollision, WallCollision};
 use crate::lookahead;
@@ -216,7 +217,8 @@ pub struct Engine {
     pub(crate) bodies: Vec<Body>,
     pub(crate) last_collision: Vec<f64>,
     pub(crate) queue: EventQueue,
-    pub(crate) grid: CellGrid,
+    /// The cell grids, one per size class (see [`crate::classes`]).
+    pub(crate) grids: Grids,
     pub(crate) scheduled: BinaryHeap<Reverse<(Time, u64, u64)>>,
     pub(crate) next_seq: u64,
     pub(crate) params: EngineParams,
@@ -455,8 +457,7 @@ impl Engine {
     /// rules (finite values, discs inside the box, no overlap).
     pub fn new(state: State, params: EngineParams) -> Result<Engine, EngineError> {
         let n = state.len();
-        let a_max = largest_radius(&state.species, &state.species_of);
-        let mut grid = CellGrid::new(&state.sim_box, 2.0 * a_max, n);
+        let mut grids = Grids::new(&state.sim_box, &state.species, &state.species_of, true);
         let mut bodies: Vec<Body> = memory::collect(
             n,
             (0..n).map(|i| Body {
@@ -473,10 +474,11 @@ impl Engine {
             }),
         );
         for i in 0..n {
+            let grid = grids.get_mut(grids.class(bodies[i].species));
             let c = grid.coords_of(bodies[i].r0);
             grid.insert(&mut bodies, i as u32, c);
         }
-        let limit = origin_limit(state.sim_box.size, grid.width);
+        let limit = origin_limit(state.sim_box.size, grids.first.width);
         let mut engine = Engine {
             sim_box: state.sim_box,
             species: state.species,
@@ -490,7 +492,7 @@ impl Engine {
             bodies,
             last_collision: memory::filled(n, f64::NEG_INFINITY),
             queue: EventQueue::new(n),
-            grid,
+            grids,
             scheduled: BinaryHeap::new(),
             next_seq: 0,
             params,
@@ -562,9 +564,15 @@ impl Engine {
         self.look_ahead
     }
 
-    /// Cells per axis of the neighbour grid.
+    /// Cells per axis of the neighbour grid (of the smallest discs, when a mixture
+    /// has a grid per size class: see [`crate::classes`]).
     pub fn cells(&self) -> [u32; 2] {
-        self.grid.n
+        self.grids.first.n
+    }
+
+    /// Number of cell grids: one per size class (see [`crate::classes`]).
+    pub fn grid_count(&self) -> usize {
+        self.grids.len()
     }
 
     /// Position of disc `i` at the current time (length), inside the box.
@@ -627,7 +635,7 @@ impl Engine {
             + self.species_of.capacity() * 2
             + (self.label.capacity() + self.index_of.capacity()) * 4
             + self.queue.heap_bytes()
-            + self.grid.heap_bytes()
+            + self.grids.heap_bytes()
     }
 
     /// Ask for an [`Event::Scheduled`] with `tag` at time `time` (≥ now). Events at the
@@ -822,8 +830,18 @@ impl Engine {
     pub(crate) fn reorder(&mut self) {
         self.rebase_clock();
         let n = self.len();
+        // Along the curve of the smallest discs' cells (their own cell for those).
+        let first = &self.grids.first;
         let mut keys: Vec<(u64, u32)> = (0..n)
-            .map(|i| (morton(self.bodies[i].link.coords()), i as u32))
+            .map(|i| {
+                let b = &self.bodies[i];
+                let c = if self.grids.class(b.species) == 0 {
+                    b.link.coords()
+                } else {
+                    first.coords_of(b.r0)
+                };
+                (morton(c), i as u32)
+            })
             .collect();
         keys.sort_unstable();
         let perm: Vec<usize> = keys.iter().map(|k| k.1 as usize).collect();
@@ -851,10 +869,13 @@ impl Engine {
         for (k, &l) in self.label.iter().enumerate() {
             self.index_of[l as usize] = k as u32;
         }
-        self.grid.head.fill(NONE);
+        for grid in self.grids.iter_mut() {
+            grid.head.fill(NONE);
+        }
         for k in (0..n).rev() {
             let c = self.bodies[k].link.coords();
-            self.grid.insert(&mut self.bodies, k as u32, c);
+            let grid = self.grids.get_mut(self.grids.class(self.bodies[k].species));
+            grid.insert(&mut self.bodies, k as u32, c);
         }
     }
 
@@ -1057,8 +1078,9 @@ impl Engine {
         let k = (aux / 2) as usize;
         let up = aux % 2 == 1;
         let mut c = self.bodies[i].link.coords();
-        let n = self.grid.n[k];
-        self.grid.remove(&mut self.bodies, i as u32);
+        let grid = self.grids.get_mut(self.grids.class(self.bodies[i].species));
+        let n = grid.n[k];
+        grid.remove(&mut self.bodies, i as u32);
         let mut wrapped = true;
         if up {
             if c[k] + 1 == n {
@@ -1076,7 +1098,7 @@ impl Engine {
             c[k] -= 1;
             wrapped = false;
         }
-        self.grid.insert(&mut self.bodies, i as u32, c);
+        grid.insert(&mut self.bodies, i as u32, c);
         self.stats.cell_crossings += 1;
         if wrapped {
             self.keep_origin_near([i]);
@@ -1097,6 +1119,9 @@ impl Engine {
         let ri = bi.at(now);
         let mut found = Found::NOTHING;
         self.scan(i, ri, [-1, 1], [-1, 1], &mut found);
+        if !self.grids.single() {
+            self.scan_other_classes(i, ri, &mut found);
+        }
         let boundary = self.boundary_event(i, ri, bi.v);
         self.file_event(i, &found, boundary);
     }
@@ -1167,6 +1192,9 @@ impl Engine {
         };
         // The strip's discs replace the candidate only when one meets earlier.
         self.scan(i, ri, xs, ys, &mut candidate);
+        if !self.grids.single() {
+            self.scan_other_classes(i, ri, &mut candidate);
+        }
         let boundary = self.boundary_event(i, ri, bi.v);
         self.file_event(i, &candidate, boundary);
     }
@@ -1192,7 +1220,7 @@ impl Engine {
     /// 0.009.
     #[inline(always)]
     fn scan(&self, i: usize, ri: DVec2, xs: [i32; 2], ys: [i32; 2], found: &mut Found) {
-        let grid = &self.grid;
+        let grid = self.grids.get(self.grids.class(self.bodies[i].species));
         let block = Block {
             bodies: &self.bodies,
             species: &self.species,
@@ -1264,6 +1292,51 @@ impl Engine {
         }
     }
 
+    /// Look for disc `i`'s earliest pair collision (before `found.best`, time from
+    /// now) with the discs of the other size classes: in each other class's grid,
+    /// every cell meeting disc i's own cell widened by its reach into that class
+    /// (see [`crate::classes`]). `ri` is its position now.
+    fn scan_other_classes(&self, i: usize, ri: DVec2, found: &mut Found) {
+        let block = Block {
+            bodies: &self.bodies,
+            species: &self.species,
+            head: &[],
+            now: self.clock,
+        };
+        let bi = &self.bodies[i];
+        let radius = self.species[bi.species as usize].radius;
+        let own_class = self.grids.class(bi.species);
+        let own = self.grids.get(own_class);
+        let c = bi.link.coords();
+        let size = self.sim_box.size;
+        for (class, grid) in self.grids.iter().enumerate() {
+            let class = class as u8;
+            if class == own_class {
+                continue;
+            }
+            let reach = self.grids.reach(radius, class);
+            let span = |k: usize| {
+                let lo = c[k] as f64 * own.width[k] - reach;
+                let hi = (c[k] + 1) as f64 * own.width[k] + reach;
+                cells_along(grid, k, lo, hi)
+            };
+            let nx = grid.n[0] as usize;
+            for (cy, sy) in span(1) {
+                for (cx, sx) in span(0) {
+                    // Seeing j's image at r_j + s L is seeing i at r_i − s L.
+                    let me = Scanner {
+                        bi,
+                        radius,
+                        ri: DVec2::new(ri.x - sx as f64 * size.x, ri.y - sy as f64 * size.y),
+                    };
+                    let code = ((sx + 1) + 3 * (sy + 1)) as u8;
+                    let first = grid.head[cy as usize * nx + cx as usize];
+                    block.scan_cell(&me, first, code, found);
+                }
+            }
+        }
+    }
+
     /// Disc `i`'s earliest cell crossing or wall collision from now: (time from now,
     /// kind, aux as in [`Body`]). `ri` is its position now, `v` its velocity.
     #[inline(always)]
@@ -1271,9 +1344,10 @@ impl Engine {
         let mut best = f64::INFINITY;
         let (mut kind, mut aux) = (KIND_NONE, 0u8);
         let c = self.bodies[i].link.coords();
+        let grid = self.grids.get(self.grids.class(self.bodies[i].species));
         for k in 0..2 {
             // Without branches: which axis is crossed first is a coin toss.
-            let (dt, up) = self.grid.crossing_time(k, c[k], ri[k], v[k]);
+            let (dt, up) = grid.crossing_time(k, c[k], ri[k], v[k]);
             let hit = dt < best;
             best = std::hint::select_unpredictable(hit, dt, best);
             kind = std::hint::select_unpredictable(hit, KIND_CELL, kind);

@@ -6,6 +6,7 @@
 //!
 //! * [`queue`] — one pending event per disc in an event calendar keyed by time;
 //! * [`cells`] — the cell grid used for neighbour search (crossings are events);
+//! * [`classes`] — a grid per size class in mixtures of very different sizes;
 //! * [`engine`] — the event loop ([`Engine`]);
 //! * [`init`] — initial states from a seed ([`SystemSpec`]);
 //! * [`checkpoint`] — the engine's complete state, for bit-identical resume;
@@ -17,6 +18,7 @@
 
 pub mod cells;
 pub mod checkpoint;
+pub mod classes;
 pub mod engine;
 pub mod error;
 pub mod event;

@@ -296,7 +296,10 @@ impl Engine {
     /// that profiles show its share (inlining it made no measurable difference).
     #[inline(never)]
     pub(crate) fn look_ahead(&self) {
-        let grid = &self.grid;
+        let grids = &self.grids;
+        // Each disc's blocks lie in the grid of its size class (the only one for
+        // equal discs); the scans of other classes' grids are not fetched ahead.
+        let grid_of = |b: &Body| grids.get(grids.class(b.species));
         let bodies = self.bodies.as_slice();
         let last = self.bodies.len() - 1;
         // The first disc of a cell, or (for an empty cell) the last disc: a needless
@@ -324,13 +327,16 @@ impl Engine {
                 prefetch_at(&self.bodies, p);
                 prefetch_at(&self.label, p);
             }
+            let grid = grid_of(b);
             for_rows(grid, event_cell(grid, b), |k| prefetch_at(&grid.head, k));
         }
         for d in self.queue.filed_ahead(bodies, 1) {
             let b = &self.bodies[d as usize];
+            let grid = grid_of(b);
             for_block(grid, event_cell(grid, b), fetch_first);
             if b.kind == KIND_PAIR {
                 let p = b.partner as usize;
+                let grid = grid_of(&self.bodies[p]);
                 for_rows(grid, self.bodies[p].link.coords(), |k| {
                     prefetch_at(&grid.head, k)
                 });
@@ -340,6 +346,7 @@ impl Engine {
             let b = &self.bodies[d as usize];
             if b.kind == KIND_PAIR {
                 let p = b.partner as usize;
+                let grid = grid_of(&self.bodies[p]);
                 for_block(grid, self.bodies[p].link.coords(), fetch_first);
             }
         }

@@ -1,0 +1,67 @@
+//! Mixture profiling driver:
+//! `cargo run --release -p carom-events --example mixture -- N_SMALL N_LARGE RATIO ETA COLLISIONS`.
+//! N_SMALL discs of diameter 1 and N_LARGE of diameter RATIO (masses as areas) at
+//! packing fraction ETA in a square periodic box (relaxed placement), equilibrated
+//! for 5 collisions per disc; prints collisions per second of CPU time over
+//! COLLISIONS more, and a hash of the final state.
+use carom_core::{Boundary, Species};
+use carom_events::{Engine, EngineParams, Placement, SystemSpec};
+
+fn main() {
+    let arg = |k: usize, d: f64| {
+        std::env::args()
+            .nth(k)
+            .and_then(|s| s.parse().ok())
+            .unwrap_or(d)
+    };
+    let small = arg(1, 20_000.0) as usize;
+    let large = arg(2, 200.0) as usize;
+    let ratio = arg(3, 5.0);
+    let eta = arg(4, 0.4);
+    let count = arg(5, 1e6) as u64;
+    let species = vec![
+        Species {
+            count: small,
+            radius: 0.5,
+            mass: 1.0,
+        },
+        Species {
+            count: large,
+            radius: 0.5 * ratio,
+            mass: ratio * ratio,
+        },
+    ];
+    let mut spec = SystemSpec::square_box(species, eta, [Boundary::Periodic; 2], 42);
+    spec.placement = Placement::Relaxed;
+    let mut e = Engine::new(spec.build().unwrap(), EngineParams::default()).unwrap();
+    let n = small + large;
+    e.run_collisions(5 * n as u64).unwrap();
+    let s0 = *e.stats();
+    let cpu = cpu_seconds();
+    e.run_collisions(count).unwrap();
+    let dcpu = cpu_seconds() - cpu;
+    let s = e.stats();
+    let c = (s.pair_collisions - s0.pair_collisions) as f64;
+    let state = e.state();
+    let mut h: u64 = 0xcbf2_9ce4_8422_2325;
+    for (r, v) in state.positions.iter().zip(&state.velocities) {
+        for x in [r.x, r.y, v.x, v.y] {
+            h = (h ^ x.to_bits()).wrapping_mul(0x0000_0100_0000_01b3);
+        }
+    }
+    println!(
+        "{small} + {large} ratio {ratio} eta {eta}: {} grid(s), {:.3e} coll/s of CPU time; crossings/collision {:.3}; heap bytes/disc {:.1}; hash {h:016x}",
+        e.grid_count(),
+        c / dcpu,
+        (s.cell_crossings - s0.cell_crossings) as f64 / c,
+        e.heap_bytes() as f64 / n as f64,
+    );
+}
+
+/// CPU time of this thread so far (s), from /proc/self/schedstat (Linux).
+fn cpu_seconds() -> f64 {
+    std::fs::read_to_string("/proc/thread-self/schedstat")
+        .ok()
+        .and_then(|s| s.split_whitespace().next()?.parse::<f64>().ok())
+        .map_or(f64::NAN, |ns| ns * 1e-9)
+}
