@@ -17,13 +17,10 @@
 //! work too: the same cell is then visited more than once, each time with a different
 //! image shift, which is exactly the set of images a disc can reach.
 //!
-//! One grid serves every species, so its cells are as wide as the largest contact
-//! distance (two of the largest discs): a mixture with a few much larger discs has
-//! many small discs per cell, and every scan tests them all. With 1 % large discs
-//! (20 000 + 200 at η = 0.4) a diameter ratio of 2, 5 and 10 ran at 0.63, 0.20 and
-//! 0.08 of the equal-size speed (1.71 M collisions/s); an equimolar ratio of 1.4 at
-//! 0.96. A grid per species, in which each disc scans the other species' grids over
-//! as many cells as its contact distance with them needs, would remove the penalty.
+//! A grid serves the discs of one size class: every species in a mixture of
+//! similar sizes, or in one of very different sizes, where that is estimated to be
+//! faster, each class of similar sizes its own grid (see [`crate::classes`]). Its
+//! cells are as wide as the largest contact distance among its discs.
 //!
 //! The cells are as narrow as the contact distance allows: a scan's cost follows the
 //! area of its block, and wider cells save fewer crossings than they add tests.

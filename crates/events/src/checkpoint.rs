@@ -381,6 +381,37 @@ mod tests {
         Engine::new(spec.build().unwrap(), EngineParams::default()).unwrap()
     }
 
+    /// 400 small discs and 6 of 6 times their diameter in a channel: a grid per
+    /// size class (or one for all, when not `split`).
+    fn asymmetric_channel(split: bool) -> Engine {
+        let species = vec![
+            Species {
+                count: 400,
+                radius: 0.5,
+                mass: 1.0,
+            },
+            Species {
+                count: 6,
+                radius: 3.0,
+                mass: 36.0,
+            },
+        ];
+        let size = box_size_for(&species, 0.35, 1.5);
+        let sim_box = SimBox {
+            size,
+            boundary: [Boundary::Periodic, Boundary::Walls { restitution: 1.0 }],
+        };
+        let spec = SystemSpec {
+            species,
+            sim_box,
+            temperature: 1.0,
+            seed: 8,
+            placement: Placement::Relaxed,
+            velocities: Velocities::MaxwellBoltzmann,
+        };
+        Engine::with_grids(spec.build().unwrap(), EngineParams::default(), split).unwrap()
+    }
+
     fn trajectory(e: &mut Engine, n: usize) -> Vec<Event> {
         (0..n).map(|_| e.next_event().unwrap().unwrap()).collect()
     }
@@ -409,6 +440,36 @@ mod tests {
         };
         assert_eq!(bits(&sa.positions), bits(&sb.positions));
         assert_eq!(bits(&sa.velocities), bits(&sb.velocities));
+    }
+
+    #[test]
+    fn a_grid_per_size_class_resumes_bit_identically() {
+        let mut a = asymmetric_channel(true);
+        assert_eq!(a.grid_count(), 2);
+        a.run_collisions(10_000).unwrap();
+        let mut b = Engine::from_checkpoint(a.checkpoint()).unwrap();
+        assert_eq!(b.grid_count(), 2);
+        assert_eq!(trajectory(&mut a, 20_000), trajectory(&mut b, 20_000));
+        assert_eq!(a.checkpoint(), b.checkpoint());
+    }
+
+    #[test]
+    fn a_checkpoint_with_one_grid_for_all_sizes_resumes_with_one() {
+        // As written before carom had size classes.
+        let mut a = asymmetric_channel(false);
+        assert_eq!(a.grid_count(), 1);
+        a.run_collisions(10_000).unwrap();
+        let mut b = Engine::from_checkpoint(a.checkpoint()).unwrap();
+        assert_eq!(b.grid_count(), 1);
+        assert_eq!(trajectory(&mut a, 20_000), trajectory(&mut b, 20_000));
+        assert_eq!(a.checkpoint(), b.checkpoint());
+        // Lists that fit neither layout are refused, naming the cells needed.
+        let mut cp = a.checkpoint();
+        cp.cell_head.push(u32::MAX);
+        let Err(EngineError::BadCheckpoint(m)) = Engine::from_checkpoint(cp) else {
+            panic!("accepted a checkpoint with a cell too many");
+        };
+        assert!(m.contains("cells stored"), "{m}");
     }
 
     #[test]

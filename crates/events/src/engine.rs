@@ -5,7 +5,9 @@
 //! clock rather than as a position and a last-update time (see the `Body` record
 //! in the source; the two are the same line), and owns exactly one pending event:
 //! the earliest of its next pair collision, wall collision and cell crossing, found
-//! by scanning the 3 × 3 block of cells around it. An event moves only the discs it
+//! by scanning the 3 × 3 block of cells around it (and, in a mixture of very
+//! different sizes with a grid per size class, the cells of the other classes'
+//! grids within reach: [`crate::classes`]). An event moves only the discs it
 //! touches: a velocity change moves the path's origin so that the path passes
 //! through the disc's position at that instant.
 //!
@@ -456,8 +458,19 @@ impl Engine {
     /// The state must come from [`crate::SystemSpec::build`] or satisfy the same
     /// rules (finite values, discs inside the box, no overlap).
     pub fn new(state: State, params: EngineParams) -> Result<Engine, EngineError> {
+        Self::with_grids(state, params, true)
+    }
+
+    /// [`Engine::new`] with a cell grid per size class where that is estimated to
+    /// be faster (`split`), or one grid for all discs (as carom had before size
+    /// classes; for tests of old checkpoints).
+    pub(crate) fn with_grids(
+        state: State,
+        params: EngineParams,
+        split: bool,
+    ) -> Result<Engine, EngineError> {
         let n = state.len();
-        let mut grids = Grids::new(&state.sim_box, &state.species, &state.species_of, true);
+        let mut grids = Grids::new(&state.sim_box, &state.species, &state.species_of, split);
         let mut bodies: Vec<Body> = memory::collect(
             n,
             (0..n).map(|i| Body {
@@ -1202,7 +1215,8 @@ impl Engine {
     /// Look for disc `i`'s earliest pair collision (before `found.best`, time from
     /// now) with the discs of the cells at offsets `xs[0]..=xs[1]` along x and
     /// `ys[0]..=ys[1]` along y from its cell: the whole 3 × 3 block, or the strip of
-    /// three cells a crossing brings next to it. `ri` is its position now.
+    /// three cells a crossing brings next to it, in `grid` (its size class's). `ri` is
+    /// its position now.
     ///
     /// Each cell is walked behind a branch on its emptiness (about half the cells
     /// are empty at η = 0.5). Testing the first disc of every cell without that
@@ -1338,7 +1352,8 @@ impl Engine {
     }
 
     /// Disc `i`'s earliest cell crossing or wall collision from now: (time from now,
-    /// kind, aux as in [`Body`]). `ri` is its position now, `v` its velocity.
+    /// kind, aux as in [`Body`]), in `grid` (its size class's). `ri` is its position now,
+    /// `v` its velocity.
     #[inline(always)]
     fn boundary_event(&self, i: usize, ri: DVec2, v: DVec2) -> (f64, u8, u8) {
         let mut best = f64::INFINITY;

@@ -61,7 +61,7 @@ uint32[] pending_partner          # the pair candidate's partner (4294967295 = n
 uint32[] pending_partner_count    # the partner's collision_count when the candidate was found
 uint32[] pending_kind             # kind | aux << 8; kind 0 none, 1 pair candidate, 2 wall, 3 cell crossing
 # --- neighbour grid ---
-uint32[] cell_head                # first disc per cell (4294967295 = none)
+uint32[] cell_head                # first disc per cell (4294967295 = none), grid after grid: one grid per size class, smallest discs first
 uint32[] cell_next
 uint32[] cell_prev
 uint32[] cell_column
