@@ -4,7 +4,10 @@
 //! so in a mixture with a few much larger discs every scan walks many small discs
 //! per cell. With 1 % large discs (20 000 + 200 at η = 0.4, periodic) a diameter
 //! ratio of 2, 5 and 10 ran at 0.63, 0.18 and 0.088 of the equal-size speed
-//! (1.69 M collisions/s; `examples/mixture`).
+//! (1.69 M collisions/s; `examples/mixture`). With a grid per size class the
+//! ratios 5 and 10 run at 0.82–1.04 and 0.50–0.68 M collisions/s, against 0.33–0.37
+//! and 0.14–0.15 M with one grid (the two builds side by side on the two cores,
+//! three runs each); ratio 3 at 0.74–1.00 against 0.56–0.68 M.
 //!
 //! The species with discs are therefore sorted by radius and may be split into
 //! classes of consecutive sizes. Each class has its own grid, with cells at least
@@ -21,7 +24,7 @@
 //! with a diameter ratio of 3 at η = 0.5: 1.28 M collisions/s with one grid,
 //! 0.75 M with two; 2000 + 2000 with ratio 10: 1.51 against 0.60 M). So the
 //! layout is chosen by an estimate of the neighbour search's work per unit time
-//! ([`work`]), a deterministic function of the species, their counts and the box:
+//! (`work` in the source), a deterministic function of the species, their counts and the box:
 //! the same configuration always gets the same grids, and so the same trajectory.
 //!
 //! Why nothing is missed (the argument of the module docs of [`crate::engine`],
