@@ -7,6 +7,9 @@
 use carom_core::{Boundary, Species};
 use carom_events::{Engine, EngineParams, Placement, SystemSpec};
 
+mod common;
+use common::cpu_seconds;
+
 fn main() {
     let arg = |k: usize, d: f64| {
         std::env::args()
@@ -43,12 +46,7 @@ fn main() {
     let s = e.stats();
     let c = (s.pair_collisions - s0.pair_collisions) as f64;
     let state = e.state();
-    let mut h: u64 = 0xcbf2_9ce4_8422_2325;
-    for (r, v) in state.positions.iter().zip(&state.velocities) {
-        for x in [r.x, r.y, v.x, v.y] {
-            h = (h ^ x.to_bits()).wrapping_mul(0x0000_0100_0000_01b3);
-        }
-    }
+    let h = common::state_hash(&state);
     println!(
         "{small} + {large} ratio {ratio} eta {eta}: {} grid(s), {:.3e} coll/s of CPU time; crossings/collision {:.3}; heap bytes/disc {:.1}; hash {h:016x}",
         e.grid_count(),
@@ -56,12 +54,4 @@ fn main() {
         (s.cell_crossings - s0.cell_crossings) as f64 / c,
         e.heap_bytes() as f64 / n as f64,
     );
-}
-
-/// CPU time of this thread so far (s), from /proc/self/schedstat (Linux).
-fn cpu_seconds() -> f64 {
-    std::fs::read_to_string("/proc/thread-self/schedstat")
-        .ok()
-        .and_then(|s| s.split_whitespace().next()?.parse::<f64>().ok())
-        .map_or(f64::NAN, |ns| ns * 1e-9)
 }

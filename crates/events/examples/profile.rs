@@ -5,6 +5,9 @@
 //! (default: the engine's own choice for N).
 use carom_events::{Engine, EngineParams, SystemSpec};
 
+mod common;
+use common::cpu_seconds;
+
 fn main() {
     let arg = |k: usize, d: f64| {
         std::env::args()
@@ -36,26 +39,11 @@ fn main() {
         (s.cell_crossings - s0.cell_crossings) as f64 / c,
         (s.stale_events - s0.stale_events) as f64 / c
     );
-    // FNV-1a over the bits of the final state: equal hashes mean bit-identical
-    // trajectories (for checking that a speed change left the dynamics alone).
     let state = e.state();
-    let mut h: u64 = 0xcbf2_9ce4_8422_2325;
-    for (r, v) in state.positions.iter().zip(&state.velocities) {
-        for x in [r.x, r.y, v.x, v.y] {
-            h = (h ^ x.to_bits()).wrapping_mul(0x0000_0100_0000_01b3);
-        }
-    }
+    let h = common::state_hash(&state);
     println!(
         "heap bytes per disc: {:.1}",
         e.heap_bytes() as f64 / n as f64
     );
     println!("final state hash {h:016x} at t = {}", state.time);
-}
-
-/// CPU time of this thread so far (s), from /proc/self/schedstat (Linux).
-fn cpu_seconds() -> f64 {
-    std::fs::read_to_string("/proc/thread-self/schedstat")
-        .ok()
-        .and_then(|s| s.split_whitespace().next()?.parse::<f64>().ok())
-        .map_or(f64::NAN, |ns| ns * 1e-9)
 }

@@ -352,20 +352,30 @@ mod tests {
     use crate::*;
     use carom_core::{Boundary, DVec2, SimBox, Species};
 
-    fn channel_mixture() -> Engine {
+    /// Small discs (diameter 1, mass 1) and `large` discs of radius `radius` and
+    /// mass `mass` at packing fraction `eta` in a channel (periodic in x, walls in
+    /// y, aspect 1.5), placed by `placement`, with a grid per size class where
+    /// that is faster if `split`.
+    fn channel(
+        (small, large): (usize, usize),
+        (radius, mass): (f64, f64),
+        eta: f64,
+        (seed, placement): (u64, Placement),
+        split: bool,
+    ) -> Engine {
         let species = vec![
             Species {
-                count: 150,
+                count: small,
                 radius: 0.5,
                 mass: 1.0,
             },
             Species {
-                count: 50,
-                radius: 0.7,
-                mass: 4.0,
+                count: large,
+                radius,
+                mass,
             },
         ];
-        let size = box_size_for(&species, 0.45, 1.5);
+        let size = box_size_for(&species, eta, 1.5);
         let sim_box = SimBox {
             size,
             boundary: [Boundary::Periodic, Boundary::Walls { restitution: 1.0 }],
@@ -374,42 +384,22 @@ mod tests {
             species,
             sim_box,
             temperature: 1.0,
-            seed: 7,
-            placement: Placement::Lattice,
+            seed,
+            placement,
             velocities: Velocities::MaxwellBoltzmann,
         };
-        Engine::new(spec.build().unwrap(), EngineParams::default()).unwrap()
+        Engine::with_grids(spec.build().unwrap(), EngineParams::default(), split).unwrap()
+    }
+
+    /// 150 + 50 discs of radii 0.5 and 0.7 in a channel (one grid).
+    fn channel_mixture() -> Engine {
+        channel((150, 50), (0.7, 4.0), 0.45, (7, Placement::Lattice), true)
     }
 
     /// 400 small discs and 6 of 6 times their diameter in a channel: a grid per
     /// size class (or one for all, when not `split`).
     fn asymmetric_channel(split: bool) -> Engine {
-        let species = vec![
-            Species {
-                count: 400,
-                radius: 0.5,
-                mass: 1.0,
-            },
-            Species {
-                count: 6,
-                radius: 3.0,
-                mass: 36.0,
-            },
-        ];
-        let size = box_size_for(&species, 0.35, 1.5);
-        let sim_box = SimBox {
-            size,
-            boundary: [Boundary::Periodic, Boundary::Walls { restitution: 1.0 }],
-        };
-        let spec = SystemSpec {
-            species,
-            sim_box,
-            temperature: 1.0,
-            seed: 8,
-            placement: Placement::Relaxed,
-            velocities: Velocities::MaxwellBoltzmann,
-        };
-        Engine::with_grids(spec.build().unwrap(), EngineParams::default(), split).unwrap()
+        channel((400, 6), (3.0, 36.0), 0.35, (8, Placement::Relaxed), split)
     }
 
     fn trajectory(e: &mut Engine, n: usize) -> Vec<Event> {
