@@ -1215,8 +1215,8 @@ impl Engine {
     /// Look for disc `i`'s earliest pair collision (before `found.best`, time from
     /// now) with the discs of the cells at offsets `xs[0]..=xs[1]` along x and
     /// `ys[0]..=ys[1]` along y from its cell: the whole 3 × 3 block, or the strip of
-    /// three cells a crossing brings next to it, in `grid` (its size class's). `ri` is
-    /// its position now.
+    /// three cells a crossing brings next to it, in the grid of its size class. `ri`
+    /// is its position now.
     ///
     /// Each cell is walked behind a branch on its emptiness (about half the cells
     /// are empty at η = 0.5). Testing the first disc of every cell without that
@@ -1352,8 +1352,8 @@ impl Engine {
     }
 
     /// Disc `i`'s earliest cell crossing or wall collision from now: (time from now,
-    /// kind, aux as in [`Body`]), in `grid` (its size class's). `ri` is its position now,
-    /// `v` its velocity.
+    /// kind, aux as in [`Body`]), in the grid of its size class. `ri` is its position
+    /// now, `v` its velocity.
     #[inline(always)]
     fn boundary_event(&self, i: usize, ri: DVec2, v: DVec2) -> (f64, u8, u8) {
         let mut best = f64::INFINITY;
