@@ -409,11 +409,11 @@ fn test_pair(
 }
 
 /// The neighbour search's view of the engine: disc records (with the cell lists'
-/// links), species and the first disc of each cell.
+/// links), species and the current time; the cells' first discs come from whichever
+/// grid is scanned.
 struct Block<'a> {
     bodies: &'a [Body],
     species: &'a [Species],
-    head: &'a [u32],
     now: f64,
 }
 
@@ -1238,14 +1238,13 @@ impl Engine {
         let block = Block {
             bodies: &self.bodies,
             species: &self.species,
-            head: &grid.head,
             now: self.clock,
         };
         let bi = &self.bodies[i];
         let radius = self.species[bi.species as usize].radius;
         let c = bi.link.coords();
         let [nx, ny] = grid.n;
-        let head = block.head;
+        let head = grid.head.as_slice();
         if c[0] >= 1 && c[0] + 1 < nx && c[1] >= 1 && c[1] + 1 < ny {
             // Interior cell (almost all of them): no image shifts, and each row of
             // the block is consecutive cells.
@@ -1314,7 +1313,6 @@ impl Engine {
         let block = Block {
             bodies: &self.bodies,
             species: &self.species,
-            head: &[],
             now: self.clock,
         };
         let bi = &self.bodies[i];
