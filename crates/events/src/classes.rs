@@ -101,11 +101,7 @@ impl Grids {
         let mut radius = Vec::new();
         let mut grids = Vec::new();
         for (c, members) in best.iter().enumerate() {
-            let r = members
-                .iter()
-                .map(|&s| species[s].radius)
-                .fold(0.0, f64::max);
-            let discs = members.iter().map(|&s| count[s]).sum();
+            let (r, discs) = extent(species, &count, members);
             for &s in members {
                 class_of[s] = c as u8;
             }
@@ -241,6 +237,16 @@ pub fn cells_along(
     })
 }
 
+/// The largest radius (length) and the number of discs of the class made of the
+/// species `members` (`count`: discs of each species).
+fn extent(species: &[Species], count: &[usize], members: &[usize]) -> (f64, usize) {
+    let radius = members
+        .iter()
+        .map(|&s| species[s].radius)
+        .fold(0.0, f64::max);
+    (radius, members.iter().map(|&s| count[s]).sum())
+}
+
 /// The layouts tried besides one grid for all: the species `order` (present
 /// species by increasing radius) cut into runs. Every way of cutting up to
 /// [`ALL_LAYOUTS_UP_TO`] species; beyond that, the cuts where the radius grows by
@@ -322,11 +328,7 @@ fn work(
     let classes: Vec<Class> = layout
         .iter()
         .map(|members| {
-            let radius = members
-                .iter()
-                .map(|&s| species[s].radius)
-                .fold(0.0, f64::max);
-            let discs = members.iter().map(|&s| count[s]).sum();
+            let (radius, discs) = extent(species, count, members);
             let n = CellGrid::shape(sim_box, 2.0 * radius, discs);
             Class {
                 radius,
