@@ -5,10 +5,43 @@ use carom::events::{Engine, EngineParams, SystemSpec};
 /// An equilibrated periodic fluid of `n` monodisperse discs (σ = 1, m = 1, kT = 1,
 /// seed 42) at packing fraction `eta`: a lattice start with Maxwell–Boltzmann
 /// velocities, run for 10 collisions per disc.
+#[allow(dead_code)] // each bench binary uses only some of these systems
 pub fn equilibrated_fluid(n: usize, eta: f64) -> Engine {
     let spec = SystemSpec::periodic_fluid(n, eta, 42);
     let mut e = Engine::new(spec.build().expect("valid system"), EngineParams::default())
         .expect("engine starts");
     e.run_collisions(10 * n as u64).expect("equilibration runs");
+    e
+}
+
+/// An equilibrated periodic binary mixture (kT = 1, seed 42): `small` discs of
+/// diameter 1 and mass 1 and `large` of diameter `ratio` and mass `ratio²`, at
+/// packing fraction `eta`, placed by relaxed placement and run for 10 collisions
+/// per disc.
+#[allow(dead_code)] // each bench binary uses only some of these systems
+pub fn equilibrated_mixture(small: usize, large: usize, ratio: f64, eta: f64) -> Engine {
+    use carom::core::{Boundary, Species};
+    use carom::events::Placement;
+    let species = vec![
+        Species {
+            count: small,
+            radius: 0.5,
+            mass: 1.0,
+        },
+        Species {
+            count: large,
+            radius: 0.5 * ratio,
+            mass: ratio * ratio,
+        },
+    ];
+    let mut spec = SystemSpec::square_box(species, eta, [Boundary::Periodic; 2], 42);
+    spec.placement = Placement::Relaxed;
+    let mut e = Engine::new(
+        spec.build().expect("valid mixture"),
+        EngineParams::default(),
+    )
+    .expect("engine starts");
+    e.run_collisions(10 * (small + large) as u64)
+        .expect("equilibration runs");
     e
 }

@@ -1,0 +1,54 @@
+//! Collisions per second of the bare engine (no logging) for binary mixtures with a
+//! few large discs: 20 000 discs of diameter 1 and 200 of diameter 1, 2, 5 and 10
+//! (masses ∝ area) at η = 0.4 in a periodic square box, relaxed placement,
+//! equilibrated for 10 collisions per disc. Shows what a grid per size class
+//! (`carom_events::classes`) buys where it is chosen (ratios 5 and 10) and that the
+//! other cases keep one grid.
+//!
+//! Run: `cargo bench --bench mixture`; one case:
+//! `cargo bench --bench mixture -- 'ratio=5$'`. The setup prints how many grids
+//! each case got.
+
+mod common;
+
+use carom::events::Engine;
+use common::equilibrated_mixture;
+use criterion::{criterion_group, criterion_main, Criterion, Throughput};
+use std::time::{Duration, Instant};
+
+fn bench(c: &mut Criterion) {
+    let mut group = c.benchmark_group("20000+200 eta=0.40");
+    let batch = 100_000u64;
+    group.throughput(Throughput::Elements(batch));
+    group.sample_size(20);
+    group.measurement_time(Duration::from_secs(8));
+    for ratio in [1.0, 2.0, 5.0, 10.0] {
+        // Built once, on first use (only for the cases the filter selects).
+        let mut slot: Option<Engine> = None;
+        group.bench_function(format!("ratio={ratio}"), |b| {
+            let e = slot.get_or_insert_with(|| {
+                let e = equilibrated_mixture(20_000, 200, ratio, 0.4);
+                eprintln!("\n[ratio={ratio}] {} cell grid(s)", e.grid_count());
+                e
+            });
+            b.iter_custom(|iters| {
+                let start = Instant::now();
+                for _ in 0..iters {
+                    e.run_collisions(batch).expect("no runaway in elastic runs");
+                }
+                start.elapsed()
+            });
+        });
+    }
+    group.finish();
+}
+
+// Plots off: criterion draws them with plotters, whose PDF backend panics when the
+// machine has no fonts (the 2-core test machine has none), ending the run after the
+// first case. The numbers are printed either way.
+criterion_group! {
+    name = benches;
+    config = Criterion::default().without_plots();
+    targets = bench
+}
+criterion_main!(benches);
