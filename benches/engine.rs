@@ -11,9 +11,9 @@
 mod common;
 
 use carom::events::Engine;
-use common::equilibrated_fluid as engine;
+use common::{equilibrated_fluid as engine, time_batches};
 use criterion::{criterion_group, criterion_main, Criterion, Throughput};
-use std::time::{Duration, Instant};
+use std::time::Duration;
 
 fn bench(c: &mut Criterion) {
     for eta in [0.5, 0.7] {
@@ -36,13 +36,7 @@ fn bench(c: &mut Criterion) {
                     );
                     e
                 });
-                b.iter_custom(|iters| {
-                    let start = Instant::now();
-                    for _ in 0..iters {
-                        e.run_collisions(batch).expect("no runaway in elastic runs");
-                    }
-                    start.elapsed()
-                });
+                time_batches(b, e, batch);
             });
         }
         group.finish();

@@ -12,9 +12,9 @@
 mod common;
 
 use carom::events::Engine;
-use common::equilibrated_mixture;
+use common::{equilibrated_mixture, time_batches};
 use criterion::{criterion_group, criterion_main, Criterion, Throughput};
-use std::time::{Duration, Instant};
+use std::time::Duration;
 
 fn bench(c: &mut Criterion) {
     let mut group = c.benchmark_group("20000+200 eta=0.40");
@@ -31,13 +31,7 @@ fn bench(c: &mut Criterion) {
                 eprintln!("\n[ratio={ratio}] {} cell grid(s)", e.grid_count());
                 e
             });
-            b.iter_custom(|iters| {
-                let start = Instant::now();
-                for _ in 0..iters {
-                    e.run_collisions(batch).expect("no runaway in elastic runs");
-                }
-                start.elapsed()
-            });
+            time_batches(b, e, batch);
         });
     }
     group.finish();

@@ -160,11 +160,7 @@ fn wall_pressure_of_a_dilute_gas_uses_the_reachable_area() {
     // 40 discs of diameter 1 in a 30 × 30 walled box: η = 0.035, so
     // Z = 1 + 2η g(σ) ≈ 1.07; the reachable area is 6.6 % smaller than the box,
     // which an estimator using the full box would miss.
-    let species = vec![Species {
-        count: 40,
-        radius: 0.5,
-        mass: 1.0,
-    }];
+    let species = vec![Species::reference(40)];
     let spec = SystemSpec {
         species: species.clone(),
         sim_box: SimBox::walled(30.0, 30.0, 1.0),
@@ -230,11 +226,7 @@ fn binary(
     seed: u64,
 ) -> SystemSpec {
     let species: Vec<Species> = (0..2)
-        .map(|k| Species {
-            count: n_each,
-            radius: radius[k],
-            mass: mass[k],
-        })
+        .map(|k| Species::new(n_each, radius[k], mass[k]))
         .collect();
     let size = box_size_for(&species, eta, 1.0);
     SystemSpec {

@@ -106,11 +106,7 @@ fn a_drifting_pair_meets_at_contact_however_far_it_drifted() {
     let delta = 2.5e-8;
     let state = State {
         sim_box: SimBox::periodic(10.0, 10.0),
-        species: vec![Species {
-            count: 2,
-            radius: 0.5,
-            mass: 1.0,
-        }],
+        species: vec![Species::reference(2)],
         species_of: vec![0, 0],
         positions: vec![DVec2::new(3.0, 5.0), DVec2::new(4.5, 5.0)],
         // Slightly different drift speeds, so that the two origins differ and

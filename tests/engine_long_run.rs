@@ -163,18 +163,7 @@ fn elastic_run_1e7_keeps_invariants_and_is_reproducible() {
 fn size_classes_keep_invariants_and_are_reproducible() {
     use carom::core::{Boundary, SimBox, Species};
     use carom::events::{box_size_for, Placement, Velocities};
-    let species = vec![
-        Species {
-            count: 2000,
-            radius: 0.5,
-            mass: 1.0,
-        },
-        Species {
-            count: 20,
-            radius: 4.0,
-            mass: 64.0,
-        },
-    ];
+    let species = vec![Species::reference(2000), Species::new(20, 4.0, 64.0)];
     let spec = SystemSpec {
         sim_box: SimBox {
             size: box_size_for(&species, 0.45, 1.0),

@@ -64,18 +64,7 @@ fn periodic_fluids_are_unchanged() {
 
 #[test]
 fn walled_mixture_is_unchanged() {
-    let species = vec![
-        Species {
-            count: 300,
-            radius: 0.4,
-            mass: 1.0,
-        },
-        Species {
-            count: 100,
-            radius: 0.8,
-            mass: 3.0,
-        },
-    ];
+    let species = vec![Species::new(300, 0.4, 1.0), Species::new(100, 0.8, 3.0)];
     let s = lattice_spec(species, SimBox::walled(40.0, 25.0, 0.95), 14);
     same_with_and_without("walled mixture", s, EngineParams::default(), 60_000);
 }

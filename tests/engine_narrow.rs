@@ -68,18 +68,7 @@ fn periodic_box_three_cells_across() {
 #[test]
 fn periodic_mixture_two_cells_across() {
     // Cells are sized by the large discs (diameter 1.2): 2.9 / 1.2 → 2 cells.
-    let species = vec![
-        Species {
-            count: 20,
-            radius: 0.3,
-            mass: 0.5,
-        },
-        Species {
-            count: 12,
-            radius: 0.6,
-            mass: 2.0,
-        },
-    ];
+    let species = vec![Species::new(20, 0.3, 0.5), Species::new(12, 0.6, 2.0)];
     run_checked(
         "periodic mixture 2.9 x 24",
         lattice_spec(species, SimBox::periodic(2.9, 24.0), 3),

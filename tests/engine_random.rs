@@ -47,10 +47,12 @@ const EVENTS: u64 = 20_000;
 fn draw(case: u64) -> (SystemSpec, EngineParams) {
     let mut g = Pcg64::seed_from_u64(case);
     let species: Vec<Species> = (0..g.random_range(1..=3usize))
-        .map(|_| Species {
-            count: g.random_range(1..=120usize),
-            radius: 0.5 * 4f64.powf(g.random::<f64>()),
-            mass: 10f64.powf(g.random::<f64>() * 2.0 - 1.0),
+        .map(|_| {
+            Species::new(
+                g.random_range(1..=120usize),
+                0.5 * 4f64.powf(g.random::<f64>()),
+                10f64.powf(g.random::<f64>() * 2.0 - 1.0),
+            )
         })
         .collect();
     let random = g.random::<bool>();

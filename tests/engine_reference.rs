@@ -249,27 +249,12 @@ impl System {
 }
 
 fn mono(n: usize) -> Vec<Species> {
-    vec![Species {
-        count: n,
-        radius: 0.5,
-        mass: 1.0,
-    }]
+    vec![Species::reference(n)]
 }
 
 /// Binary mixture: small light discs and large heavy ones.
 fn mixture(n_small: usize, n_large: usize) -> Vec<Species> {
-    vec![
-        Species {
-            count: n_small,
-            radius: 0.5,
-            mass: 1.0,
-        },
-        Species {
-            count: n_large,
-            radius: 0.7,
-            mass: 2.5,
-        },
-    ]
+    vec![Species::reference(n_small), Species::new(n_large, 0.7, 2.5)]
 }
 
 const PERIODIC: [bool; 2] = [false, false];
@@ -604,18 +589,7 @@ fn oracle_channel_mixture() {
 /// Small discs (diameter 1, mass 1) and a few much larger ones (diameter `ratio`,
 /// mass ∝ area): each size gets its own cell grid (see `carom::events::classes`).
 fn asymmetric(n_small: usize, n_large: usize, ratio: f64) -> Vec<Species> {
-    vec![
-        Species {
-            count: n_small,
-            radius: 0.5,
-            mass: 1.0,
-        },
-        Species {
-            count: n_large,
-            radius: 0.5 * ratio,
-            mass: ratio * ratio,
-        },
-    ]
+    vec![Species::reference(n_small), Species::scaled(n_large, ratio)]
 }
 
 /// Mixtures of very different sizes, where the engine keeps a cell grid per size
@@ -675,10 +649,12 @@ fn oracle_random_dynamics() {
     for case in 0..40u64 {
         let mut g = rand_pcg::Pcg64::seed_from_u64(case);
         let species: Vec<Species> = (0..g.random_range(1..=2usize))
-            .map(|_| Species {
-                count: g.random_range(1..=30usize),
-                radius: g.random_range(0.5..1.0),
-                mass: g.random_range(0.2..5.0),
+            .map(|_| {
+                Species::new(
+                    g.random_range(1..=30usize),
+                    g.random_range(0.5..1.0),
+                    g.random_range(0.2..5.0),
+                )
             })
             .collect();
         let eta = g.random_range(0.05..0.45);

@@ -41,11 +41,7 @@ use carom::events::{
 };
 
 fn state(n: usize, eta: f64, boundary: [Boundary; 2], seed: u64) -> State {
-    let species = vec![Species {
-        count: n,
-        radius: 0.5,
-        mass: 1.0,
-    }];
+    let species = vec![Species::reference(n)];
     SystemSpec::square_box(species, eta, boundary, seed)
         .build()
         .expect("valid system")
@@ -53,18 +49,7 @@ fn state(n: usize, eta: f64, boundary: [Boundary; 2], seed: u64) -> State {
 
 /// A binary mixture, so that the reduced mass differs between pairs.
 fn mixture_state(eta: f64, seed: u64) -> State {
-    let species = vec![
-        Species {
-            count: 250,
-            radius: 0.5,
-            mass: 1.0,
-        },
-        Species {
-            count: 150,
-            radius: 0.6,
-            mass: 2.0,
-        },
-    ];
+    let species = vec![Species::reference(250), Species::new(150, 0.6, 2.0)];
     SystemSpec::square_box(species, eta, [Boundary::Periodic; 2], seed)
         .build()
         .expect("valid system")
@@ -507,11 +492,7 @@ fn a_pair_left_without_normal_velocity_does_not_meet_again_at_once() {
             r1.x %= 40.0;
             let state = State {
                 sim_box: carom::core::SimBox::periodic(40.0, 40.0),
-                species: vec![Species {
-                    count: 2,
-                    radius: 2.5,
-                    mass: 1.0,
-                }],
+                species: vec![Species::new(2, 2.5, 1.0)],
                 species_of: vec![0, 0],
                 positions: vec![r0, r1],
                 velocities: vec![v0, v1],
@@ -601,11 +582,7 @@ fn wedge(tc: f64) -> Engine {
                 Boundary::Periodic,
             ],
         },
-        species: vec![Species {
-            count: 4,
-            radius: 0.6508663969821852,
-            mass: 4.232897751275343,
-        }],
+        species: vec![Species::new(4, 0.6508663969821852, 4.232897751275343)],
         species_of: vec![0; 4],
         positions: vec![
             DVec2::new(1.7358758039699538, 2.425801893747888),

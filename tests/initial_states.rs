@@ -56,26 +56,11 @@ const ASPECTS: [f64; 7] = [
 const BIG_N: [usize; 4] = [1000, 4096, 10007, 20000];
 
 fn mono(n: usize) -> Vec<Species> {
-    vec![Species {
-        count: n,
-        radius: 0.5,
-        mass: 1.0,
-    }]
+    vec![Species::reference(n)]
 }
 
 fn mixture(n_small: usize, n_large: usize) -> Vec<Species> {
-    vec![
-        Species {
-            count: n_small,
-            radius: 0.5,
-            mass: 1.0,
-        },
-        Species {
-            count: n_large,
-            radius: 0.8,
-            mass: 3.0,
-        },
-    ]
+    vec![Species::reference(n_small), Species::new(n_large, 0.8, 3.0)]
 }
 
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -637,18 +622,7 @@ fn random_placement_at_low_density() {
 /// leave no hole for a large one: the build fails.)
 #[test]
 fn random_placement_of_an_asymmetric_mixture() {
-    let species = vec![
-        Species {
-            count: 2000,
-            radius: 0.5,
-            mass: 1.0,
-        },
-        Species {
-            count: 125,
-            radius: 2.0,
-            mass: 16.0,
-        },
-    ];
+    let species = vec![Species::reference(2000), Species::new(125, 2.0, 16.0)];
     for kind in [Kind::Periodic, Kind::Walls, Kind::Channel] {
         let sp = SystemSpec {
             placement: Placement::Random,
@@ -669,38 +643,15 @@ fn random_placement_of_an_asymmetric_mixture() {
 /// The equimolar binary mixture of radii 0.5 and 0.7 (masses ∝ area), the usual
 /// glass former in 2D.
 fn glass(n_each: usize) -> Vec<Species> {
-    vec![
-        Species {
-            count: n_each,
-            radius: 0.5,
-            mass: 1.0,
-        },
-        Species {
-            count: n_each,
-            radius: 0.7,
-            mass: 1.96,
-        },
-    ]
+    vec![Species::reference(n_each), Species::new(n_each, 0.7, 1.96)]
 }
 
 #[test]
 fn relaxed_placement_prepares_dense_mixtures() {
     let three = vec![
-        Species {
-            count: 400,
-            radius: 0.5,
-            mass: 1.0,
-        },
-        Species {
-            count: 300,
-            radius: 0.6,
-            mass: 1.44,
-        },
-        Species {
-            count: 200,
-            radius: 0.8,
-            mass: 2.56,
-        },
+        Species::reference(400),
+        Species::new(300, 0.6, 1.44),
+        Species::new(200, 0.8, 2.56),
     ];
     let cases = [
         (glass(1000), 0.80, 1.0, Kind::Periodic),
@@ -896,18 +847,7 @@ fn maxwell_boltzmann_has_zero_momentum_and_exact_temperature() {
 /// mean and ≈ √8 for the second moment of Exp(1)).
 #[test]
 fn maxwell_boltzmann_equipartition_in_a_mixture() {
-    let species = vec![
-        Species {
-            count: 10_000,
-            radius: 0.5,
-            mass: 1.0,
-        },
-        Species {
-            count: 10_000,
-            radius: 0.5,
-            mass: 4.0,
-        },
-    ];
+    let species = vec![Species::reference(10_000), Species::new(10_000, 0.5, 4.0)];
     let kt = 1.7;
     let sp = SystemSpec {
         temperature: kt,
@@ -1416,11 +1356,7 @@ fn a_species_with_no_discs_changes_nothing() {
     let with_empty = |extra: bool| {
         let mut species = mono(400);
         if extra {
-            species.push(Species {
-                count: 0,
-                radius: 30.0,
-                mass: 1.0,
-            });
+            species.push(Species::new(0, 30.0, 1.0));
         }
         let s = spec(species, 0.5, 1.0, Kind::Periodic, 11);
         let mut e = Engine::new(

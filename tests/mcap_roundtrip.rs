@@ -391,15 +391,7 @@ fn thermo_pressure_matches_the_equation_of_state() {
     assert!((b.z.unwrap() - 4.106).abs() < 0.4, "running Z = {:?}", b.z);
     let p = b.pressure.unwrap();
     let area = {
-        let snap = carom::events::box_size_for(
-            &[carom::core::Species {
-                count: 400,
-                radius: 0.5,
-                mass: 1.0,
-            }],
-            0.5,
-            1.0,
-        );
+        let snap = carom::events::box_size_for(&[carom::core::Species::reference(400)], 0.5, 1.0);
         snap.x * snap.y
     };
     assert!((p * area / (400.0 * b.temperature) - b.z.unwrap()).abs() < 1e-9);

@@ -375,11 +375,7 @@ fn li2022(eta: f64) -> (f64, f64) {
 }
 
 fn mono(n: usize) -> Vec<Species> {
-    vec![Species {
-        count: n,
-        radius: 0.5,
-        mass: 1.0,
-    }]
+    vec![Species::reference(n)]
 }
 
 fn periodic_spec(species: Vec<Species>, eta: f64, seed: u64, velocities: Velocities) -> SystemSpec {
@@ -745,18 +741,7 @@ fn maxwell_boltzmann(key: &'static str, title: &str, seeds: u64, snapshots: usiz
         ("monodisperse", mono(1000)),
         (
             "binary m2/m1 = 4",
-            vec![
-                Species {
-                    count: 500,
-                    radius: 0.5,
-                    mass: 1.0,
-                },
-                Species {
-                    count: 500,
-                    radius: 0.5,
-                    mass: 4.0,
-                },
-            ],
+            vec![Species::reference(500), Species::new(500, 0.5, 4.0)],
         ),
     ];
     let stride = 20;

@@ -1278,11 +1278,7 @@ mod tests {
 
     fn run() -> RunDescription {
         RunDescription {
-            species: vec![Species {
-                count: 2,
-                radius: 0.5,
-                mass: 1.0,
-            }],
+            species: vec![Species::reference(2)],
             sim_box: SimBox::periodic(10.0, 10.0),
             restitution: Restitution::Elastic,
             collision_stride: 1,
@@ -1349,18 +1345,7 @@ mod tests {
         use rand_distr::{Distribution, StandardNormal};
         let (light, heavy, snapshots) = (2000, 400, 20);
         let mut r = run();
-        r.species = vec![
-            Species {
-                count: light,
-                radius: 0.5,
-                mass: 1.0,
-            },
-            Species {
-                count: heavy,
-                radius: 0.5,
-                mass: 100.0,
-            },
-        ];
+        r.species = vec![Species::reference(light), Species::new(heavy, 0.5, 100.0)];
         r.sim_box = SimBox::periodic(100.0, 100.0);
         let mut rng = rand_pcg::Pcg64::seed_from_u64(7);
         let mut gauss = |m: f64| {

@@ -18,11 +18,7 @@ pub fn lattice_spec(species: Vec<Species>, sim_box: SimBox, seed: u64) -> System
 
 /// `n` discs of radius 0.5 and mass 1.
 pub fn mono(n: usize) -> Vec<Species> {
-    vec![Species {
-        count: n,
-        radius: 0.5,
-        mass: 1.0,
-    }]
+    vec![Species::reference(n)]
 }
 
 /// Random dynamics, as the random-system tests draw them: the pair rule (elastic,

@@ -24,18 +24,10 @@ pub fn tmp(name: &str) -> PathBuf {
 /// N discs of diameter 1 (plus a few heavy ones when `mixture`) at packing `eta`,
 /// periodic in x; walls in y when `walls`.
 pub fn system(n: usize, eta: f64, walls: bool, mixture: bool, seed: u64) -> SystemSpec {
-    let mut species = vec![Species {
-        count: n,
-        radius: 0.5,
-        mass: 1.0,
-    }];
+    let mut species = vec![Species::reference(n)];
     if mixture {
         species[0].count = n - n / 5;
-        species.push(Species {
-            count: n / 5,
-            radius: 0.7,
-            mass: 3.0,
-        });
+        species.push(Species::new(n / 5, 0.7, 3.0));
     }
     let y = if walls {
         Boundary::Walls { restitution: 1.0 }

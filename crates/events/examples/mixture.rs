@@ -8,32 +8,15 @@ use carom_core::{Boundary, Species};
 use carom_events::{Engine, EngineParams, Placement, SystemSpec};
 
 mod common;
-use common::cpu_seconds;
+use common::{arg, cpu_seconds};
 
 fn main() {
-    let arg = |k: usize, d: f64| {
-        std::env::args()
-            .nth(k)
-            .and_then(|s| s.parse().ok())
-            .unwrap_or(d)
-    };
     let small = arg(1, 20_000.0) as usize;
     let large = arg(2, 200.0) as usize;
     let ratio = arg(3, 5.0);
     let eta = arg(4, 0.4);
     let count = arg(5, 1e6) as u64;
-    let species = vec![
-        Species {
-            count: small,
-            radius: 0.5,
-            mass: 1.0,
-        },
-        Species {
-            count: large,
-            radius: 0.5 * ratio,
-            mass: ratio * ratio,
-        },
-    ];
+    let species = vec![Species::reference(small), Species::scaled(large, ratio)];
     let mut spec = SystemSpec::square_box(species, eta, [Boundary::Periodic; 2], 42);
     spec.placement = Placement::Relaxed;
     let mut e = Engine::new(spec.build().unwrap(), EngineParams::default()).unwrap();

@@ -6,15 +6,9 @@
 use carom_events::{Engine, EngineParams, SystemSpec};
 
 mod common;
-use common::cpu_seconds;
+use common::{arg, cpu_seconds};
 
 fn main() {
-    let arg = |k: usize, d: f64| {
-        std::env::args()
-            .nth(k)
-            .and_then(|s| s.parse().ok())
-            .unwrap_or(d)
-    };
     let n = arg(1, 10_000.0) as usize;
     let eta = arg(2, 0.5);
     let count = arg(3, 1e6) as u64;

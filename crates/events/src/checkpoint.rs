@@ -364,11 +364,7 @@ mod tests {
         split: bool,
     ) -> Engine {
         let species = vec![
-            Species {
-                count: small,
-                radius: 0.5,
-                mass: 1.0,
-            },
+            Species::reference(small),
             Species {
                 count: large,
                 radius,

@@ -387,18 +387,7 @@ mod tests {
     use carom_core::Boundary;
 
     fn two(n_small: usize, n_large: usize, ratio: f64) -> Vec<Species> {
-        vec![
-            Species {
-                count: n_small,
-                radius: 0.5,
-                mass: 1.0,
-            },
-            Species {
-                count: n_large,
-                radius: 0.5 * ratio,
-                mass: ratio * ratio,
-            },
-        ]
+        vec![Species::reference(n_small), Species::scaled(n_large, ratio)]
     }
 
     fn periodic(size: DVec2) -> SimBox {
@@ -462,14 +451,7 @@ mod tests {
     fn similar_sizes_share_a_class() {
         // Two small species 10 % apart and one large: the small ones share a grid.
         let mut species = two(10_000, 100, 10.0);
-        species.insert(
-            1,
-            Species {
-                count: 10_000,
-                radius: 0.55,
-                mass: 1.2,
-            },
-        );
+        species.insert(1, Species::new(10_000, 0.55, 1.2));
         let b = periodic(crate::box_size_for(&species, 0.4, 1.0));
         let g = grids_for(&species, &b);
         assert_eq!(g.class_of, vec![0, 0, 1]);

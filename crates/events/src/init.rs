@@ -172,11 +172,7 @@ impl SystemSpec {
     /// packing fraction `eta` in a square periodic box, on a lattice, with
     /// Maxwell–Boltzmann velocities at kT = 1 drawn from `seed`.
     pub fn periodic_fluid(n: usize, eta: f64, seed: u64) -> SystemSpec {
-        let species = vec![Species {
-            count: n,
-            radius: 0.5,
-            mass: 1.0,
-        }];
+        let species = vec![Species::reference(n)];
         SystemSpec::square_box(species, eta, [Boundary::Periodic; 2], seed)
     }
 

@@ -370,18 +370,7 @@ mod tests {
 
     #[test]
     fn checkpoint_round_trips_bit_for_bit() {
-        let species = vec![
-            Species {
-                count: 40,
-                radius: 0.5,
-                mass: 1.0,
-            },
-            Species {
-                count: 10,
-                radius: 0.8,
-                mass: 3.0,
-            },
-        ];
+        let species = vec![Species::reference(40), Species::new(10, 0.8, 3.0)];
         let size = box_size_for(&species, 0.4, 1.0);
         let spec = SystemSpec {
             species,

@@ -1158,11 +1158,7 @@ impl Config {
         let species: Vec<Species> = c
             .species
             .iter()
-            .map(|s| Species {
-                count: s.count as usize,
-                radius: s.radius,
-                mass: s.mass,
-            })
+            .map(|s| Species::new(s.count as usize, s.radius, s.mass))
             .collect();
         let size = match c.sim_box.size {
             Some([lx, ly]) => DVec2::new(lx, ly),

@@ -899,18 +899,7 @@ mod tests {
                 size: DVec2::new(7.5, 4.0),
                 boundary: [Boundary::Periodic, Boundary::Walls { restitution: 0.9 }],
             },
-            species: vec![
-                Species {
-                    count: 2,
-                    radius: 0.5,
-                    mass: 1.0,
-                },
-                Species {
-                    count: 1,
-                    radius: 0.7,
-                    mass: 2.5,
-                },
-            ],
+            species: vec![Species::reference(2), Species::new(1, 0.7, 2.5)],
             species_of: vec![0, 0, 1],
             positions: vec![
                 DVec2::new(1.0, 1.0),

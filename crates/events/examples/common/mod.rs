@@ -1,4 +1,5 @@
-//! What the profiling examples share: CPU time and a fingerprint of the final state.
+//! What the profiling examples share: their numeric arguments, CPU time and a
+//! fingerprint of the final state.
 use carom_events::State;
 
 /// CPU time of this thread so far (s), from /proc/self/schedstat (Linux).
@@ -20,4 +21,13 @@ pub fn state_hash(state: &State) -> u64 {
         }
     }
     h
+}
+
+/// Command-line argument `k` read as a number, or `default` when it is missing or
+/// not a number.
+pub fn arg(k: usize, default: f64) -> f64 {
+    std::env::args()
+        .nth(k)
+        .and_then(|s| s.parse().ok())
+        .unwrap_or(default)
 }
