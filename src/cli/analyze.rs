@@ -295,7 +295,7 @@ pub fn text(r: &Report, args: &AnalyzeArgs, complete: bool) -> String {
         "  log t ∈ [{}, {}], analysed from t = {} ({} of {} snapshots used{})",
         Num(w.t_start),
         Num(w.t_end),
-        Num(w.equilibrate),
+        Num::computed(w.equilibrate),
         w.snapshot_times.len(),
         w.snapshots_seen,
         match w.every {

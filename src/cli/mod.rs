@@ -219,6 +219,15 @@ pub(crate) fn emit(text: &str) -> Result<(), CliError> {
 /// digits after the point in either notation.
 pub(crate) struct Num(pub f64);
 
+impl Num {
+    /// `x` rounded to 12 significant digits, for a time the program computed rather
+    /// than read: 0.1 × 127 prints as 12.7, not 12.700000000000001. Times read from
+    /// a log or the command line are printed whole instead.
+    pub(crate) fn computed(x: f64) -> Num {
+        Num(format!("{x:.11e}").parse().unwrap_or(x))
+    }
+}
+
 impl std::fmt::Display for Num {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         let (x, a) = (self.0, self.0.abs());
@@ -248,5 +257,24 @@ pub fn main() -> ExitCode {
             eprintln!("error: {e}");
             ExitCode::from(e.exit_code())
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::Num;
+
+    #[test]
+    fn numbers_print_plainly_in_range_and_computed_times_without_rounding_noise() {
+        assert_eq!(Num(12.5).to_string(), "12.5");
+        assert_eq!(Num(5.55e-142).to_string(), "5.55e-142");
+        assert_eq!(format!("{:.2}", Num(2.0 / 3.0)), "0.67");
+        let noisy = 0.1 * 127.0;
+        assert_eq!(Num(noisy).to_string(), "12.700000000000001");
+        assert_eq!(Num::computed(noisy).to_string(), "12.7");
+        // Twelve significant digits survive; values already short stay as they are.
+        assert_eq!(Num::computed(12.3456789012).to_string(), "12.3456789012");
+        assert_eq!(Num::computed(0.0).to_string(), "0");
+        assert_eq!(Num::computed(1e300).to_string(), "1e300");
     }
 }
