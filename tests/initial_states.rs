@@ -317,6 +317,7 @@ fn lattice_placement_never_starts_discs_in_contact() {
     );
     assert!(msg.contains("exactly one diameter"), "{msg}");
     assert!(msg.contains("η < 0.890"), "{msg}");
+    let contact_msg = msg;
     let wider = square(30.0 + 1e-6);
     let s = build(&wider, "30.000001²").expect("a box a hair wider has room");
     validate(&s, &wider, "30.000001²");
@@ -344,12 +345,44 @@ fn lattice_placement_never_starts_discs_in_contact() {
         "walled",
     );
     assert!(msg.contains("from wall to wall"), "{msg}");
+    // The density asked for and the limit differ by about 10⁻⁹: both are printed
+    // with the digits that tell them apart, the limit rounded down.
+    for m in [&msg, &contact_msg] {
+        let asked = number_before(m, " is the density");
+        let allowed = number_after(m, "η < ");
+        assert_ne!(asked.0, allowed.0, "{m}");
+        assert_eq!(asked.0.len(), allowed.0.len(), "{m}");
+        assert!(allowed.1 < asked.1, "{m}");
+    }
     let wider = walled(10.0 + 1e-6);
     let s = build(&wider, "walled 10.000001²").expect("a box a hair wider has room");
     validate(&s, &wider, "walled 10.000001²");
     let mut e = Engine::new(s, EngineParams::default()).unwrap();
     assert_eq!(e.run_collisions(100_000).unwrap(), 100_000);
     assert!(e.now() > 0.0);
+}
+
+/// The number (text and value) that ends just before `marker` in `msg`.
+fn number_before(msg: &str, marker: &str) -> (String, f64) {
+    let head = &msg[..msg.find(marker).expect("marker in message")];
+    let text = head.rsplit(' ').next().unwrap_or_default().to_string();
+    let value = text
+        .parse()
+        .unwrap_or_else(|_| panic!("a number in {head:?}"));
+    (text, value)
+}
+
+/// The number (text and value) that starts just after `marker` in `msg`.
+fn number_after(msg: &str, marker: &str) -> (String, f64) {
+    let tail = &msg[msg.find(marker).expect("marker in message") + marker.len()..];
+    let text: String = tail
+        .chars()
+        .take_while(|c| c.is_ascii_digit() || *c == '.')
+        .collect();
+    let value = text
+        .parse()
+        .unwrap_or_else(|_| panic!("a number in {tail:?}"));
+    (text, value)
 }
 
 /// Discs put in contact in a closed row by the caller (explicit positions) make an

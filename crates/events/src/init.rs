@@ -663,6 +663,22 @@ fn best_lattice(sim_box: &SimBox, n: usize, a: f64) -> (Arrangement, f64) {
     (lat, d)
 }
 
+/// How many decimals (6 to 12) show `limit` and the refused density `eta` as
+/// different numbers: a lattice that only just fails (its closest sites exactly at
+/// contact) has a limit within about 10⁻⁹ of the density asked for.
+fn decimals_apart(limit: f64, eta: f64) -> usize {
+    (6..=12)
+        .find(|&p| format!("{:.p$}", round_down(limit, p)) != format!("{eta:.p$}"))
+        .unwrap_or(12)
+}
+
+/// `x` rounded down to `p` decimals, so that "η < x" printed with `p` decimals stays
+/// true of the limit `x`.
+fn round_down(x: f64, p: usize) -> f64 {
+    let scale = 10f64.powi(p as i32);
+    (x * scale).floor() / scale
+}
+
 /// The largest packing fraction the lattice placement reaches for these species in a
 /// box of this aspect ratio and these boundaries (by bisection on η; for messages).
 fn lattice_limit(spec: &SystemSpec) -> f64 {
@@ -709,9 +725,11 @@ fn lattice(
     let (lat, d) = best_lattice(&spec.sim_box, n, a);
     if !apart(d, a) {
         let eta = packing_fraction(&spec.species, &spec.sim_box);
+        let limit = lattice_limit(spec);
+        let p = decimals_apart(limit, eta);
         let problem = if d >= 2.0 * a * (1.0 - LATTICE_GAP) {
             format!(
-                "{eta:.6} is the density at which lattice placement for N = {n} in this box \
+                "{eta:.p$} is the density at which lattice placement for N = {n} in this box \
                  has its closest sites exactly one diameter ({}) apart: the discs would \
                  start in contact, and a row of touching discs round the periodic box or \
                  from wall to wall passes its momentum on forever at one instant",
@@ -728,9 +746,9 @@ fn lattice(
             "packing_fraction",
             problem,
             format!(
-                "η < {:.6} for this N, box shape and boundaries; relaxed placement, not \
+                "η < {:.p$} for this N, box shape and boundaries; relaxed placement, not \
                  tied to a lattice, may reach more",
-                lattice_limit(spec)
+                round_down(limit, p)
             ),
         ));
     }
