@@ -1235,11 +1235,7 @@ impl Engine {
     #[inline(always)]
     fn scan(&self, i: usize, ri: DVec2, xs: [i32; 2], ys: [i32; 2], found: &mut Found) {
         let grid = self.grids.get(self.grids.class(self.bodies[i].species));
-        let block = Block {
-            bodies: &self.bodies,
-            species: &self.species,
-            now: self.clock,
-        };
+        let block = self.block();
         let bi = &self.bodies[i];
         let radius = self.species[bi.species as usize].radius;
         let c = bi.link.coords();
@@ -1305,16 +1301,22 @@ impl Engine {
         }
     }
 
+    /// The neighbour search's view of the engine now (see [`Block`]).
+    #[inline(always)]
+    fn block(&self) -> Block<'_> {
+        Block {
+            bodies: &self.bodies,
+            species: &self.species,
+            now: self.clock,
+        }
+    }
+
     /// Look for disc `i`'s earliest pair collision (before `found.best`, time from
     /// now) with the discs of the other size classes: in each other class's grid,
     /// every cell meeting disc i's own cell widened by its reach into that class
     /// (see [`crate::classes`]). `ri` is its position now.
     fn scan_other_classes(&self, i: usize, ri: DVec2, found: &mut Found) {
-        let block = Block {
-            bodies: &self.bodies,
-            species: &self.species,
-            now: self.clock,
-        };
+        let block = self.block();
         let bi = &self.bodies[i];
         let radius = self.species[bi.species as usize].radius;
         let own_class = self.grids.class(bi.species);
