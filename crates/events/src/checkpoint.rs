@@ -428,27 +428,29 @@ mod tests {
         assert_eq!(bits(&sa.velocities), bits(&sb.velocities));
     }
 
-    #[test]
-    fn a_grid_per_size_class_resumes_bit_identically() {
-        let mut a = asymmetric_channel(true);
-        assert_eq!(a.grid_count(), 2);
+    /// Run the asymmetric channel (a grid per size class if `split`) for 10⁴
+    /// events, resume a copy from its checkpoint, and check that both have `grids`
+    /// grids, follow the same next 2·10⁴ events and end with equal checkpoints.
+    fn resumes_bit_identically(split: bool, grids: usize) -> Engine {
+        let mut a = asymmetric_channel(split);
+        assert_eq!(a.grid_count(), grids);
         a.run_collisions(10_000).unwrap();
         let mut b = Engine::from_checkpoint(a.checkpoint()).unwrap();
-        assert_eq!(b.grid_count(), 2);
+        assert_eq!(b.grid_count(), grids);
         assert_eq!(trajectory(&mut a, 20_000), trajectory(&mut b, 20_000));
         assert_eq!(a.checkpoint(), b.checkpoint());
+        a
+    }
+
+    #[test]
+    fn a_grid_per_size_class_resumes_bit_identically() {
+        resumes_bit_identically(true, 2);
     }
 
     #[test]
     fn a_checkpoint_with_one_grid_for_all_sizes_resumes_with_one() {
         // As written before carom had size classes.
-        let mut a = asymmetric_channel(false);
-        assert_eq!(a.grid_count(), 1);
-        a.run_collisions(10_000).unwrap();
-        let mut b = Engine::from_checkpoint(a.checkpoint()).unwrap();
-        assert_eq!(b.grid_count(), 1);
-        assert_eq!(trajectory(&mut a, 20_000), trajectory(&mut b, 20_000));
-        assert_eq!(a.checkpoint(), b.checkpoint());
+        let a = resumes_bit_identically(false, 1);
         // Lists that fit neither layout are refused, naming the cells needed.
         let mut cp = a.checkpoint();
         cp.cell_head.push(u32::MAX);
