@@ -7,7 +7,9 @@
 //! * [`collision`] — elastic and inelastic resolution of a pair collision
 //!   (physics.md §3–4, seed 000 Eq. 8–13 and 22–27, seed 004);
 //! * [`boundary`] — rectangular boxes, periodic or walled per axis, and wall collisions;
-//! * [`species`] — what a disc is made of (radius, mass).
+//! * [`species`] — what a disc is made of (radius, mass);
+//! * [`observables`] — degrees of freedom, kT, packing fraction, the area centres
+//!   reach, and the pressure estimators (physics.md §5): their only definitions.
 //!
 //! Units are the caller's: lengths, times and masses in any consistent system. The
 //! reference values in physics.md use disc diameter σ = 1, m = 1, kT = 1.
@@ -16,6 +18,7 @@
 pub mod boundary;
 pub mod collision;
 pub mod kinematics;
+pub mod observables;
 pub mod species;
 
 pub use boundary::{Axis, Boundary, SimBox, WallSide};
