@@ -264,6 +264,20 @@ impl<'a, R: Read + Seek> Cursor<'a, R> {
             return Some(r);
         }
     }
+
+    /// The next step that `pick` turns into an item (others are skipped).
+    fn next_picked<T>(&mut self, pick: fn(Step) -> Option<T>) -> Option<Result<T, ReadError>> {
+        loop {
+            match self.step()? {
+                Ok(step) => {
+                    if let Some(item) = pick(step) {
+                        return Some(Ok(item));
+                    }
+                }
+                Err(e) => return Some(Err(e)),
+            }
+        }
+    }
 }
 
 /// Iterator over collisions (see [`LogReader::collisions`]).
@@ -274,13 +288,10 @@ impl<R: Read + Seek> Iterator for Collisions<'_, R> {
     type Item = Result<CollisionRecord, ReadError>;
 
     fn next(&mut self) -> Option<Self::Item> {
-        loop {
-            return Some(match self.0.step()? {
-                Ok(Step::Collision(c)) => Ok(c),
-                Ok(Step::Message(_)) => continue,
-                Err(e) => Err(e),
-            });
-        }
+        self.0.next_picked(|step| match step {
+            Step::Collision(c) => Some(c),
+            Step::Message(_) => None,
+        })
     }
 }
 
@@ -292,13 +303,10 @@ impl<R: Read + Seek> Iterator for Filtered<'_, R> {
     type Item = Result<LogMessage, ReadError>;
 
     fn next(&mut self) -> Option<Self::Item> {
-        loop {
-            return Some(match self.0.step()? {
-                Ok(Step::Message(m)) => Ok(m),
-                Ok(Step::Collision(_)) => continue,
-                Err(e) => Err(e),
-            });
-        }
+        self.0.next_picked(|step| match step {
+            Step::Message(m) => Some(m),
+            Step::Collision(_) => None,
+        })
     }
 }
 
@@ -310,14 +318,13 @@ impl<R: Read + Seek> Iterator for Events<'_, R> {
     type Item = Result<LogEvent, ReadError>;
 
     fn next(&mut self) -> Option<Self::Item> {
-        Some(self.0.step()?.map(|step| match step {
-            Step::Collision(c) => LogEvent::Collision(c),
-            Step::Message(LogMessage::Snapshot(s)) => LogEvent::Snapshot(s),
-            Step::Message(LogMessage::Thermo(t)) => LogEvent::Thermo(t),
-            Step::Message(LogMessage::Checkpoint(c)) => LogEvent::Checkpoint(c),
-            Step::Message(LogMessage::Collisions(_)) => {
-                unreachable!("events() hands out collision batches one record at a time")
-            }
-        }))
+        // Batches come one record at a time (`Wanted::unbatches`), never whole.
+        self.0.next_picked(|step| match step {
+            Step::Collision(c) => Some(LogEvent::Collision(c)),
+            Step::Message(LogMessage::Snapshot(s)) => Some(LogEvent::Snapshot(s)),
+            Step::Message(LogMessage::Thermo(t)) => Some(LogEvent::Thermo(t)),
+            Step::Message(LogMessage::Checkpoint(c)) => Some(LogEvent::Checkpoint(c)),
+            Step::Message(LogMessage::Collisions(_)) => None,
+        })
     }
 }
