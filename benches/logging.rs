@@ -22,8 +22,7 @@
 //! Run: `cargo bench --bench logging -- --warm-up-time 1 --measurement-time 5`.
 
 use carom::events::{Engine, EngineParams, Event, SystemSpec};
-use carom::io::log_writer::{LogWriter, WriterOptions, WriterPosition};
-use carom::io::{Compression, LogOptions, RunSpec, Stop};
+use carom::io::{Compression, LogOptions, LogWriter, RunSpec, Stop, WriterOptions, WriterPosition};
 use criterion::{criterion_group, Criterion, Throughput};
 use std::collections::BTreeMap;
 use std::path::PathBuf;

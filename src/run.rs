@@ -43,13 +43,11 @@
 use carom_core::{Boundary, DVec2};
 use carom_events::state::degrees_of_freedom;
 use carom_events::{Engine, EngineError, Event, InitError, PlacementProgress, State, SystemSpec};
-use carom_io::checkpoint_codec::LogCheckpoint;
-use carom_io::config::MAX_RECORDS;
-use carom_io::log_reader::{last_checkpoint_observed, LogReader, ReadError, ReadProgress};
-use carom_io::log_writer::{LogWriter, WriteError, WriterOptions, WriterPosition, CH_THERMO};
-use carom_io::run_metadata::{now_rfc3339, RunMetadata, StopReason, SummaryMetadata};
-use carom_io::schema::{Thermo, LOG_FORMAT_VERSION};
-use carom_io::{LogOptions, RunSpec, Stop};
+use carom_io::{
+    last_checkpoint_observed, now_rfc3339, LogCheckpoint, LogOptions, LogReader, LogWriter,
+    ReadError, ReadProgress, RunFacts, RunMetadata, RunSpec, Stop, StopReason, SummaryMetadata,
+    Thermo, WriteError, WriterOptions, WriterPosition, CH_THERMO, LOG_FORMAT_VERSION, MAX_RECORDS,
+};
 use std::ops::ControlFlow;
 use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicBool, Ordering};
@@ -440,6 +438,7 @@ pub fn run(spec: &RunSpec, out: &Path, mut control: Control<'_>) -> Result<RunSu
     let state = place(&spec.system, &mut control)?;
     debug_assert_eq!(state.time, 0.0);
     let n = state.len();
+    let facts = RunFacts::new(&state.species, &state.sim_box, &spec.params, &spec.log);
     let engine = Engine::new(state, spec.params).map_err(|source| RunError::Engine {
         source,
         time: 0.0,
@@ -456,6 +455,7 @@ pub fn run(spec: &RunSpec, out: &Path, mut control: Control<'_>) -> Result<RunSu
         log: spec.log.clone(),
         resumed_from: None,
         resumed_at: None,
+        run_facts: Some(facts),
     };
     let writer = LogWriter::create(
         out,

@@ -4,13 +4,10 @@
 
 mod mcap_common;
 
-use carom::io::log_reader::{
-    scan, scan_indexed, LogEnd, LogEvent, LogReader, ReadError, ReadOptions,
-};
-use carom::io::mcap;
-use carom::io::run_metadata::RunMetadata;
-use carom::io::schema::{LOG_FORMAT_VERSION, METADATA_RUN};
+use carom::io::RunMetadata;
+use carom::io::{scan, scan_indexed, LogEnd, LogEvent, LogReader, ReadError, ReadOptions};
 use carom::io::{Compression, LogOptions, Stop};
+use carom::io::{LOG_FORMAT_VERSION, METADATA_RUN};
 use carom::run::{run, Control};
 use mcap_common::*;
 use std::collections::BTreeMap;
@@ -257,6 +254,7 @@ fn run_metadata() -> BTreeMap<String, String> {
         log: LogOptions::default(),
         resumed_from: None,
         resumed_at: None,
+        run_facts: None,
     }
     .to_map()
 }

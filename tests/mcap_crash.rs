@@ -10,10 +10,10 @@
 mod mcap_common;
 
 use carom::events::EngineParams;
-use carom::io::log_reader::{scan, scan_indexed, LogEnd, LogEvent, LogReader};
-use carom::io::log_writer::CH_CHECKPOINT;
-use carom::io::run_metadata::StopReason;
-use carom::io::schema::CollisionRecord;
+use carom::io::CollisionRecord;
+use carom::io::StopReason;
+use carom::io::CH_CHECKPOINT;
+use carom::io::{scan, scan_indexed, LogEnd, LogEvent, LogReader};
 use carom::io::{Compression, LogOptions, Stop};
 use carom::run::{resume, run, Control, ResumeOptions};
 use mcap_common::*;
@@ -132,7 +132,7 @@ fn sigkill_mid_run_leaves_a_readable_resumable_log() {
     // Strict reading reports the cut as an error.
     let mut strict = LogReader::open_with(
         &path,
-        carom::io::log_reader::ReadOptions {
+        carom::io::ReadOptions {
             strict: true,
             ..Default::default()
         },
@@ -140,10 +140,7 @@ fn sigkill_mid_run_leaves_a_readable_resumable_log() {
     .unwrap();
     let last = strict.collisions().last().unwrap();
     assert!(
-        matches!(
-            last,
-            Err(carom::io::log_reader::ReadError::Truncated { .. })
-        ),
+        matches!(last, Err(carom::io::ReadError::Truncated { .. })),
         "{last:?}"
     );
 
@@ -173,7 +170,7 @@ fn sigkill_mid_run_leaves_a_readable_resumable_log() {
 
     // Resume from the last checkpoint in the file; it must give exactly the log of
     // an uninterrupted run to the same end time.
-    let (cp, _, _) = carom::io::log_reader::last_checkpoint(&path).unwrap();
+    let (cp, _, _) = carom::io::last_checkpoint(&path).unwrap();
     let t_cp = cp.engine.now;
     assert!((info.last_checkpoint_time.unwrap() - t_cp).abs() < 1e-6);
     let t_end = t_cp + 15.0;

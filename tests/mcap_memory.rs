@@ -4,8 +4,8 @@
 
 mod mcap_common;
 
-use carom::io::log_reader::{LogEnd, LogReader};
 use carom::io::{Compression, LogOptions, Stop};
+use carom::io::{LogEnd, LogReader};
 use carom::run::{run, Control};
 use mcap_common::*;
 

@@ -8,9 +8,9 @@
 
 mod mcap_common;
 
-use carom::io::log_reader::{LogMessage, LogReader};
-use carom::io::schema::CollisionBatch;
+use carom::io::CollisionBatch;
 use carom::io::{Compression, LogOptions, Stop};
+use carom::io::{LogMessage, LogReader};
 use carom::run::{run, Control};
 use mcap_common::*;
 use serde_json::Value;

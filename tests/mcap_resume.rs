@@ -6,12 +6,10 @@
 
 mod mcap_common;
 
-use carom::io::log_reader::{
-    scan, scan_indexed, LogEnd, LogEvent, LogReader, ReadError, ReadProgress,
-};
-use carom::io::log_writer::{LogWriter, WriterOptions, WriterPosition};
-use carom::io::run_metadata::StopReason;
+use carom::io::StopReason;
+use carom::io::{scan, scan_indexed, LogEnd, LogEvent, LogReader, ReadError, ReadProgress};
 use carom::io::{Compression, LogOptions, Stop};
+use carom::io::{LogWriter, WriterOptions, WriterPosition};
 use carom::run::{resume, run, Control, ResumeOptions, ResumePass, RunError};
 use mcap_common::*;
 use std::collections::BTreeMap;

@@ -6,11 +6,11 @@
 mod mcap_common;
 
 use carom::events::{Engine, EngineParams, Event, SystemSpec};
-use carom::io::log_reader::{
+use carom::io::StopReason;
+use carom::io::{
     scan, scan_indexed, scan_observed, LogEnd, LogEvent, LogMessage, LogReader, ReadProgress,
 };
-use carom::io::run_metadata::StopReason;
-use carom::io::schema::{CollisionRecord, KIND_WALL};
+use carom::io::{CollisionRecord, KIND_WALL};
 use carom::io::{Compression, LogOptions, Stop};
 use carom::run::{run, Control, Progress};
 use mcap_common::*;
@@ -337,8 +337,8 @@ fn bad_options_name_the_field() {
 
 #[test]
 fn docs_show_every_schema_verbatim() {
-    use carom::io::checkpoint_codec::CHECKPOINT_MSG;
-    use carom::io::schema::{COLLISION_BATCH_MSG, SNAPSHOT_MSG, THERMO_JSON_SCHEMA};
+    use carom::io::CHECKPOINT_MSG;
+    use carom::io::{COLLISION_BATCH_MSG, SNAPSHOT_MSG, THERMO_JSON_SCHEMA};
     let doc = std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/docs/log-format.md"))
         .unwrap();
     for (name, text) in [
@@ -472,7 +472,7 @@ fn snapshots_and_checkpoints_reuse_their_buffers_without_mixing_them_up() {
     // writer once written: on the writer thread and inline alike, every message
     // must hold its own state, also when a checkpoint (larger) and snapshots of
     // another engine (another N) alternate.
-    use carom::io::log_writer::{LogWriter, WriterOptions, WriterPosition};
+    use carom::io::{LogWriter, WriterOptions, WriterPosition};
     use std::collections::BTreeMap;
     for background in [true, false] {
         let out = tmp("reuse.mcap");
@@ -542,4 +542,69 @@ fn snapshots_and_checkpoints_reuse_their_buffers_without_mixing_them_up() {
         );
         std::fs::remove_file(&out).unwrap();
     }
+}
+
+#[test]
+fn the_log_describes_its_run() {
+    // A walled mixture with inelastic collisions, every 3rd collision logged.
+    let system = system(200, 0.35, true, true, 5);
+    let params = EngineParams {
+        restitution: carom::core::Restitution::Normal(0.9),
+        tc: 1e-3,
+        ..EngineParams::default()
+    };
+    let log = LogOptions {
+        collision_every: 3,
+        ..log_opts(Compression::Zstd)
+    };
+    let out = tmp("facts.mcap");
+    let run_spec = carom::io::RunSpec {
+        params,
+        ..spec(system.clone(), Stop::Time(0.5), log.clone())
+    };
+    run(&run_spec, &out, Control::default()).unwrap();
+    let r = LogReader::open(&out).unwrap();
+    assert_eq!(r.run().log_format, carom::io::LOG_FORMAT_VERSION);
+    let facts = r
+        .run()
+        .run_facts
+        .clone()
+        .expect("a 1.2 log stores its facts");
+    assert_eq!(
+        facts,
+        carom::io::RunFacts::new(&system.species, &system.sim_box, &params, &log)
+    );
+    assert_eq!(facts.species, system.species);
+    assert_eq!(facts.sim_box, system.sim_box);
+    assert_eq!(facts.restitution, carom::core::Restitution::Normal(0.9));
+    assert_eq!(facts.tc, 1e-3);
+    assert_eq!(facts.n_discs, 200);
+    assert_eq!(facts.collision_every, Some(3));
+    assert_eq!(
+        facts.accessible_area,
+        carom::core::observables::accessible_area(&system.species, &system.sim_box)
+    );
+}
+
+#[test]
+fn a_log_of_format_1_1_reads_without_facts() {
+    use carom::io::{LogWriter, WriterOptions, WriterPosition};
+    // The `carom.run` record of a 1.1 log: every key but `run_facts`.
+    let mut meta = test_run_metadata(4);
+    meta.log_format = "1.1".into();
+    let map = meta.to_map();
+    assert!(!map.contains_key("run_facts"));
+    let out = tmp("old.mcap");
+    let mut w = LogWriter::create(
+        &out,
+        WriterOptions::default(),
+        &map,
+        WriterPosition::default(),
+    )
+    .unwrap();
+    w.finish(&std::collections::BTreeMap::new()).unwrap();
+    let r = LogReader::open(&out).unwrap();
+    assert_eq!(r.run().log_format, "1.1");
+    assert_eq!(r.run().run_facts, None);
+    assert_eq!(*r.run(), meta);
 }

@@ -12,9 +12,10 @@ use carom::analysis::report::{
     AnalysisOptions, Analyzer, Report, RunDescription, CORRELATED_SPACING, DECORRELATION_COLLISIONS,
 };
 use carom::core::{Boundary, DVec2, Restitution, SimBox, Species};
-use carom::io::config::Config;
-use carom::io::log_reader::{scan_indexed, scan_observed, LogEnd, LogInfo, LogMessage, LogReader};
-use carom::io::schema::{Snapshot, KIND_PAIR};
+use carom::io::{
+    scan_indexed, scan_observed, Config, LogEnd, LogInfo, LogMessage, LogReader, Snapshot,
+    KIND_PAIR,
+};
 
 use super::reading::ReadDisplay;
 use super::{AnalyzeArgs, CliError, Num};
@@ -232,7 +233,7 @@ fn read_report_shown(
 }
 
 /// The next message; a truncated tail ends the stream (the scan already warned).
-fn next(r: &mut LogReader) -> Result<Option<LogMessage>, carom::io::log_reader::ReadError> {
+fn next(r: &mut LogReader) -> Result<Option<LogMessage>, carom::io::ReadError> {
     r.next_message()
 }
 

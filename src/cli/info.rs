@@ -4,9 +4,7 @@
 
 use std::process::ExitCode;
 
-use carom::io::log_reader::{scan_indexed, scan_observed, LogEnd, LogInfo};
-use carom::io::log_writer::TOPICS;
-use carom::io::Stop;
+use carom::io::{scan_indexed, scan_observed, LogEnd, LogInfo, Stop, TOPICS};
 use std::fmt::Write;
 
 use serde_json::{json, Value};

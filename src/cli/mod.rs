@@ -14,7 +14,7 @@ use std::path::PathBuf;
 use std::process::ExitCode;
 use std::time::Duration;
 
-use carom::io::config::ConfigError;
+use carom::io::ConfigError;
 use clap::{Args, Parser, Subcommand};
 use thiserror::Error;
 
@@ -170,7 +170,7 @@ pub enum CliError {
     Run(#[from] carom::run::RunError),
     /// A log could not be read.
     #[error("{0}")]
-    Read(#[from] carom::io::log_reader::ReadError),
+    Read(#[from] carom::io::ReadError),
     /// A statistic could not be computed.
     #[error("analysis: {0}")]
     Stats(#[from] carom::analysis::stats::StatsError),

@@ -9,7 +9,7 @@
 use std::io::IsTerminal;
 use std::time::{Duration, Instant};
 
-use carom::io::log_reader::ReadProgress;
+use carom::io::ReadProgress;
 use indicatif::{ProgressBar, ProgressStyle};
 
 use super::PLAIN_EVERY;

@@ -11,10 +11,7 @@ use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::Instant;
 
 use carom::events::PlacementProgress;
-use carom::io::config::{self, ConfigError};
-use carom::io::log_reader::ReadProgress;
-use carom::io::run_metadata::StopReason;
-use carom::io::Stop;
+use carom::io::{load_config, ConfigError, ReadProgress, Stop, StopReason};
 use carom::run::{Control, Progress, ResumeOptions, ResumePass, RunError, RunSummary};
 use indicatif::{DecimalBytes, ProgressBar, ProgressStyle};
 
@@ -309,7 +306,7 @@ pub fn run(args: RunArgs) -> Result<ExitCode, CliError> {
             quiet: args.quiet,
         });
     }
-    let spec = config::load(args.config.as_deref(), &args.set)?;
+    let spec = load_config(args.config.as_deref(), &args.set)?;
     if args.dry_run {
         super::emit(&format!("{}\n", spec.config_json))?;
         return Ok(ExitCode::SUCCESS);

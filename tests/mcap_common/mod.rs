@@ -49,9 +49,9 @@ pub fn spec(system: SystemSpec, stop: Stop, log: LogOptions) -> RunSpec {
 }
 
 /// `carom.run` metadata for a log written directly with a `LogWriter` in a test.
-pub fn test_run_metadata(n_discs: u64) -> carom::io::run_metadata::RunMetadata {
-    carom::io::run_metadata::RunMetadata {
-        log_format: carom::io::schema::LOG_FORMAT_VERSION.into(),
+pub fn test_run_metadata(n_discs: u64) -> carom::io::RunMetadata {
+    carom::io::RunMetadata {
+        log_format: carom::io::LOG_FORMAT_VERSION.into(),
         carom_version: "test".into(),
         config: "{}".into(),
         seed: 1,
@@ -61,6 +61,7 @@ pub fn test_run_metadata(n_discs: u64) -> carom::io::run_metadata::RunMetadata {
         log: LogOptions::default(),
         resumed_from: None,
         resumed_at: None,
+        run_facts: None,
     }
 }
 

@@ -1,20 +1,39 @@
 //! # carom-io
 //!
-//! Configuration, MCAP logging and reading, and analysis input for carom.
+//! Configuration, MCAP logging and reading for carom, in two parts that do not
+//! import each other: `config` (the JSON file and `--set` overrides, their one
+//! validator, and resolution into the engine's [`RunSpec`]) and `log` (the log
+//! format, its writer and its reader). Both share the plain data of `options`.
 //! The io crate sees the engine only through plain data (states, events,
 //! checkpoints); it knows nothing about queues or cells.
 
-pub mod cdr;
-pub mod checkpoint_codec;
-pub mod config;
-pub mod log_reader;
-pub mod log_writer;
-pub mod options;
-pub mod run_metadata;
-pub mod schema;
+#![warn(missing_docs)]
 
-pub use options::{Compression, LogOptions, RunSpec, Stop};
+mod config;
+mod log;
+mod options;
 
-/// The `mcap` crate carom's logs are written with (for tools and tests that need
-/// raw MCAP access).
-pub use mcap;
+pub use options::{
+    check_log_options, Compression, LogOptions, OptionsError, RunSpec, Stop, MAX_RECORDS,
+};
+
+pub use config::{
+    apply_set, load_config, AxisBoundary, BoundaryConfig, BoxConfig, CollisionConfig,
+    CollisionModel, CompressionConfig, Config, ConfigError, LogConfig, PlacementConfig,
+    SpeciesConfig, StopConfig, VelocitiesConfig, DEFAULT_COUNT, DEFAULT_DURATION,
+    DEFAULT_PACKING_FRACTION,
+};
+
+pub use log::format::{
+    log_time_ns, now_rfc3339, CdrError, Channel, CollisionBatch, CollisionRecord, DriverState,
+    LogCheckpoint, MetadataError, RunFacts, RunMetadata, Snapshot, StopReason, SummaryMetadata,
+    Thermo, CHANNELS, CHECKPOINT_FORMAT_VERSION, CHECKPOINT_MSG, CH_CHECKPOINT, CH_COLLISIONS,
+    CH_SNAPSHOT, CH_THERMO, COLLISION_BATCH_MSG, KIND_PAIR, KIND_WALL, LOG_FORMAT_VERSION,
+    METADATA_RUN, METADATA_SUMMARY, NO_DISC, SNAPSHOT_MSG, THERMO_JSON_SCHEMA, TOPICS,
+};
+pub use log::read::{
+    last_checkpoint, last_checkpoint_observed, scan, scan_indexed, scan_observed, Collisions,
+    Events, Filtered, LogEnd, LogEvent, LogInfo, LogMessage, LogReader, RawMessage, ReadError,
+    ReadOptions, ReadProgress,
+};
+pub use log::write::{LogWriter, WriteError, WriterOptions, WriterPosition, WriterStats};

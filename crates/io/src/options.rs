@@ -1,7 +1,11 @@
 //! The description of a run, shared by the configuration reader (which builds it
-//! from JSON) and the run driver (which executes it). Plain data.
+//! from JSON), the log (which stores it) and the run driver (which executes it):
+//! plain data, and the one check of the log options against the stop
+//! ([`check_log_options`]), which the configuration's validator and a resume both
+//! call.
 
 use carom_events::{EngineParams, SystemSpec};
+use thiserror::Error;
 
 /// Compression of MCAP chunks.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -83,4 +87,159 @@ pub struct RunSpec {
     pub log: LogOptions,
     /// The user's configuration as JSON text, stored verbatim in the log's metadata.
     pub config_json: String,
+}
+
+/// The most records of one kind (snapshots, thermo or checkpoints) a run may ask
+/// for through its log interval: far more than any analysis reads (10⁹ thermo
+/// records are about 100 GB), so only a mistyped interval or stop time meets it.
+pub const MAX_RECORDS: f64 = 1e9;
+
+/// A log option, or the stop, out of range (see [`check_log_options`]).
+#[derive(Debug, Clone, PartialEq, Eq, Error)]
+#[error("{field}: {problem} (allowed: {allowed})")]
+pub struct OptionsError {
+    /// The setting, as a dotted path (`log.snapshot_interval`, `stop.time`).
+    pub field: &'static str,
+    /// What was wrong.
+    pub problem: String,
+    /// What is allowed.
+    pub allowed: String,
+}
+
+fn options_error(field: &'static str, problem: String, allowed: impl Into<String>) -> OptionsError {
+    OptionsError {
+        field,
+        problem,
+        allowed: allowed.into(),
+    }
+}
+
+/// Check the log options and the stop of a run that is at time `now` (0 for a
+/// fresh run): each interval finite and > 0 (or none), `collision_every` ≥ 1,
+/// `flush_seconds` finite and > 0, a stop time finite and ≥ `now`, and at most
+/// [`MAX_RECORDS`] records of a kind between `now` and the stop time. `stop_field`
+/// names the setting that fixed the stop time in errors: `stop.time` (a resume's
+/// `--until`) or `stop.duration` (a configuration, from time 0). A run stopped by
+/// its collision count has no known length: its records are not counted.
+pub fn check_log_options(
+    log: &LogOptions,
+    stop: &Stop,
+    now: f64,
+    stop_field: &'static str,
+) -> Result<(), OptionsError> {
+    for (field, v) in log.intervals() {
+        if let Some(x) = v.filter(|x| !(x.is_finite() && *x > 0.0)) {
+            return Err(options_error(
+                field,
+                format!("value {x}"),
+                "finite simulated time > 0, or null for none",
+            ));
+        }
+    }
+    if log.collision_every == 0 {
+        return Err(options_error(
+            "log.collision_every",
+            "value 0".into(),
+            "an integer ≥ 1 (use log.collisions = false to log none)",
+        ));
+    }
+    if !(log.flush_seconds.is_finite() && log.flush_seconds > 0.0) {
+        return Err(options_error(
+            "log.flush_seconds",
+            format!("value {}", log.flush_seconds),
+            "finite wall-clock seconds > 0",
+        ));
+    }
+    let Stop::Time(t) = *stop else {
+        return Ok(());
+    };
+    if !t.is_finite() || t < now {
+        return Err(options_error(
+            stop_field,
+            format!("stop time {t} is not a finite time ≥ the current time {now}"),
+            "finite times ≥ the start time",
+        ));
+    }
+    // An exponent mistyped (1e-17 for 1e-1, or `--until 1e12`) would otherwise
+    // start a run that crawls while it fills the disk with records.
+    let smallest = log
+        .intervals()
+        .into_iter()
+        .filter_map(|(name, x)| Some((name, x?)))
+        .min_by(|a, b| a.1.total_cmp(&b.1));
+    match smallest {
+        Some((name, x)) if (t - now) / x > MAX_RECORDS => Err(options_error(
+            name,
+            format!(
+                "value {x:e} would write {:.1e} records from time {now} to the stop time \
+                 {t} ({stop_field}), more than {MAX_RECORDS:.0e}; the latest stop time is {}",
+                (t - now) / x,
+                now + MAX_RECORDS * x
+            ),
+            format!(
+                "an interval ≥ (stop time − current time) / {MAX_RECORDS:.0e} = {:e}, or \
+                 null for none; or an earlier stop time",
+                (t - now) / MAX_RECORDS
+            ),
+        )),
+        _ => Ok(()),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn field_of(log: &LogOptions, stop: Stop, now: f64) -> Option<&'static str> {
+        check_log_options(log, &stop, now, "stop.time")
+            .err()
+            .map(|e| e.field)
+    }
+
+    #[test]
+    fn log_options_are_checked_against_the_stop() {
+        let d = LogOptions::default();
+        assert_eq!(field_of(&d, Stop::Time(50.0), 0.0), None);
+        assert_eq!(field_of(&d, Stop::Collisions(10), 0.0), None);
+        let zero_flush = LogOptions {
+            flush_seconds: 0.0,
+            ..d.clone()
+        };
+        assert_eq!(
+            field_of(&zero_flush, Stop::Time(1.0), 0.0),
+            Some("log.flush_seconds")
+        );
+        let every = LogOptions {
+            collision_every: 0,
+            ..d.clone()
+        };
+        assert_eq!(
+            field_of(&every, Stop::Time(1.0), 0.0),
+            Some("log.collision_every")
+        );
+        let nan = LogOptions {
+            snapshot_interval: Some(f64::NAN),
+            ..d.clone()
+        };
+        assert_eq!(
+            field_of(&nan, Stop::Time(1.0), 0.0),
+            Some("log.snapshot_interval")
+        );
+        assert_eq!(field_of(&d, Stop::Time(2.0), 3.0), Some("stop.time"));
+        // Thermo's 0.1 is the smallest interval: 10⁹ of them from time 3 is the limit.
+        assert_eq!(field_of(&d, Stop::Time(3.0 + 1e8), 3.0), None);
+        let e = check_log_options(&d, &Stop::Time(1e12), 3.0, "stop.time").unwrap_err();
+        assert_eq!(e.field, "log.thermo_interval");
+        let text = e.to_string();
+        assert!(
+            text.contains("stop.time") && text.contains("records"),
+            "{text}"
+        );
+        // A run stopped by its collision count has no known length.
+        let tiny = LogOptions {
+            thermo_interval: Some(1e-17),
+            ..d
+        };
+        assert_eq!(field_of(&tiny, Stop::Collisions(10), 0.0), None);
+    }
 }

@@ -1,16 +1,21 @@
 //! The `/checkpoint` message: the engine's complete [`Checkpoint`] plus the run
-//! driver's own state ([`DriverState`]), encoded as CDR with the `ros2msg` schema
-//! [`CHECKPOINT_MSG`]. Every `f64` is stored bit for bit (±∞ included), so an
-//! engine restored from a decoded checkpoint continues bit-identically.
+//! driver's own state ([`DriverState`]), encoded as CDR. The wire layout (field
+//! order, types, units, codes) is described in one place, the schema text
+//! [`CHECKPOINT_MSG`], which every log stores and `docs/log-format.md` shows
+//! verbatim; [`LogCheckpoint::encode`] and [`LogCheckpoint::decode`] follow it
+//! field by field. Fields the schema marks "engine-internal" are copied as the
+//! engine hands them over; `carom_events::Checkpoint` says what they mean.
 //!
-//! The engine draws random numbers only while building the initial state; after
-//! that the dynamics are deterministic, so there is no RNG state to store.
+//! Every `f64` is stored bit for bit (±∞ included), so an engine restored from a
+//! decoded checkpoint continues bit-identically. The engine draws random numbers
+//! only while building the initial state, so there is no RNG state to store.
 
-use crate::cdr::{CdrError, CdrReader, CdrWriter};
+use super::cdr::{CdrError, CdrReader, CdrWriter};
+use super::snapshot::boundary_code;
 use carom_core::{Boundary, DVec2, Restitution, SimBox, Species};
 use carom_events::{Checkpoint, EngineParams, Stats};
 
-/// `ros2msg` text of [`crate::schema::SCHEMA_CHECKPOINT`].
+/// `ros2msg` text of the schema `carom_msgs/msg/Checkpoint`.
 pub const CHECKPOINT_MSG: &str = "\
 # The complete state of a carom run, from which it resumes bit-identically.
 # Per-disc arrays have one entry per disc; units are the run's.
@@ -59,9 +64,9 @@ float64[] event_time              # time of the pending event (+inf if none)
 float64[] pair_time               # time of the pair candidate where it is the pending event, else +inf (not needed to resume)
 uint32[] pending_partner          # the pair candidate's partner (4294967295 = none)
 uint32[] pending_partner_count    # the partner's collision_count when the candidate was found
-uint32[] pending_kind             # kind | aux << 8; kind 0 none, 1 pair candidate, 2 wall, 3 cell crossing
-# --- neighbour grid ---
-uint32[] cell_head                # first disc per cell (4294967295 = none), grid after grid: one grid per size class, smallest discs first
+uint32[] pending_kind             # the pending event: kind and details (engine-internal)
+# --- neighbour grid (engine-internal) ---
+uint32[] cell_head                # first disc per cell (4294967295 = none)
 uint32[] cell_next
 uint32[] cell_prev
 uint32[] cell_column
@@ -121,8 +126,8 @@ impl LogCheckpoint {
         w.array(&d.next_sequence);
         w.put(c.sim_box.size.x);
         w.put(c.sim_box.size.y);
-        w.put(crate::schema::boundary_code(&c.sim_box.boundary[0]));
-        w.put(crate::schema::boundary_code(&c.sim_box.boundary[1]));
+        w.put(boundary_code(&c.sim_box.boundary[0]));
+        w.put(boundary_code(&c.sim_box.boundary[1]));
         w.put(wall_e(&c.sim_box.boundary[0]));
         w.put(wall_e(&c.sim_box.boundary[1]));
         w.seq_iter(c.species.iter().map(|s| s.count as u64));

@@ -2,8 +2,9 @@
 //! was run) and `carom.summary` (written last: how it ended). MCAP metadata are maps
 //! of strings to strings; this module is their typed form.
 
+use super::facts::RunFacts;
+use super::LOG_FORMAT_VERSION;
 use crate::options::{Compression, LogOptions, Stop};
-use crate::schema::LOG_FORMAT_VERSION;
 use serde_json::{json, Value};
 use std::collections::BTreeMap;
 use std::time::{SystemTime, UNIX_EPOCH};
@@ -45,6 +46,9 @@ pub struct RunMetadata {
     /// `resumed_at`: for a resumed log, the simulated time of the checkpoint it
     /// continued from (time).
     pub resumed_at: Option<f64>,
+    /// `run_facts`: the resolved run, JSON (see [`RunFacts`]); `None` in logs of
+    /// format ≤ 1.1, which do not store it.
+    pub run_facts: Option<RunFacts>,
 }
 
 fn get<'a>(
@@ -165,6 +169,9 @@ impl RunMetadata {
         if let Some(t) = self.resumed_at {
             m.insert("resumed_at".into(), json!(t).to_string());
         }
+        if let Some(f) = &self.run_facts {
+            m.insert("run_facts".into(), f.to_json().to_string());
+        }
         m
     }
 
@@ -210,6 +217,16 @@ impl RunMetadata {
             resumed_from: m.get("resumed_from").cloned(),
             resumed_at: match m.get("resumed_at") {
                 Some(_) => Some(parse(m, R, "resumed_at")?),
+                None => None,
+            },
+            run_facts: match m.get("run_facts") {
+                Some(_) => Some(RunFacts::from_json(&json_of("run_facts")?).map_err(
+                    |problem| MetadataError {
+                        record: R,
+                        key: "run_facts",
+                        problem,
+                    },
+                )?),
                 None => None,
             },
         })
@@ -421,8 +438,24 @@ mod tests {
             },
             resumed_from: Some("a.mcap".into()),
             resumed_at: Some(0.1),
+            run_facts: Some(RunFacts::new(
+                &[carom_core::Species::new(100, 0.5, 1.0)],
+                &carom_core::SimBox::walled(12.0, 15.0, 1.0),
+                &carom_events::EngineParams::default(),
+                &LogOptions::default(),
+            )),
         };
         assert_eq!(RunMetadata::from_map(&m.to_map()).unwrap(), m);
+        // A log of format 1.1 has no `run_facts`: it reads, without facts.
+        let mut old = m.to_map();
+        old.remove("run_facts");
+        old.insert("log_format".into(), "1.1".into());
+        let read = RunMetadata::from_map(&old).unwrap();
+        assert_eq!(read.run_facts, None);
+        assert_eq!(read.log_format, "1.1");
+        let mut bad = m.to_map();
+        bad.insert("run_facts".into(), "{\"n_discs\": 1}".into());
+        assert_eq!(RunMetadata::from_map(&bad).unwrap_err().key, "run_facts");
         let mut bad = m.to_map();
         bad.insert("log_format".into(), "2".into());
         assert_eq!(RunMetadata::from_map(&bad).unwrap_err().key, "log_format");

@@ -6,11 +6,9 @@
 //! them. Every buffer starts with the 4-byte encapsulation header `00 01 00 00`;
 //! every primitive is aligned to its own size, counted from the end of that header.
 //!
-//! Why not the `cdr` crate: it is serde-based and serialises element by element
-//! through a generic `Write`; carom encodes batches of tens of thousands of numbers
-//! per message, so a bulk encoder that appends arrays straight into a reused
-//! `Vec<u8>` is both simpler and faster. The layout is checked against the Python
-//! `mcap-ros2-support` decoder by the `mcap_python` integration test.
+//! carom's own bulk encoder appends whole arrays into a reused `Vec<u8>`; the
+//! `mcap_python` test checks its layout against Python's decoder. See
+//! docs/performance.md, "CDR codec".
 //!
 //! The decoder is defensive: every length is checked against the bytes that remain
 //! before anything is allocated, so corrupted input gives a [`CdrError`], never a

@@ -1,0 +1,34 @@
+//! The JSON configuration a physicist writes by hand, and how it becomes a
+//! [`RunSpec`](crate::RunSpec).
+//!
+//! 1. `front`: the file (or `{}` when there is none) is parsed as JSON, the
+//!    `--set key=value` overrides are applied to that value ([`apply_set`]), and
+//!    the result is deserialised into [`Config`] (`model`; unknown fields are errors).
+//! 2. `validate`: every value is checked against its allowed range; the log
+//!    options through [`check_log_options`](crate::check_log_options), shared with
+//!    resume. Every error ([`ConfigError`], `error`) names the field as a dotted
+//!    path, says what was wrong and what is allowed.
+//! 3. `resolve`: [`Config::to_run_spec`] makes every default explicit and builds
+//!    the engine's spec; the resolved configuration ([`Config::canonical_json`])
+//!    travels with it into the log, so a log always says exactly what ran.
+//!
+//! Every field is optional; the defaults are a fluid of 10⁴ discs at η = 0.5 for
+//! 50 time units. The fields, their units and allowed values are documented on the
+//! structs of `model` and in `data/config.schema.json`.
+
+mod error;
+mod front;
+mod model;
+mod resolve;
+mod validate;
+
+pub use error::ConfigError;
+pub use front::{apply_set, load_config};
+pub use model::{
+    AxisBoundary, BoundaryConfig, BoxConfig, CollisionConfig, CollisionModel, CompressionConfig,
+    Config, LogConfig, PlacementConfig, SpeciesConfig, StopConfig, VelocitiesConfig, DEFAULT_COUNT,
+    DEFAULT_DURATION, DEFAULT_PACKING_FRACTION,
+};
+
+#[cfg(test)]
+mod tests;

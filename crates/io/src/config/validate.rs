@@ -1,0 +1,256 @@
+//! The single validator of a configuration: every value against its allowed
+//! range, one function per section (species, box, initial state, collision rule,
+//! stop), and the log options through [`check_log_options`], which a resume
+//! calls too. Errors name the field. Placement feasibility and overlaps are
+//! checked when the state is built ([`ConfigError::from_init`]).
+
+use super::{AxisBoundary, CollisionModel, Config, ConfigError, PlacementConfig, VelocitiesConfig};
+use crate::options::check_log_options;
+
+/// Hexagonal close packing π/(2√3), the largest packing fraction discs can reach.
+const ETA_CLOSE_PACKED: f64 = 0.906_899_682_117_108_9;
+
+impl Config {
+    /// Check every value against its allowed range. Errors name the field.
+    /// (Placement feasibility and overlaps are checked when the state is built,
+    /// see [`ConfigError::from_init`].)
+    pub fn validate(&self) -> Result<(), ConfigError> {
+        let n = self.check_species()?;
+        self.check_box()?;
+        self.check_initial_state(n)?;
+        self.check_collision()?;
+        self.check_stop()?;
+        // A run of known length starts at time 0 and lasts stop.duration.
+        check_log_options(&self.log.options(), &self.stop.stop(), 0.0, "stop.duration")?;
+        Ok(())
+    }
+
+    /// The species: at least one, radii and masses finite and > 0, and between 1
+    /// and 2³² − 2 discs in total (their number).
+    fn check_species(&self) -> Result<usize, ConfigError> {
+        if self.species.is_empty() {
+            return Err(ConfigError::invalid(
+                "species",
+                "the list is empty",
+                "at least one species {\"count\": N, \"radius\": a, \"mass\": m}",
+            ));
+        }
+        let mut total: u64 = 0;
+        for (k, s) in self.species.iter().enumerate() {
+            positive_finite(&format!("species.{k}.radius"), s.radius)?;
+            positive_finite(&format!("species.{k}.mass"), s.mass)?;
+            total = total.saturating_add(s.count);
+        }
+        if total == 0 {
+            return Err(ConfigError::invalid(
+                "species",
+                "zero discs in total",
+                "at least one disc (some species.N.count ≥ 1)",
+            ));
+        }
+        if total >= u32::MAX as u64 {
+            return Err(ConfigError::invalid(
+                "species",
+                format!("{total} discs in total"),
+                "fewer than 4294967295 discs",
+            ));
+        }
+        Ok(total as usize)
+    }
+
+    /// The box: either its size or its packing fraction and aspect, and a wall
+    /// restitution only with walls.
+    fn check_box(&self) -> Result<(), ConfigError> {
+        let b = &self.sim_box;
+        if let Some(size) = b.size {
+            for (k, name) in ["box.packing_fraction", "box.aspect"].iter().enumerate() {
+                let given = if k == 0 { b.packing_fraction } else { b.aspect };
+                if given.is_some() {
+                    return Err(ConfigError::invalid(
+                        *name,
+                        "given together with box.size",
+                        "either box.size, or box.packing_fraction (with optional box.aspect)",
+                    ));
+                }
+            }
+            let d_max = 2.0 * self.species.iter().map(|s| s.radius).fold(0.0, f64::max);
+            for (k, l) in size.iter().enumerate() {
+                if !l.is_finite() || *l <= d_max {
+                    return Err(ConfigError::invalid(
+                        format!("box.size.{k}"),
+                        format!("edge length {l}"),
+                        format!("finite and longer than the largest disc diameter {d_max}"),
+                    ));
+                }
+            }
+        } else {
+            if let Some(eta) = b.packing_fraction {
+                if !(eta.is_finite() && eta > 0.0 && eta < ETA_CLOSE_PACKED) {
+                    return Err(ConfigError::invalid(
+                        "box.packing_fraction",
+                        format!("value {eta}"),
+                        "0 < η < 0.9069 (hexagonal close packing); lattice placement reaches 0.72",
+                    ));
+                }
+            }
+            if let Some(a) = b.aspect {
+                if !(a.is_finite() && (0.01..=100.0).contains(&a)) {
+                    return Err(ConfigError::invalid(
+                        "box.aspect",
+                        format!("value {a}"),
+                        "0.01 ≤ L_x/L_y ≤ 100",
+                    ));
+                }
+            }
+        }
+        if let Some(e) = b.wall_restitution {
+            if !b.boundary.axes().contains(&AxisBoundary::Walls) {
+                return Err(ConfigError::invalid(
+                    "box.wall_restitution",
+                    "given but no axis has walls",
+                    "only with box.boundary \"walls\" or walls on one axis",
+                ));
+            }
+            if !(0.0..=1.0).contains(&e) {
+                return Err(ConfigError::invalid(
+                    "box.wall_restitution",
+                    format!("value {e}"),
+                    "0 ≤ e_w ≤ 1",
+                ));
+            }
+        }
+        Ok(())
+    }
+
+    /// The initial state of `n` discs: the temperature, and one explicit position
+    /// or velocity per disc.
+    fn check_initial_state(&self, n: usize) -> Result<(), ConfigError> {
+        if !(self.temperature.is_finite() && self.temperature > 0.0) {
+            return Err(ConfigError::invalid(
+                "temperature",
+                format!("value {}", self.temperature),
+                "finite kT > 0",
+            ));
+        }
+        let check_list = |field: &str, list: &[[f64; 2]], what: &str| {
+            if list.len() != n {
+                return Err(ConfigError::invalid(
+                    field,
+                    format!("{} {what} given for {n} discs", list.len()),
+                    format!("exactly one [x, y] pair per disc ({n})"),
+                ));
+            }
+            Ok(())
+        };
+        if let PlacementConfig::Explicit(p) = &self.placement {
+            check_list("placement.explicit", p, "positions")?;
+        }
+        if let VelocitiesConfig::Explicit(v) = &self.velocities {
+            check_list("velocities.explicit", v, "velocities")?;
+        }
+        Ok(())
+    }
+
+    /// The pair collision rule and the inelastic-collapse safeguards.
+    fn check_collision(&self) -> Result<(), ConfigError> {
+        let c = &self.collision;
+        match (c.model, c.coefficient) {
+            (CollisionModel::Elastic, Some(e)) if e != 1.0 => {
+                return Err(ConfigError::invalid(
+                    "collision.coefficient",
+                    format!("{e} with model \"elastic\""),
+                    "1 (or absent) for \"elastic\"; set collision.model to \"normal\" or \
+                     \"centre-of-mass\" for inelastic collisions",
+                ))
+            }
+            (CollisionModel::Normal | CollisionModel::CentreOfMass, None) => {
+                return Err(ConfigError::invalid(
+                    "collision.coefficient",
+                    "missing for an inelastic model",
+                    "a restitution coefficient 0 ≤ e ≤ 1",
+                ))
+            }
+            (_, Some(e)) if !(0.0..=1.0).contains(&e) => {
+                return Err(ConfigError::invalid(
+                    "collision.coefficient",
+                    format!("value {e}"),
+                    "0 ≤ coefficient ≤ 1",
+                ))
+            }
+            _ => {}
+        }
+        if !(c.tc.is_finite() && c.tc >= 0.0) {
+            return Err(ConfigError::invalid(
+                "collision.tc",
+                format!("value {}", c.tc),
+                "finite t_c ≥ 0 (0 switches the TC model off)",
+            ));
+        }
+        if c.max_events_without_time_advance == 0 {
+            return Err(ConfigError::invalid(
+                "collision.max_events_without_time_advance",
+                "value 0",
+                "an integer ≥ 1",
+            ));
+        }
+        Ok(())
+    }
+
+    /// The stop: exactly one of a positive duration and a collision count that
+    /// can be reached.
+    fn check_stop(&self) -> Result<(), ConfigError> {
+        match (self.stop.duration, self.stop.collisions) {
+            (Some(_), Some(_)) => {
+                return Err(ConfigError::invalid(
+                    "stop",
+                    "both duration and collisions given",
+                    "exactly one of stop.duration and stop.collisions",
+                ))
+            }
+            (Some(t), None) if !(t.is_finite() && t > 0.0) => {
+                return Err(ConfigError::invalid(
+                    "stop.duration",
+                    format!("value {t}"),
+                    "finite simulated time > 0",
+                ))
+            }
+            (None, Some(0)) => {
+                return Err(ConfigError::invalid(
+                    "stop.collisions",
+                    "value 0",
+                    "an integer ≥ 1",
+                ))
+            }
+            (None, Some(_))
+                if self
+                    .species
+                    .iter()
+                    .map(|s| s.count)
+                    .filter(|&c| c > 0)
+                    .eq([1])
+                    && !self.sim_box.boundary.axes().contains(&AxisBoundary::Walls) =>
+            {
+                // It would run forever, filling the disk with snapshots.
+                return Err(ConfigError::invalid(
+                    "stop.collisions",
+                    "a single disc in a periodic box never collides",
+                    "stop.duration, or walls, or more than one disc",
+                ));
+            }
+            _ => {}
+        }
+        Ok(())
+    }
+}
+
+fn positive_finite(field: &str, x: f64) -> Result<(), ConfigError> {
+    if x.is_finite() && x > 0.0 {
+        Ok(())
+    } else {
+        Err(ConfigError::invalid(
+            field,
+            format!("value {x}"),
+            "a finite number > 0",
+        ))
+    }
+}

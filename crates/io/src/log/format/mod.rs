@@ -1,0 +1,153 @@
+//! The format of a carom log, shared by the writer and the reader: the four
+//! channels ([`CHANNELS`]: topic, schema, encodings), the version constants, the
+//! metadata records, and each message's Rust form with its encoder and decoder.
+//!
+//! | topic | schema | encoding | content |
+//! |---|---|---|---|
+//! | `/collisions` | `carom_msgs/msg/CollisionBatch` (`ros2msg`) | `cdr` | [`CollisionBatch`] |
+//! | `/snapshot` | `carom_msgs/msg/Snapshot` (`ros2msg`) | `cdr` | [`Snapshot`] |
+//! | `/thermo` | `carom.Thermo` (`jsonschema`) | `json` | [`Thermo`] |
+//! | `/checkpoint` | `carom_msgs/msg/Checkpoint` (`ros2msg`) | `cdr` | [`LogCheckpoint`] |
+//!
+//! Message log times are simulated times in nanoseconds, taking one simulated time
+//! unit as one second ([`log_time_ns`]). `docs/log-format.md` documents every field.
+
+mod cdr;
+mod checkpoint;
+mod collisions;
+mod facts;
+mod metadata;
+mod snapshot;
+mod thermo;
+
+pub use cdr::CdrError;
+pub(crate) use cdr::{CdrReader, CdrWriter};
+pub use checkpoint::{DriverState, LogCheckpoint, CHECKPOINT_FORMAT_VERSION, CHECKPOINT_MSG};
+pub use collisions::{
+    CollisionBatch, CollisionRecord, COLLISION_BATCH_MSG, KIND_PAIR, KIND_WALL, NO_DISC,
+};
+pub use facts::RunFacts;
+pub use metadata::{now_rfc3339, MetadataError, RunMetadata, StopReason, SummaryMetadata};
+pub use snapshot::{Snapshot, SNAPSHOT_MSG};
+pub use thermo::{Thermo, THERMO_JSON_SCHEMA};
+
+/// Topic of the collision batches.
+pub const TOPIC_COLLISIONS: &str = "/collisions";
+/// Topic of the snapshots.
+pub const TOPIC_SNAPSHOT: &str = "/snapshot";
+/// Topic of the thermodynamic records.
+pub const TOPIC_THERMO: &str = "/thermo";
+/// Topic of the checkpoints.
+pub const TOPIC_CHECKPOINT: &str = "/checkpoint";
+
+/// Name of the metadata record written at the start of a run.
+pub const METADATA_RUN: &str = "carom.run";
+/// Name of the metadata record written at the end of a run.
+pub const METADATA_SUMMARY: &str = "carom.summary";
+
+/// Version of the log layout described here; stored in the `carom.run` metadata as
+/// `log_format`. Readers reject files with a different major version.
+///
+/// 1.1: `/checkpoint` format 2 (each disc's pair candidate time; the engine's
+/// internal clock and its epoch); a log 1.0 checkpoint cannot be resumed (its
+/// reader reports the format). 1.2: `carom.run` gains `run_facts` ([`RunFacts`]);
+/// the messages are unchanged, and 1.1 logs read with no facts.
+pub const LOG_FORMAT_VERSION: &str = "1.2";
+
+/// Encoding of the JSON Schema `carom.Thermo`.
+pub const SCHEMA_ENCODING_JSONSCHEMA: &str = "jsonschema";
+/// Encoding of the `ros2msg` schemas.
+pub const SCHEMA_ENCODING_ROS2MSG: &str = "ros2msg";
+/// Message encoding of CDR channels.
+pub const MESSAGE_ENCODING_CDR: &str = "cdr";
+/// Message encoding of JSON channels.
+pub const MESSAGE_ENCODING_JSON: &str = "json";
+/// One channel of a carom log: its topic, its schema and the encodings.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Channel {
+    /// The MCAP topic.
+    pub topic: &'static str,
+    /// The schema's name.
+    pub schema_name: &'static str,
+    /// The schema's encoding (`ros2msg` or `jsonschema`).
+    pub schema_encoding: &'static str,
+    /// The schema's text, stored in the file.
+    pub schema_text: &'static str,
+    /// The messages' encoding (`cdr` or `json`).
+    pub message_encoding: &'static str,
+}
+
+/// Index of `/collisions` in [`CHANNELS`] and in per-channel arrays.
+pub const CH_COLLISIONS: usize = 0;
+/// Index of `/snapshot` in [`CHANNELS`] and in per-channel arrays.
+pub const CH_SNAPSHOT: usize = 1;
+/// Index of `/thermo` in [`CHANNELS`] and in per-channel arrays.
+pub const CH_THERMO: usize = 2;
+/// Index of `/checkpoint` in [`CHANNELS`] and in per-channel arrays.
+pub const CH_CHECKPOINT: usize = 3;
+
+/// The four channels, in per-channel-array order ([`CH_COLLISIONS`] …).
+pub const CHANNELS: [Channel; 4] = [
+    Channel {
+        topic: TOPIC_COLLISIONS,
+        schema_name: "carom_msgs/msg/CollisionBatch",
+        schema_encoding: SCHEMA_ENCODING_ROS2MSG,
+        schema_text: COLLISION_BATCH_MSG,
+        message_encoding: MESSAGE_ENCODING_CDR,
+    },
+    Channel {
+        topic: TOPIC_SNAPSHOT,
+        schema_name: "carom_msgs/msg/Snapshot",
+        schema_encoding: SCHEMA_ENCODING_ROS2MSG,
+        schema_text: SNAPSHOT_MSG,
+        message_encoding: MESSAGE_ENCODING_CDR,
+    },
+    Channel {
+        topic: TOPIC_THERMO,
+        schema_name: "carom.Thermo",
+        schema_encoding: SCHEMA_ENCODING_JSONSCHEMA,
+        schema_text: THERMO_JSON_SCHEMA,
+        message_encoding: MESSAGE_ENCODING_JSON,
+    },
+    Channel {
+        topic: TOPIC_CHECKPOINT,
+        schema_name: "carom_msgs/msg/Checkpoint",
+        schema_encoding: SCHEMA_ENCODING_ROS2MSG,
+        schema_text: CHECKPOINT_MSG,
+        message_encoding: MESSAGE_ENCODING_CDR,
+    },
+];
+
+/// Topics in per-channel-array order.
+pub const TOPICS: [&str; 4] = [
+    CHANNELS[0].topic,
+    CHANNELS[1].topic,
+    CHANNELS[2].topic,
+    CHANNELS[3].topic,
+];
+
+/// MCAP log time of simulated time `t`: nanoseconds, one simulated time unit taken
+/// as one second; negative times map to 0 and times beyond ~584 years saturate.
+pub fn log_time_ns(t: f64) -> u64 {
+    let ns = t * 1e9;
+    if ns.is_nan() || ns <= 0.0 {
+        0
+    } else if ns >= u64::MAX as f64 {
+        u64::MAX
+    } else {
+        ns.round() as u64
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn log_time_saturates() {
+        assert_eq!(log_time_ns(-1.0), 0);
+        assert_eq!(log_time_ns(f64::NAN), 0);
+        assert_eq!(log_time_ns(1.5), 1_500_000_000);
+        assert_eq!(log_time_ns(1e30), u64::MAX);
+    }
+}

@@ -1,0 +1,69 @@
+//! The `/thermo` channel: running thermodynamics as JSON, with the JSON Schema
+//! [`THERMO_JSON_SCHEMA`].
+
+use serde::{Deserialize, Serialize};
+
+/// JSON Schema `carom.Thermo` of the `/thermo` records.
+pub const THERMO_JSON_SCHEMA: &str = r#"{
+  "$schema": "https://json-schema.org/draft/2020-12/schema",
+  "title": "carom.Thermo",
+  "description": "Thermodynamics of a carom run at one simulated time. Running quantities average over the run so far (from run_start_time).",
+  "type": "object",
+  "properties": {
+    "time": {"type": "number", "description": "simulated time (time)"},
+    "kinetic_energy": {"type": "number", "description": "K = sum m v^2 / 2 (energy)"},
+    "temperature": {"type": "number", "description": "kT = 2K/f with f = 2N - (periodic axes) (energy)"},
+    "collisions": {"type": "integer", "description": "pair + wall collisions since the start of the run"},
+    "pair_collisions": {"type": "integer", "description": "pair collisions since the start of the run"},
+    "wall_collisions": {"type": "integer", "description": "wall collisions since the start of the run"},
+    "energy_lost": {"type": "number", "description": "kinetic energy dissipated since the start of the run (energy)"},
+    "virial_sum": {"type": "number", "description": "sum over pair collisions of r_ij . dp_i since the start of the run (length*momentum)"},
+    "wall_impulse": {"type": "number", "description": "momentum given to all walls since the start of the run (momentum)"},
+    "pressure": {"type": "number", "description": "running pressure estimate P (energy/length^2) over the run so far (t = time - run start); periodic box: P A = N kT + W with W = virial_sum/(2 t); walls: wall impulse per unit time per unit accessible wall length, averaged over the walled axes; absent while t = 0 or kT = 0"},
+    "z": {"type": "number", "description": "running compressibility factor beta P A / N (periodic: 1 + W/(N kT)); with walls A is the area reachable by disc centres, (L_x - 2a)(L_y - 2a) on walled axes with a the largest radius; absent like pressure"},
+    "collision_rate": {"type": "number", "description": "pair collisions per disc per unit time over the run so far, 2 N_pair / (N t) (1/time); absent while t = 0"}
+  },
+  "required": ["time", "kinetic_energy", "temperature", "collisions", "pair_collisions", "wall_collisions", "energy_lost", "virial_sum", "wall_impulse"]
+}"#;
+
+/// A `/thermo` record (JSON, schema [`THERMO_JSON_SCHEMA`]). Running quantities
+/// average over the run so far, from its start time.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct Thermo {
+    /// Simulated time (time).
+    pub time: f64,
+    /// K = Σ m v²/2 (energy).
+    pub kinetic_energy: f64,
+    /// kT = 2K/f, f = 2N − (periodic axes) (energy; physics.md §5).
+    pub temperature: f64,
+    /// Pair + wall collisions since the start of the run.
+    pub collisions: u64,
+    /// Pair collisions since the start of the run.
+    pub pair_collisions: u64,
+    /// Wall collisions since the start of the run.
+    pub wall_collisions: u64,
+    /// Kinetic energy dissipated since the start (energy).
+    pub energy_lost: f64,
+    /// Σ r_ij·Δp_i over pair collisions since the start (length·momentum).
+    pub virial_sum: f64,
+    /// Momentum given to all walls since the start (momentum).
+    pub wall_impulse: f64,
+    /// Running pressure estimate P (energy/length²), see [`THERMO_JSON_SCHEMA`];
+    /// absent (`None`) while no simulated time has passed or kT = 0.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub pressure: Option<f64>,
+    /// Running compressibility factor βPA/N (dimensionless); absent like `pressure`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub z: Option<f64>,
+    /// Pair collisions per disc per unit time, 2 N_pair/(N t) (1/time); absent
+    /// while no simulated time has passed.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub collision_rate: Option<f64>,
+}
+
+impl Thermo {
+    /// Decode a `/thermo` message (JSON).
+    pub fn decode(data: &[u8]) -> Result<Thermo, serde_json::Error> {
+        serde_json::from_slice(data)
+    }
+}

@@ -1,0 +1,235 @@
+//! [`scan_indexed`]: what [`super::scan`] finds, for a log that was finished
+//! properly, from its index and the few chunks holding each channel's first and
+//! last message instead of the whole file.
+
+use super::scan::simulated_times;
+use super::{record_length_limit, LogEnd, LogInfo, LogReader, RawMessage, ReadError};
+use crate::log::format::{
+    SummaryMetadata, Thermo, CH_CHECKPOINT, CH_THERMO, METADATA_SUMMARY, TOPICS,
+};
+use mcap::records::Record;
+use std::collections::HashMap;
+use std::fs::File;
+use std::io::{Read, Seek, SeekFrom};
+use std::path::Path;
+
+/// [`scan`]'s findings for a log that was finished properly, read from its index
+/// (the MCAP summary section) and the few chunks that hold each channel's first and
+/// last messages, instead of from the whole file: what `carom analyze` needs before
+/// its own pass over every message. Message counts come from the index's
+/// statistics, logged collisions from the `carom.summary` metadata, and times and
+/// thermo counts from the messages themselves, so the result equals [`scan`]'s for
+/// an intact file. Nothing else in the file is read or checked: damage elsewhere is
+/// found only by a later full read. `Ok(None)` when the file has no usable index (a
+/// run cut short; then use [`scan`]).
+pub fn scan_indexed(path: &Path) -> Result<Option<LogInfo>, ReadError> {
+    use mcap::sans_io::indexed_reader::ReadOrder;
+    use mcap::sans_io::indexed_reader::{IndexedReadEvent, IndexedReader, IndexedReaderOptions};
+    use mcap::sans_io::summary_reader::{SummaryReadEvent, SummaryReader, SummaryReaderOptions};
+
+    let label = path.display().to_string();
+    let io = |source| ReadError::Io {
+        file: label.clone(),
+        source,
+    };
+    let head = LogReader::open(path)?;
+    let mut file = File::open(path).map_err(io)?;
+    let file_bytes = file.metadata().map_err(io)?.len();
+    if !head.has_end_magic {
+        return Ok(None);
+    }
+    // Knowing the file's size, the summary reader never asks for more bytes than
+    // are left (a damaged length cannot make it allocate gigabytes).
+    let mut summary_reader = SummaryReader::new_with_options(
+        SummaryReaderOptions::default()
+            .with_file_size(file_bytes)
+            .with_record_length_limit(record_length_limit(file_bytes)),
+    );
+    while let Some(event) = summary_reader.next_event() {
+        let Ok(event) = event else { return Ok(None) };
+        match event {
+            SummaryReadEvent::ReadRequest(need) => {
+                let n = file.read(summary_reader.insert(need)).map_err(io)?;
+                summary_reader.notify_read(n);
+            }
+            SummaryReadEvent::SeekRequest(to) => {
+                summary_reader.notify_seeked(file.seek(to).map_err(io)?);
+            }
+        }
+    }
+    let Some(summary) = summary_reader.finish() else {
+        return Ok(None);
+    };
+    let Some(stats) = &summary.stats else {
+        return Ok(None);
+    };
+    // Our channel index of each MCAP channel id.
+    let ours: HashMap<u16, usize> = summary
+        .channels
+        .iter()
+        .filter_map(|(&id, c)| TOPICS.iter().position(|&t| t == c.topic).map(|k| (id, k)))
+        .collect();
+    let mut channels = [false; 4];
+    let mut messages = [0u64; 4];
+    for (&id, &k) in &ours {
+        channels[k] = true;
+        messages[k] += stats.channel_message_counts.get(&id).copied().unwrap_or(0);
+    }
+    // The carom.summary metadata (logged collisions, and the summary itself).
+    let Some(index) = summary
+        .metadata_indexes
+        .iter()
+        .find(|m| m.name == METADATA_SUMMARY)
+    else {
+        return Ok(None);
+    };
+    // (An index pointing outside the file is damage: left to the full scan, as is
+    // any other inconsistency below.)
+    if index.length < 9 || index.offset.saturating_add(index.length) > file_bytes {
+        return Ok(None);
+    }
+    let mut record = vec![0u8; index.length as usize];
+    file.seek(SeekFrom::Start(index.offset)).map_err(io)?;
+    file.read_exact(&mut record).map_err(io)?;
+    // A record is its opcode, its length (u64) and its body.
+    let Ok(Record::Metadata(m)) = mcap::parse_record(record[0], &record[9..]) else {
+        return Ok(None);
+    };
+    let Ok(carom_summary) = SummaryMetadata::from_map(&m.metadata) else {
+        return Ok(None);
+    };
+    // The chunks (in file order) that hold each channel's first and last message.
+    let mut chunks = summary.chunk_indexes.clone();
+    chunks.sort_by_key(|c| c.chunk_start_offset);
+    if chunks.iter().any(|c| c.message_index_offsets.is_empty()) {
+        return Ok(None);
+    }
+    let ours = &ours;
+    let holding = |k: usize| {
+        move |c: &&mcap::records::ChunkIndex| {
+            c.message_index_offsets
+                .keys()
+                .any(|id| ours.get(id) == Some(&k))
+        }
+    };
+    let mut ends: [Option<(RawOwned, RawOwned)>; 4] = Default::default();
+    for (k, end) in ends.iter_mut().enumerate() {
+        let (Some(first), Some(last)) = (
+            chunks.iter().find(holding(k)),
+            chunks.iter().rfind(holding(k)),
+        ) else {
+            continue;
+        };
+        let mut pick = |chunk: &mcap::records::ChunkIndex,
+                        want_last: bool|
+         -> Result<Option<RawOwned>, ReadError> {
+            let one = mcap::Summary {
+                chunk_indexes: vec![chunk.clone()],
+                channels: summary.channels.clone(),
+                schemas: summary.schemas.clone(),
+                ..Default::default()
+            };
+            let Ok(mut reader) = IndexedReader::new_with_options(
+                &one,
+                IndexedReaderOptions::new()
+                    .with_order(ReadOrder::File)
+                    .with_record_length_limit(record_length_limit(file_bytes)),
+            ) else {
+                return Ok(None);
+            };
+            let mut found: Option<RawOwned> = None;
+            let mut buf = Vec::new();
+            while let Some(event) = reader.next_event() {
+                let Ok(event) = event else { return Ok(None) };
+                match event {
+                    IndexedReadEvent::ReadChunkRequest { offset, length } => {
+                        if offset.saturating_add(length as u64) > file_bytes {
+                            return Ok(None);
+                        }
+                        file.seek(SeekFrom::Start(offset)).map_err(io)?;
+                        buf.resize(length, 0);
+                        file.read_exact(&mut buf).map_err(io)?;
+                        if reader.insert_chunk_record_data(offset, &buf).is_err() {
+                            return Ok(None);
+                        }
+                    }
+                    IndexedReadEvent::Message { header, data } => {
+                        if ours.get(&header.channel_id) == Some(&k) {
+                            found = Some(RawOwned {
+                                channel: k,
+                                log_time: header.log_time,
+                                publish_time: header.publish_time,
+                                data: data.to_vec(),
+                            });
+                            if !want_last {
+                                break;
+                            }
+                        }
+                    }
+                }
+            }
+            Ok(found)
+        };
+        let (Some(a), Some(b)) = (pick(first, false)?, pick(last, true)?) else {
+            return Ok(None);
+        };
+        *end = Some((a, b));
+    }
+    let mut time_span: [Option<(f64, f64)>; 4] = [None; 4];
+    for (span, end) in time_span.iter_mut().zip(&ends) {
+        if let Some((a, b)) = end {
+            let (t0, _) = simulated_times(&a.raw());
+            let (_, t1) = simulated_times(&b.raw());
+            *span = Some((t0, t1));
+        }
+    }
+    let last_checkpoint_time = ends[CH_CHECKPOINT]
+        .as_ref()
+        .map(|(_, b)| simulated_times(&b.raw()).0);
+    let thermo_counts = match &ends[CH_THERMO] {
+        Some((a, b)) => {
+            let count = |m: &RawOwned| {
+                Thermo::decode(&m.data)
+                    .ok()
+                    .map(|t| (t.time, t.pair_collisions, t.wall_collisions))
+            };
+            match (count(a), count(b)) {
+                (Some(x), Some(y)) => Some([x, y]),
+                _ => return Ok(None),
+            }
+        }
+        None => None,
+    };
+    Ok(Some(LogInfo {
+        run: head.run.clone(),
+        summary: Some(carom_summary.clone()),
+        end: LogEnd::Complete,
+        channels,
+        messages,
+        logged_collisions: carom_summary.logged_collisions,
+        time_span,
+        last_checkpoint_time,
+        thermo_counts,
+        file_bytes,
+    }))
+}
+
+/// A message copied out of its chunk (see [`scan_indexed`]).
+struct RawOwned {
+    channel: usize,
+    log_time: u64,
+    publish_time: u64,
+    data: Vec<u8>,
+}
+
+impl RawOwned {
+    fn raw(&self) -> RawMessage<'_> {
+        RawMessage {
+            channel: self.channel,
+            sequence: 0,
+            log_time: self.log_time,
+            publish_time: self.publish_time,
+            data: &self.data,
+        }
+    }
+}
