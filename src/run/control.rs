@@ -138,4 +138,3 @@ impl std::fmt::Debug for Control<'_> {
             .finish()
     }
 }
-

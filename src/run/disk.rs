@@ -45,7 +45,10 @@ pub type FreeSpace<'a> = dyn FnMut(&Path) -> std::io::Result<u64> + 'a;
 /// The bytes free for the file `path` on its disk: the caller's answer `ask`
 /// ([`Control::free_space`]) or, without one, the file system's
 /// ([`free_space_for`]).
-pub(super) fn free_bytes(ask: &mut Option<&mut FreeSpace<'_>>, path: &Path) -> std::io::Result<u64> {
+pub(super) fn free_bytes(
+    ask: &mut Option<&mut FreeSpace<'_>>,
+    path: &Path,
+) -> std::io::Result<u64> {
     match ask {
         Some(ask) => ask(path),
         None => free_space_for(path),

@@ -108,4 +108,3 @@ pub enum RunError {
         source: std::io::Error,
     },
 }
-

@@ -73,4 +73,3 @@ pub struct ResumeOptions {
     /// A new stop criterion (e.g. to extend a finished run); `None` keeps the input's.
     pub stop: Option<Stop>,
 }
-

@@ -96,4 +96,3 @@ fn place(system: &SystemSpec, control: &mut Control<'_>) -> Result<State, RunErr
         }),
     }
 }
-

@@ -72,4 +72,3 @@ pub(super) fn validate(log: &LogOptions, stop: &Stop, now: f64) -> Result<(), Ru
     }
     Ok(())
 }
-
