@@ -9,6 +9,8 @@
 use super::analyzer::Analyzer;
 use super::report::{ChiSquareReport, HistogramReport, KsReport, SpeciesMb, SpeciesUntested};
 use super::stats::{ks_test, mb_speed_test, Histogram, StatsError};
+#[cfg(doc)]
+use super::{AnalysisOptions, DECORRELATION_COLLISIONS};
 
 /// p-value below which a Maxwell–Boltzmann test counts as failed (either test).
 pub const MB_P_THRESHOLD: f64 = 1e-3;
@@ -16,14 +18,11 @@ pub const MB_P_THRESHOLD: f64 = 1e-3;
 /// The largest correlation of a species' velocities between the snapshots its
 /// Maxwell–Boltzmann tests use. The default spacing ([`DECORRELATION_COLLISIONS`])
 /// is set by the collision rate of all discs, but a heavy disc keeps its velocity
-/// over about M/m collisions with light ones: in a run with 100 discs of mass 10⁶
-/// among 10⁴ of mass 1 the heavy discs' velocities hardly changed over the whole
-/// run, and 31 snapshots of the same 100 velocities failed both tests (χ² = 797 over
-/// 29 degrees of freedom). A species whose velocities correlate more than this from
-/// one snapshot to the next is tested on every k-th snapshot only, with k the
-/// smallest for which the correlation, decaying as ρ^k, falls to this. (Only with
-/// the default spacing: a spacing asked for, [`AnalysisOptions::every`], is used as
-/// it is, the correlation still reported.)
+/// over about M/m collisions with light ones. A species whose velocities correlate
+/// more than this from one snapshot to the next is tested on every k-th snapshot
+/// only, k the smallest for which ρ^k falls to this (only with the default spacing;
+/// an [`AnalysisOptions::every`] asked for is used as it is). See
+/// docs/performance.md, 'analyze defaults'.
 pub const MAX_SNAPSHOT_CORRELATION: f64 = 0.05;
 
 /// The correlation of a species' velocities between consecutive snapshots: `vx`,
