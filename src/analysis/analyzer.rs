@@ -388,20 +388,9 @@ impl Analyzer {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use carom_core::{Restitution, SimBox, Species};
 
     fn run() -> RunDescription {
-        RunDescription {
-            species: vec![Species::reference(2)],
-            sim_box: SimBox::periodic(10.0, 10.0),
-            restitution: Restitution::Elastic,
-            collision_stride: 1,
-            totals_from_thermo: false,
-            t_start: 0.0,
-            t_end: 10.0,
-            pair_rate: None,
-            snapshot_interval: None,
-        }
+        RunDescription::for_tests()
     }
 
     #[test]

@@ -57,6 +57,24 @@ impl RunDescription {
     }
 }
 
+#[cfg(test)]
+impl RunDescription {
+    /// Two reference discs in a periodic 10 × 10 box, elastic, logged over [0, 10].
+    pub(super) fn for_tests() -> Self {
+        RunDescription {
+            species: vec![Species::reference(2)],
+            sim_box: SimBox::periodic(10.0, 10.0),
+            restitution: Restitution::Elastic,
+            collision_stride: 1,
+            totals_from_thermo: false,
+            t_start: 0.0,
+            t_end: 10.0,
+            pair_rate: None,
+            snapshot_interval: None,
+        }
+    }
+}
+
 /// The run's species, box and collision rule.
 struct Resolved {
     species: Vec<Species>,

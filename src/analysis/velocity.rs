@@ -171,20 +171,10 @@ pub(super) fn maxwell_boltzmann(
 mod tests {
     use super::*;
     use crate::analysis::{AnalysisOptions, RunDescription};
-    use carom_core::{Restitution, SimBox, Species};
+    use carom_core::{SimBox, Species};
 
     fn run() -> RunDescription {
-        RunDescription {
-            species: vec![Species::reference(2)],
-            sim_box: SimBox::periodic(10.0, 10.0),
-            restitution: Restitution::Elastic,
-            collision_stride: 1,
-            totals_from_thermo: false,
-            t_start: 0.0,
-            t_end: 10.0,
-            pair_rate: None,
-            snapshot_interval: None,
-        }
+        RunDescription::for_tests()
     }
 
     #[test]
