@@ -2,7 +2,7 @@
 //! equation of state, Enskog check, Maxwell–Boltzmann, wall pressure and the
 //! energy budget of a cooling granular gas, against physics.md §5–§8.
 
-use carom::analysis::report::{AnalysisOptions, Analyzer, Report, RunDescription};
+use carom::analysis::{AnalysisOptions, Analyzer, Report, RunDescription};
 use carom::core::{Restitution, SimBox, Species};
 use carom::events::{box_size_for, Engine, EngineParams, Event, Placement, SystemSpec, Velocities};
 
@@ -296,7 +296,7 @@ fn snapshots_closer_than_a_few_collisions_are_thinned_by_default() {
     // the Maxwell–Boltzmann tests reject an exact equilibrium run. Given the
     // collision rate, the analysis uses snapshots DECORRELATION_COLLISIONS
     // collision times apart by default, and the same run passes.
-    use carom::analysis::report::DECORRELATION_COLLISIONS;
+    use carom::analysis::DECORRELATION_COLLISIONS;
     let spec = fluid(2000, 0.5, 4, Velocities::MaxwellBoltzmann);
     let (t_end, dt) = (30.0, 0.02);
     let mut e = Engine::new(spec.build().unwrap(), EngineParams::default()).unwrap();

@@ -1,7 +1,34 @@
-//! Analysis of carom runs: statistics checked independently of the engine
-//! ([`stats`]: histograms, χ² and Kolmogorov–Smirnov tests, block averaging and the
-//! 2D Maxwell–Boltzmann distribution, physics.md §5–§6) and what `carom analyze`
-//! reports ([`report`]).
+//! Analysis of carom runs: what `carom analyze` measures, in one streaming pass
+//! over a run's events, checked against theory with statistics independent of the
+//! engine (physics.md §5–§8).
+//!
+//! [`analyze_log`] reads a log ([`describe`]s its run once, then feeds every
+//! message to an [`Analyzer`]); the tests feed an [`Analyzer`] straight from the
+//! engine. [`Analyzer::finish`] makes one report per observable: temperature,
+//! the velocity distribution against Maxwell–Boltzmann, pressure and Z, the
+//! collision rate and the Enskog check, and for inelastic runs the energy budget
+//! and Haff's law. [`stats`] holds the statistics (histograms, χ², KS, blocking).
 
-pub mod report;
+mod analyzer;
+mod collision_rate;
+mod description;
+mod from_log;
+mod inelastic;
+mod options;
+mod pressure;
+mod report;
+mod series;
 pub mod stats;
+mod temperature;
+mod velocity;
+
+pub use analyzer::Analyzer;
+pub use description::RunDescription;
+pub use from_log::{analyze_log, AnalysisError, ReadObserver};
+pub use options::{AnalysisOptions, CORRELATED_SPACING, DECORRELATION_COLLISIONS, MAX_VELOCITIES};
+pub use report::{
+    ChiSquareReport, CollisionRateReport, EnergyBudget, EnskogReport, HaffReport, HistogramReport,
+    InelasticReport, KsReport, PressureReport, Report, SpeciesInfo, SpeciesMb, SpeciesUntested,
+    TemperatureReport, WindowReport,
+};
+pub use velocity::{MAX_SNAPSHOT_CORRELATION, MB_P_THRESHOLD};

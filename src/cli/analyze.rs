@@ -1,240 +1,45 @@
-//! `carom analyze`: read a log into an [`Analyzer`] and print its [`Report`] as
-//! text or JSON. The time span and collision rate, which the analysis needs
-//! first, come from a finished log's index, or from a scan of a log cut short; then
-//! every message is read in one streaming pass.
+//! `carom analyze`: analyse a log (`carom::analysis::analyze_log`, with a progress
+//! display) and print its [`Report`] as text or JSON.
 //!
 //! The JSON object is the [`Report`] (see its field documentation) with two more
 //! fields: `file` (the log) and `log_complete` (false for a log cut short).
 
 use std::process::ExitCode;
 
-use carom::analysis::report::{
-    AnalysisOptions, Analyzer, Report, RunDescription, CORRELATED_SPACING, DECORRELATION_COLLISIONS,
+use carom::analysis::{
+    analyze_log, AnalysisOptions, ReadObserver, Report, CORRELATED_SPACING,
+    DECORRELATION_COLLISIONS,
 };
-use carom::core::{Boundary, DVec2, Restitution, SimBox, Species};
-use carom::io::{
-    scan_indexed, scan_observed, Config, LogEnd, LogInfo, LogMessage, LogReader, Snapshot,
-    KIND_PAIR,
-};
+use carom::io::ReadProgress;
 
 use super::reading::ReadDisplay;
 use super::{AnalyzeArgs, CliError, Num};
 
-/// The run's species, box and collision rule: from the configuration stored in the
-/// log, or failing that from the first snapshot (then assumed elastic).
-fn describe(
-    config: &str,
-    first: Option<&Snapshot>,
-    display: &mut ReadDisplay,
-) -> Result<(Vec<Species>, SimBox, Restitution), CliError> {
-    match Config::from_json_str(config).and_then(|c| c.to_run_spec()) {
-        Ok(spec) => Ok((
-            spec.system.species,
-            spec.system.sim_box,
-            spec.params.restitution,
-        )),
-        Err(e) => {
-            let s = first.ok_or_else(|| {
-                CliError::Usage(format!(
-                    "the log's configuration cannot be read ({e}) and it has no snapshot"
-                ))
-            })?;
-            display.warn(&format!("warning: the log's configuration cannot be read ({e}); using its first snapshot and assuming elastic collisions"));
-            let mut counts = vec![0usize; s.species_radius.len()];
-            for &k in &s.species {
-                *counts.get_mut(k as usize).ok_or_else(|| {
-                    CliError::Usage(format!(
-                        "the first snapshot names species {k} but lists {} species",
-                        s.species_radius.len()
-                    ))
-                })? += 1;
-            }
-            let species = counts
-                .iter()
-                .zip(s.species_radius.iter().zip(&s.species_mass))
-                .map(|(&count, (&radius, &mass))| Species {
-                    count,
-                    radius,
-                    mass,
-                })
-                .collect();
-            let b = |code: u8| {
-                if code == 0 {
-                    Boundary::Periodic
-                } else {
-                    Boundary::Walls { restitution: 1.0 }
-                }
-            };
-            Ok((
-                species,
-                SimBox {
-                    size: s.box_size,
-                    boundary: [b(s.boundary[0]), b(s.boundary[1])],
-                },
-                Restitution::Elastic,
-            ))
-        }
+impl ReadObserver for ReadDisplay {
+    fn pass(&mut self, what: &'static str) {
+        ReadDisplay::pass(self, what);
     }
-}
-
-/// The pair collision rate ω (pair collisions per disc per unit time) over the
-/// log, from its first and last `/thermo` records, or else from its summary
-/// (counts since the run's start at `t_start`); `None` if neither tells.
-fn pair_rate(info: &LogInfo, n: usize, t_start: f64) -> Option<f64> {
-    let from_thermo = info.thermo_counts.and_then(|[(t0, p0, _), (t1, p1, _)]| {
-        (t1 > t0 && p1 > p0).then(|| 2.0 * (p1 - p0) as f64 / (n as f64 * (t1 - t0)))
-    });
-    let from_summary = info.summary.as_ref().and_then(|s| {
-        (s.sim_time > t_start && s.pair_collisions > 0)
-            .then(|| 2.0 * s.pair_collisions as f64 / (n as f64 * (s.sim_time - t_start)))
-    });
-    from_thermo
-        .or(from_summary)
-        .filter(|w| w.is_finite() && *w > 0.0)
+    fn progress(&mut self, p: ReadProgress) {
+        self.update(p);
+    }
+    fn warn(&mut self, line: &str) {
+        ReadDisplay::warn(self, line);
+    }
 }
 
 /// Read the log and compute the report, showing how far reading has got.
 /// Returns the report with whether the log is complete.
 pub fn read_report(args: &AnalyzeArgs) -> Result<(Report, bool), CliError> {
     let mut display = ReadDisplay::new(args.quiet, &args.file.display().to_string());
-    let report = read_report_shown(args, &mut display);
-    display.finish();
-    report
-}
-
-fn read_report_shown(
-    args: &AnalyzeArgs,
-    display: &mut ReadDisplay,
-) -> Result<(Report, bool), CliError> {
-    // A finished log's index tells the time span and collision counts at once; a
-    // log cut short is scanned. (Either way the pass below reads and checks every
-    // message.)
-    let info = match scan_indexed(&args.file)? {
-        Some(info) => info,
-        None => {
-            display.pass("scanning");
-            scan_observed(&args.file, &mut |p| display.update(p))?
-        }
-    };
-    if let Some(w) = info.end.warning() {
-        display.warn(&format!("warning: {w}"));
-    }
-    let complete = info.end == LogEnd::Complete;
-    let (mut t_start, mut t_end) = (f64::INFINITY, f64::NEG_INFINITY);
-    for (a, b) in info.time_span.iter().flatten() {
-        t_start = t_start.min(*a);
-        t_end = t_end.max(*b);
-    }
-    if t_end.is_nan() || t_start.is_nan() || t_end <= t_start {
-        return Err(CliError::Usage(format!(
-            "{} holds no data spanning any simulated time",
-            args.file.display()
-        )));
-    }
-    let mut reader = LogReader::open(&args.file)?;
-    let collisions_logged = info.run.log.collisions && info.channels[0];
-    // Every k-th collision (k > 1) gives only an estimate of the sums that the
-    // /thermo records hold exactly.
-    let totals_from_thermo = !collisions_logged
-        || (info.run.log.collision_every > 1 && info.run.log.thermo_interval.is_some());
-    // The first snapshot is only needed when the configuration is unreadable.
-    let first_snapshot = if Config::from_json_str(&info.run.config).is_err() {
-        let mut r = LogReader::open(&args.file)?;
-        r.snapshots().find_map(|m| match m {
-            Ok(LogMessage::Snapshot(s)) => Some(s),
-            _ => None,
-        })
-    } else {
-        None
-    };
-    let (species, sim_box, restitution) =
-        describe(&info.run.config, first_snapshot.as_ref(), display)?;
-    let n: usize = species.iter().map(|s| s.count).sum();
-    let run = RunDescription {
-        pair_rate: pair_rate(&info, n, t_start),
-        snapshot_interval: info.run.log.snapshot_interval,
-        species,
-        sim_box,
-        restitution,
-        collision_stride: info.run.log.collision_every.max(1),
-        totals_from_thermo,
-        t_start,
-        t_end,
-    };
     let opts = AnalysisOptions {
         equilibrate: args.equilibrate,
         every: args.every,
         speed_bins: args.bins as usize,
         ..AnalysisOptions::default()
     };
-    if let Some(t) = args.equilibrate {
-        if !t.is_finite() || t >= t_end {
-            return Err(CliError::Usage(format!(
-                "--equilibrate {t}: must be before the end of the log at t = {t_end}"
-            )));
-        }
-    }
-    if let Some(dt) = args.every {
-        if !(dt.is_finite() && dt >= 0.0) {
-            return Err(CliError::Usage(format!(
-                "--every {dt}: must be a finite time ≥ 0"
-            )));
-        }
-    }
-    let mut a = Analyzer::new(run, opts)?;
-    let mut previous_thermo: Option<(f64, f64, f64, u64)> = None;
-    let (mut vx, mut vy) = (Vec::new(), Vec::new());
-    display.pass("reading");
-    let mut shown = 0;
-    loop {
-        if let Some(p) = reader.progress_since(&mut shown) {
-            display.update(p);
-        }
-        let Some(m) = next(&mut reader)? else { break };
-        match m {
-            LogMessage::Collisions(b) => {
-                for k in 0..b.time.len() {
-                    if b.kind[k] == KIND_PAIR {
-                        a.pair(b.time[k], b.virial[k], b.energy_lost[k]);
-                    } else {
-                        a.wall(b.time[k], b.virial[k], b.energy_lost[k]);
-                    }
-                }
-            }
-            LogMessage::Snapshot(s) => {
-                vx.clear();
-                vy.clear();
-                vx.extend(s.velocities.iter().map(|v: &DVec2| v.x));
-                vy.extend(s.velocities.iter().map(|v: &DVec2| v.y));
-                a.snapshot(s.time, &s.species, &vx, &vy)?;
-            }
-            LogMessage::Thermo(t) => {
-                a.thermo(t.time, t.kinetic_energy, Some(t.energy_lost));
-                if totals_from_thermo {
-                    if let Some((t0, v0, w0, p0)) = previous_thermo {
-                        if t.pair_collisions >= p0 {
-                            a.increment(
-                                t0,
-                                t.time,
-                                t.virial_sum - v0,
-                                t.wall_impulse - w0,
-                                t.pair_collisions - p0,
-                            );
-                        }
-                    }
-                    previous_thermo =
-                        Some((t.time, t.virial_sum, t.wall_impulse, t.pair_collisions));
-                }
-            }
-            LogMessage::Checkpoint(_) => {}
-        }
-    }
-    Ok((a.finish()?, complete))
-}
-
-/// The next message; a truncated tail ends the stream (the scan already warned).
-fn next(r: &mut LogReader) -> Result<Option<LogMessage>, carom::io::ReadError> {
-    r.next_message()
+    let report = analyze_log(&args.file, opts, &mut display);
+    display.finish();
+    Ok(report?)
 }
 
 /// `carom analyze`.
@@ -438,7 +243,7 @@ pub fn text(r: &Report, args: &AnalyzeArgs, complete: bool) -> String {
 
 /// How a species' snapshots were thinned, for the text report ("" when all of the
 /// window's snapshots were used).
-fn thinned(m: &carom::analysis::report::SpeciesMb) -> String {
+fn thinned(m: &carom::analysis::SpeciesMb) -> String {
     match m.snapshot_correlation {
         Some(rho) if m.snapshot_step > 1 => format!(
             " from {} (its velocities correlate {rho:.3} from one snapshot to the next: {})",

@@ -108,8 +108,8 @@ pub struct ResumeArgs {
 pub struct AnalyzeArgs {
     /// The log to analyse.
     pub file: PathBuf,
-    /// Print one JSON object (field names documented in
-    /// carom::analysis::report::Report) instead of text.
+    /// Print one JSON object instead of text: the report's fields (what the text
+    /// shows, in the run's units) with `file` and `log_complete`.
     #[arg(long)]
     pub json: bool,
     /// Write figures (PNG and SVG) into this directory.
@@ -125,8 +125,9 @@ pub struct AnalyzeArgs {
     /// Closer snapshots hold correlated velocities: the tests then reject too often.
     #[arg(long, value_name = "DT", allow_negative_numbers = true)]
     pub every: Option<f64>,
-    /// Bins of the speed histograms (at least 4: the χ² test fits one parameter
-    /// and needs a degree of freedom left).
+    /// Bins of each species' speed histogram over [0, 4.5 √(kT/m)) and of its
+    /// v_x, v_y histograms; for the χ² test, bins expecting fewer than 5 counts are
+    /// merged. At least 4: the χ² test fits kT and needs a degree of freedom left.
     #[arg(long, value_name = "N", default_value_t = 40,
           value_parser = clap::value_parser!(u32).range(4..))]
     pub bins: u32,
@@ -171,9 +172,9 @@ pub enum CliError {
     /// A log could not be read.
     #[error("{0}")]
     Read(#[from] carom::io::ReadError),
-    /// A statistic could not be computed.
-    #[error("analysis: {0}")]
-    Stats(#[from] carom::analysis::stats::StatsError),
+    /// A log could not be analysed.
+    #[error("{0}")]
+    Analysis(carom::analysis::AnalysisError),
     /// Writing output failed.
     #[error("{context}: {source}")]
     Io {
@@ -185,6 +186,17 @@ pub enum CliError {
     /// Drawing a figure failed.
     #[error("plot: {0}")]
     Plot(String),
+}
+
+impl From<carom::analysis::AnalysisError> for CliError {
+    fn from(e: carom::analysis::AnalysisError) -> Self {
+        use carom::analysis::AnalysisError;
+        match e {
+            AnalysisError::Read(e) => CliError::Read(e),
+            AnalysisError::Unusable(why) => CliError::Usage(why),
+            e => CliError::Analysis(e),
+        }
+    }
 }
 
 impl CliError {

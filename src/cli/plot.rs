@@ -9,7 +9,7 @@
 use std::path::Path;
 use std::sync::Once;
 
-use carom::analysis::report::{HistogramReport, Report, SpeciesMb};
+use carom::analysis::{HistogramReport, Report, SpeciesMb};
 use plotters::coord::Shift;
 use plotters::prelude::*;
 

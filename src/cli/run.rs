@@ -335,14 +335,6 @@ pub fn run(args: RunArgs) -> Result<ExitCode, CliError> {
     ))
 }
 
-/// Whether paths `a` and `b` name the same existing file.
-fn same_file(a: &Path, b: &Path) -> bool {
-    match (std::fs::canonicalize(a), std::fs::canonicalize(b)) {
-        (Ok(a), Ok(b)) => a == b,
-        _ => a == b,
-    }
-}
-
 /// `carom resume`.
 pub fn resume(args: ResumeArgs) -> Result<ExitCode, CliError> {
     let stop = match (args.until, args.collisions) {
@@ -356,7 +348,7 @@ pub fn resume(args: ResumeArgs) -> Result<ExitCode, CliError> {
         _ => None,
     };
     let out = args.out.unwrap_or_else(|| args.file.clone());
-    if !args.force && out.exists() && !same_file(&out, &args.file) {
+    if !args.force && out.exists() && !carom::run::same_file(&out, &args.file) {
         return Err(CliError::Usage(format!(
             "{} exists; use --force to overwrite it, choose another --out, or leave \
              --out away to continue {} in place",

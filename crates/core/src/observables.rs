@@ -93,6 +93,20 @@ pub fn wall_z(species: &[Species], sim_box: &SimBox, kt: f64, wall_impulse: f64,
     wall_impulse / (2.0 * t * kt * ideal_rate)
 }
 
+/// Pressure from the collision virial in a periodic box, P = (N kT + W)/A with
+/// W = Σ r_ij·Δp_i / (2t) (physics.md §5): [`pressure`] of [`virial_z`], written in
+/// this order (as the `/thermo` records always have been) so its bits stay the same.
+pub fn virial_pressure(n: usize, kt: f64, virial_sum: f64, t: f64, area: f64) -> f64 {
+    let w = virial_sum / (2.0 * t);
+    (n.max(1) as f64 * kt + w) / area
+}
+
+/// Pair collisions per disc per unit time, ω = 2 N_pair / (N t) (physics.md §7):
+/// each pair collision involves two discs.
+pub fn collision_rate(pair_collisions: f64, n: usize, t: f64) -> f64 {
+    2.0 * pair_collisions / (n.max(1) as f64 * t)
+}
+
 /// Pressure P = Z N kT / A (energy/length²), with A the box area when periodic
 /// and [`accessible_area`] with walls.
 pub fn pressure(z: f64, n: usize, kt: f64, area: f64) -> f64 {
@@ -155,6 +169,8 @@ mod tests {
     fn the_virial_estimator_is_one_plus_w_over_n_kt() {
         assert_eq!(virial_z(100, 2.0, 800.0, 1.0), 3.0);
         assert_eq!(pressure(3.0, 100, 2.0, 50.0), 12.0);
+        assert_eq!(virial_pressure(100, 2.0, 800.0, 1.0, 50.0), 12.0);
+        assert_eq!(collision_rate(50.0, 100, 0.5), 2.0);
         let s = [Species::new(4, 0.5, 1.0)];
         let eta = packing_fraction(&s, &SimBox::periodic(2.0, 2.0));
         assert!((eta - std::f64::consts::PI / 4.0).abs() < 1e-15);

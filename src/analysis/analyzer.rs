@@ -1,0 +1,430 @@
+//! The [`Analyzer`]: accumulates a run's events in one streaming pass and turns
+//! them into a [`Report`]. It sees plain numbers (collision virials, wall
+//! impulses, snapshots, kinetic energies), not files: [`super::from_log`] feeds it
+//! from an MCAP log, the tests straight from the engine. Sums go into time bins
+//! after the equilibration time, so that every observable gets a blocked standard
+//! error; kT comes from the thermo records and snapshots, interpolated in time.
+//! [`Analyzer::finish`] calls one function per observable (temperature, velocity
+//! distribution, pressure, collision rate and Enskog, inelastic).
+
+use carom_core::observables::{degrees_of_freedom, packing_fraction, temperature};
+
+use super::options::{budget_spacing, AnalysisOptions, DECORRELATION_COLLISIONS};
+use super::report::{Report, SpeciesInfo, WindowReport};
+use super::stats::StatsError;
+use super::{collision_rate, inelastic, pressure, temperature, velocity, RunDescription};
+
+#[derive(Debug, Clone, Copy, Default)]
+pub(super) struct TimeBin {
+    pub(super) virial: f64,
+    pub(super) wall_impulse: f64,
+    pub(super) pairs: u64,
+    pub(super) walls: u64,
+    /// Pair collisions from [`Analyzer::increment`] (already scaled, fractional).
+    pub(super) pairs_weighted: f64,
+}
+
+/// Accumulates a run's events and produces a [`Report`].
+#[derive(Debug, Clone)]
+pub struct Analyzer {
+    pub(super) run: RunDescription,
+    pub(super) opts: AnalysisOptions,
+    pub(super) t_eq: f64,
+    pub(super) bin_width: f64,
+    pub(super) bins: Vec<TimeBin>,
+    /// (time, kT) from every thermo record and snapshot, in time order.
+    pub(super) kt_series: Vec<(f64, f64)>,
+    /// (time, K, dissipated energy so far when the source reports it).
+    pub(super) energy_series: Vec<(f64, f64, Option<f64>)>,
+    pub(super) lost_from_collisions: f64,
+    pub(super) pair_total: u64,
+    pub(super) wall_total: u64,
+    pub(super) pairs_from_increments: u64,
+    pub(super) speeds: Vec<Vec<f64>>,
+    pub(super) vx: Vec<Vec<f64>>,
+    pub(super) vy: Vec<Vec<f64>>,
+    pub(super) mb_kinetic: f64,
+    pub(super) snapshots_used: Vec<f64>,
+    pub(super) snapshots_seen: usize,
+    /// Whether `opts.every` was chosen here (from the collision rate or the memory
+    /// bound) rather than asked for.
+    pub(super) every_default: bool,
+    /// Whether the memory bound set `opts.every` (spacing the snapshots further
+    /// apart than the collision rate asks).
+    pub(super) every_from_budget: bool,
+}
+
+impl Analyzer {
+    /// An analyzer for `run` with options `opts`.
+    pub fn new(run: RunDescription, opts: AnalysisOptions) -> Result<Self, StatsError> {
+        if run.t_start.is_nan() || run.t_end.is_nan() || run.t_end <= run.t_start {
+            return Err(StatsError::NotEnoughData(format!(
+                "the log spans no time ({} to {})",
+                run.t_start, run.t_end
+            )));
+        }
+        let t_eq = opts
+            .equilibrate
+            .unwrap_or(run.t_start + 0.1 * (run.t_end - run.t_start))
+            .max(run.t_start);
+        if t_eq >= run.t_end {
+            return Err(StatsError::InvalidArgument(format!(
+                "--equilibrate {t_eq} is not before the end of the log at {}",
+                run.t_end
+            )));
+        }
+        let nbins = opts.time_bins.max(16);
+        let ns = run.species.len();
+        let mut opts = opts;
+        let (every_default, every_from_budget) = match opts.every {
+            Some(_) => (false, false),
+            None => {
+                let decorrelated = run
+                    .pair_rate
+                    .filter(|w| *w > 0.0 && w.is_finite())
+                    .map(|w| DECORRELATION_COLLISIONS / w);
+                let budget = budget_spacing(
+                    run.n(),
+                    opts.max_velocities,
+                    run.t_end - t_eq,
+                    match (decorrelated, run.snapshot_interval) {
+                        (Some(d), Some(i)) => Some(d.max(i)),
+                        (d, i) => d.or(i),
+                    },
+                );
+                opts.every = match (decorrelated, budget) {
+                    (Some(d), Some(b)) => Some(d.max(b)),
+                    (d, b) => d.or(b),
+                };
+                (
+                    opts.every.is_some(),
+                    budget.is_some_and(|b| decorrelated.is_none_or(|d| b > d)),
+                )
+            }
+        };
+        Ok(Analyzer {
+            every_default,
+            every_from_budget,
+            bin_width: (run.t_end - t_eq) / nbins as f64,
+            bins: vec![TimeBin::default(); nbins],
+            t_eq,
+            opts,
+            kt_series: Vec::new(),
+            energy_series: Vec::new(),
+            lost_from_collisions: 0.0,
+            pair_total: 0,
+            wall_total: 0,
+            pairs_from_increments: 0,
+            speeds: vec![Vec::new(); ns],
+            vx: vec![Vec::new(); ns],
+            vy: vec![Vec::new(); ns],
+            mb_kinetic: 0.0,
+            snapshots_used: Vec::new(),
+            snapshots_seen: 0,
+            run,
+        })
+    }
+
+    /// The time from which data are used (after `--equilibrate`).
+    pub fn equilibrated_from(&self) -> f64 {
+        self.t_eq
+    }
+
+    fn bin(&mut self, t: f64) -> Option<&mut TimeBin> {
+        if t < self.t_eq || t > self.run.t_end {
+            return None;
+        }
+        let k = (((t - self.t_eq) / self.bin_width) as usize).min(self.bins.len() - 1);
+        Some(&mut self.bins[k])
+    }
+
+    /// A logged pair collision at time `t` with virial r_ij·Δp_i (length·momentum)
+    /// and dissipated energy (energy).
+    pub fn pair(&mut self, t: f64, virial: f64, energy_lost: f64) {
+        self.pair_total += 1;
+        if self.run.totals_from_thermo {
+            return;
+        }
+        let s = self.run.collision_stride as f64;
+        self.lost_from_collisions += s * energy_lost;
+        if let Some(b) = self.bin(t) {
+            b.virial += s * virial;
+            b.pairs += 1;
+        }
+    }
+
+    /// A logged wall collision at time `t` giving the wall momentum `impulse`
+    /// (momentum), dissipating `energy_lost` (energy).
+    pub fn wall(&mut self, t: f64, impulse: f64, energy_lost: f64) {
+        self.wall_total += 1;
+        if self.run.totals_from_thermo {
+            return;
+        }
+        let s = self.run.collision_stride as f64;
+        self.lost_from_collisions += s * energy_lost;
+        if let Some(b) = self.bin(t) {
+            b.wall_impulse += s * impulse;
+            b.walls += 1;
+        }
+    }
+
+    /// Running totals between two times, for logs without collisions: the virial
+    /// sum (length·momentum), wall impulse (momentum) and pair collisions counted
+    /// in [t0, t1] (e.g. differences of consecutive `/thermo` records), spread
+    /// over the time bins in proportion to their overlap.
+    pub fn increment(&mut self, t0: f64, t1: f64, virial: f64, wall_impulse: f64, pairs: u64) {
+        if t0.is_nan() || t1.is_nan() || t1 <= t0 {
+            return;
+        }
+        self.pairs_from_increments += pairs;
+        let (lo, hi) = (t0.max(self.t_eq), t1.min(self.run.t_end));
+        if hi <= lo {
+            return;
+        }
+        let first = ((lo - self.t_eq) / self.bin_width) as usize;
+        let last = (((hi - self.t_eq) / self.bin_width) as usize).min(self.bins.len() - 1);
+        for k in first..=last {
+            let b0 = self.t_eq + k as f64 * self.bin_width;
+            let overlap = (hi.min(b0 + self.bin_width) - lo.max(b0)).max(0.0);
+            let w = overlap / (t1 - t0);
+            let bin = &mut self.bins[k];
+            bin.virial += w * virial;
+            bin.wall_impulse += w * wall_impulse;
+            bin.pairs_weighted += w * pairs as f64;
+        }
+    }
+
+    /// A thermodynamic record: kinetic energy K (energy) at time `t`, and the
+    /// energy dissipated since the start when known.
+    pub fn thermo(&mut self, t: f64, kinetic_energy: f64, energy_lost: Option<f64>) {
+        let kt = temperature(kinetic_energy, self.dof());
+        self.push_kt(t, kt);
+        match self.energy_series.last_mut() {
+            Some(last) if last.0 == t => *last = (t, kinetic_energy, energy_lost.or(last.2)),
+            _ => self.energy_series.push((t, kinetic_energy, energy_lost)),
+        }
+    }
+
+    /// A snapshot at time `t`: species index and velocity components of every disc
+    /// (length/time). Used for the temperature series, and for the velocity
+    /// distribution when it is after `equilibrate` and at least `every` after the
+    /// last snapshot used.
+    ///
+    /// Errors when the three slices differ in length or a species index is not one
+    /// of the run's species.
+    pub fn snapshot(
+        &mut self,
+        t: f64,
+        species_of: &[u16],
+        vx: &[f64],
+        vy: &[f64],
+    ) -> Result<(), StatsError> {
+        if species_of.len() != vx.len() || vx.len() != vy.len() {
+            return Err(StatsError::InvalidArgument(format!(
+                "snapshot at t = {t}: {} species indices, {} vx, {} vy",
+                species_of.len(),
+                vx.len(),
+                vy.len()
+            )));
+        }
+        if let Some(&bad) = species_of
+            .iter()
+            .find(|&&s| s as usize >= self.run.species.len())
+        {
+            return Err(StatsError::InvalidArgument(format!(
+                "snapshot at t = {t}: species index {bad}, but the run has {} species",
+                self.run.species.len()
+            )));
+        }
+        self.snapshots_seen += 1;
+        let masses: Vec<f64> = self.run.species.iter().map(|s| s.mass).collect();
+        let k: f64 = species_of
+            .iter()
+            .zip(vx.iter().zip(vy))
+            .map(|(&s, (&x, &y))| 0.5 * masses[s as usize] * (x * x + y * y))
+            .sum();
+        let kt = temperature(k, self.dof());
+        self.push_kt(t, kt);
+        if self.energy_series.last().is_none_or(|e| e.0 != t) {
+            self.energy_series.push((t, k, None));
+        }
+        // A snapshot at the start of the window counts despite rounding of the
+        // window's start (a tolerance relative to the run's own times, which may be
+        // in any unit).
+        let span = self.run.t_end - self.run.t_start;
+        if t < self.t_eq - 1e-12 * self.t_eq.abs().max(span) {
+            return Ok(());
+        }
+        if let (Some(&last), Some(every)) = (self.snapshots_used.last(), self.opts.every) {
+            if t < last + every * (1.0 - 1e-9) {
+                return Ok(());
+            }
+        }
+        self.snapshots_used.push(t);
+        self.mb_kinetic += k;
+        for (&s, (&x, &y)) in species_of.iter().zip(vx.iter().zip(vy)) {
+            let s = s as usize;
+            self.speeds[s].push(x.hypot(y));
+            self.vx[s].push(x);
+            self.vy[s].push(y);
+        }
+        Ok(())
+    }
+
+    /// Record kT at `t`, once per time (a thermo record and a snapshot at the
+    /// same time give one point).
+    fn push_kt(&mut self, t: f64, kt: f64) {
+        match self.kt_series.last_mut() {
+            Some(last) if last.0 == t => last.1 = kt,
+            _ => self.kt_series.push((t, kt)),
+        }
+    }
+
+    /// kT at time `t`, linearly interpolated in the recorded series.
+    pub(super) fn kt_at(&self, t: f64) -> Option<f64> {
+        let s = &self.kt_series;
+        let first = s.first()?;
+        if t <= first.0 {
+            return Some(first.1);
+        }
+        let k = s.partition_point(|p| p.0 <= t);
+        if k >= s.len() {
+            return Some(s[s.len() - 1].1);
+        }
+        let (a, b) = (s[k - 1], s[k]);
+        let w = if b.0 > a.0 {
+            (t - a.0) / (b.0 - a.0)
+        } else {
+            1.0
+        };
+        Some(a.1 + w * (b.1 - a.1))
+    }
+
+    /// Degrees of freedom f of the run (physics.md §5).
+    pub(super) fn dof(&self) -> usize {
+        degrees_of_freedom(self.run.n(), &self.run.sim_box)
+    }
+
+    /// kT at the middle of each time bin.
+    fn kt_per_bin(&self) -> Vec<f64> {
+        (0..self.bins.len())
+            .map(|k| {
+                let t_mid = self.t_eq + (k as f64 + 0.5) * self.bin_width;
+                self.kt_at(t_mid).unwrap_or(f64::NAN)
+            })
+            .collect()
+    }
+
+    /// Compute everything: one function per observable.
+    pub fn finish(mut self) -> Result<Report, StatsError> {
+        self.kt_series.sort_by(|a, b| a.0.total_cmp(&b.0));
+        self.energy_series.sort_by(|a, b| a.0.total_cmp(&b.0));
+        let elastic = self.run.restitution.is_elastic()
+            && self.run.sim_box.boundary.iter().all(
+                |b| !matches!(b, carom_core::Boundary::Walls { restitution } if *restitution < 1.0),
+            );
+        let kt_used = temperature::snapshot_kt(&self);
+        let temperature = temperature::report(&self, kt_used);
+        let (maxwell_boltzmann, maxwell_boltzmann_untested) =
+            velocity::maxwell_boltzmann(&mut self, kt_used)?;
+        let kt_bins = self.kt_per_bin();
+        let z_bins = pressure::z_per_bin(&self, &kt_bins);
+        let omega_bins = collision_rate::omega_per_bin(&self);
+        let pressure = pressure::report(&self, &z_bins, &kt_bins)?;
+        let collision_rate = collision_rate::report(&self, &omega_bins)?;
+        let bins = [&z_bins[..], &omega_bins[..], &kt_bins[..]];
+        let enskog = collision_rate::enskog(&self, elastic, pressure.as_ref(), bins)?;
+        let inelastic = (!elastic).then(|| inelastic::report(&self));
+        let run = &self.run;
+        Ok(Report {
+            n: run.n(),
+            species: run
+                .species
+                .iter()
+                .map(|s| SpeciesInfo {
+                    count: s.count,
+                    radius: s.radius,
+                    mass: s.mass,
+                })
+                .collect(),
+            packing_fraction: packing_fraction(&run.species, &run.sim_box),
+            box_size: [run.sim_box.size.x, run.sim_box.size.y],
+            periodic: run.sim_box.boundary.map(|b| b.is_periodic()),
+            elastic,
+            window: self.window(collision_rate.per_disc),
+            temperature,
+            maxwell_boltzmann,
+            maxwell_boltzmann_untested,
+            pressure,
+            collision_rate,
+            enskog,
+            inelastic,
+        })
+    }
+
+    /// The window analysed, with the spacing of the snapshots used in collisions
+    /// per disc at the measured rate `omega`.
+    fn window(&self, omega: f64) -> WindowReport {
+        WindowReport {
+            t_start: self.run.t_start,
+            t_end: self.run.t_end,
+            equilibrate: self.t_eq,
+            every: self.opts.every,
+            every_default: self.every_default,
+            every_from_budget: self.every_from_budget,
+            max_velocities: self.opts.max_velocities,
+            spacing_collisions: self
+                .snapshots_used
+                .windows(2)
+                .map(|w| w[1] - w[0])
+                .reduce(f64::min)
+                .map(|gap| gap * omega),
+            snapshots_seen: self.snapshots_seen,
+            snapshot_times: self.snapshots_used.clone(),
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn run() -> RunDescription {
+        RunDescription::for_tests()
+    }
+
+    #[test]
+    fn inconsistent_snapshots_are_errors_not_panics() {
+        let mut a = Analyzer::new(run(), AnalysisOptions::default()).unwrap();
+        assert!(a.snapshot(1.0, &[0, 1], &[1.0, 1.0], &[0.0, 0.0]).is_err());
+        assert!(a.snapshot(1.0, &[0], &[1.0, 1.0], &[0.0, 0.0]).is_err());
+        assert!(a.snapshot(1.0, &[0, 0], &[1.0, -1.0], &[0.0, 0.0]).is_ok());
+        let mut r = run();
+        r.t_end = 0.0;
+        assert!(Analyzer::new(r, AnalysisOptions::default()).is_err());
+        let opts = AnalysisOptions {
+            equilibrate: Some(20.0),
+            ..Default::default()
+        };
+        assert!(Analyzer::new(run(), opts).is_err());
+    }
+
+    #[test]
+    fn increments_spread_over_time_bins_keep_their_total() {
+        let mut a = Analyzer::new(
+            run(),
+            AnalysisOptions {
+                equilibrate: Some(0.0),
+                time_bins: 16,
+                ..Default::default()
+            },
+        )
+        .unwrap();
+        a.increment(0.3, 7.1, 68.0, 0.0, 34);
+        let v: f64 = a.bins.iter().map(|b| b.virial).sum();
+        let p: f64 = a.bins.iter().map(|b| b.pairs_weighted).sum();
+        assert!((v - 68.0).abs() < 1e-9 && (p - 34.0).abs() < 1e-9);
+        // Bin 0 ([0, 0.625)) holds the overlap 0.325 of 6.8.
+        assert!((a.bins[0].virial - 68.0 * 0.325 / 6.8).abs() < 1e-9);
+    }
+}

@@ -1,0 +1,190 @@
+//! Which run a log holds: species, box, collision rule, logging stride and time
+//! span, derived once per log by [`describe`].
+//!
+//! The species, box and rule come from the configuration stored in the log,
+//! resolved by the config front end (which derives the box from η; no disc is
+//! placed). Only when that configuration cannot be read are they taken from the
+//! first snapshot (counts per species, radii, masses, box, boundaries; collisions
+//! then assumed elastic). When the log's metadata describes its run itself (a
+//! newer log format), that description is to be read here instead.
+
+use carom_core::{Boundary, Restitution, SimBox, Species};
+use carom_io::Snapshot;
+use carom_io::{Config, ConfigError};
+use carom_io::{LogInfo, ReadError};
+
+use super::from_log::AnalysisError;
+#[cfg(doc)]
+use super::{AnalysisOptions, Analyzer};
+
+/// Which run is analysed: what the log's metadata and first snapshot say.
+#[derive(Debug, Clone, PartialEq)]
+pub struct RunDescription {
+    /// The species (count, radius, mass).
+    pub species: Vec<Species>,
+    /// The box.
+    pub sim_box: SimBox,
+    /// The pair collision rule.
+    pub restitution: Restitution,
+    /// Logged collisions are every `collision_stride`-th collision (1 = all); sums
+    /// over logged collisions are multiplied by it.
+    pub collision_stride: u64,
+    /// The virial, wall impulse and collision counts come from running totals over
+    /// every collision ([`Analyzer::increment`], from the `/thermo` records), and
+    /// logged collisions are only counted: for logs without collisions, and for
+    /// logs of every k-th collision (k > 1), whose sums would only estimate them.
+    pub totals_from_thermo: bool,
+    /// Simulated time of the start of the log (time).
+    pub t_start: f64,
+    /// Simulated time of the end of the log (time).
+    pub t_end: f64,
+    /// The pair collision rate ω (pair collisions per disc per unit time) known
+    /// before the events are read, e.g. from the log's first and last `/thermo`
+    /// records; it sets the default spacing of the snapshots used for the velocity
+    /// distribution (see [`AnalysisOptions::every`]). `None`: unknown.
+    pub pair_rate: Option<f64>,
+    /// Time between the log's snapshots (time), from its configuration; `None`:
+    /// unknown. With it the default spacing is widened only when the snapshots
+    /// would otherwise hold more than [`AnalysisOptions::max_velocities`]
+    /// velocities; without it, whenever a window full of snapshots could.
+    pub snapshot_interval: Option<f64>,
+}
+
+impl RunDescription {
+    /// Number of discs N.
+    pub fn n(&self) -> usize {
+        carom_core::observables::disc_count(&self.species)
+    }
+}
+
+#[cfg(test)]
+impl RunDescription {
+    /// Two reference discs in a periodic 10 × 10 box, elastic, logged over [0, 10].
+    pub(super) fn for_tests() -> Self {
+        RunDescription {
+            species: vec![Species::reference(2)],
+            sim_box: SimBox::periodic(10.0, 10.0),
+            restitution: Restitution::Elastic,
+            collision_stride: 1,
+            totals_from_thermo: false,
+            t_start: 0.0,
+            t_end: 10.0,
+            pair_rate: None,
+            snapshot_interval: None,
+        }
+    }
+}
+
+/// The run's species, box and collision rule.
+struct Resolved {
+    species: Vec<Species>,
+    sim_box: SimBox,
+    restitution: Restitution,
+}
+
+/// From the configuration stored in a log.
+fn from_config(config: &str) -> Result<Resolved, ConfigError> {
+    let spec = Config::from_json_str(config)?.to_run_spec()?;
+    Ok(Resolved {
+        species: spec.system.species,
+        sim_box: spec.system.sim_box,
+        restitution: spec.params.restitution,
+    })
+}
+
+/// From a snapshot, assuming elastic collisions.
+fn from_snapshot(s: &Snapshot) -> Result<Resolved, String> {
+    let mut counts = vec![0usize; s.species_radius.len()];
+    for &k in &s.species {
+        *counts.get_mut(k as usize).ok_or_else(|| {
+            format!(
+                "the first snapshot names species {k} but lists {} species",
+                s.species_radius.len()
+            )
+        })? += 1;
+    }
+    let species = counts
+        .iter()
+        .zip(s.species_radius.iter().zip(&s.species_mass))
+        .map(|(&count, (&radius, &mass))| Species::new(count, radius, mass))
+        .collect();
+    let b = |code: u8| match code {
+        0 => Boundary::Periodic,
+        _ => Boundary::Walls { restitution: 1.0 },
+    };
+    Ok(Resolved {
+        species,
+        sim_box: SimBox {
+            size: s.box_size,
+            boundary: [b(s.boundary[0]), b(s.boundary[1])],
+        },
+        restitution: Restitution::Elastic,
+    })
+}
+
+/// The pair collision rate ω over the log, from its first and last `/thermo`
+/// records, or else from its summary (counts since `t_start`); `None` if neither
+/// tells.
+fn pair_rate(info: &LogInfo, n: usize, t_start: f64) -> Option<f64> {
+    use carom_core::observables::collision_rate;
+    let from_thermo = info.thermo_counts.and_then(|[(t0, p0, _), (t1, p1, _)]| {
+        (t1 > t0 && p1 > p0).then(|| collision_rate((p1 - p0) as f64, n, t1 - t0))
+    });
+    let from_summary = info.summary.as_ref().and_then(|s| {
+        (s.sim_time > t_start && s.pair_collisions > 0)
+            .then(|| collision_rate(s.pair_collisions as f64, n, s.sim_time - t_start))
+    });
+    from_thermo
+        .or(from_summary)
+        .filter(|w| w.is_finite() && *w > 0.0)
+}
+
+/// The description of the run in the log `file` that `info` summarises (its index
+/// or a scan). `first_snapshot` is asked for the log's first snapshot only when the
+/// stored configuration cannot be read; `warn` hears why it was asked.
+pub(super) fn describe(
+    file: &str,
+    info: &LogInfo,
+    first_snapshot: &mut dyn FnMut() -> Result<Option<Snapshot>, ReadError>,
+    warn: &mut dyn FnMut(&str),
+) -> Result<RunDescription, AnalysisError> {
+    let (mut t_start, mut t_end) = (f64::INFINITY, f64::NEG_INFINITY);
+    for (a, b) in info.time_span.iter().flatten() {
+        t_start = t_start.min(*a);
+        t_end = t_end.max(*b);
+    }
+    if t_end.is_nan() || t_start.is_nan() || t_end <= t_start {
+        return Err(AnalysisError::Unusable(format!(
+            "{file} holds no data spanning any simulated time"
+        )));
+    }
+    let resolved = match from_config(&info.run.config) {
+        Ok(r) => r,
+        Err(e) => {
+            let s = first_snapshot()?.ok_or_else(|| {
+                AnalysisError::Unusable(format!(
+                    "the log's configuration cannot be read ({e}) and it has no snapshot"
+                ))
+            })?;
+            warn(&format!("warning: the log's configuration cannot be read ({e}); using its first snapshot and assuming elastic collisions"));
+            from_snapshot(&s).map_err(AnalysisError::Unusable)?
+        }
+    };
+    let log = &info.run.log;
+    let collisions_logged = log.collisions && info.channels[0];
+    let n = carom_core::observables::disc_count(&resolved.species);
+    Ok(RunDescription {
+        pair_rate: pair_rate(info, n, t_start),
+        snapshot_interval: log.snapshot_interval,
+        species: resolved.species,
+        sim_box: resolved.sim_box,
+        restitution: resolved.restitution,
+        collision_stride: log.collision_every.max(1),
+        // Every k-th collision (k > 1) gives only an estimate of the sums that the
+        // /thermo records hold exactly.
+        totals_from_thermo: !collisions_logged
+            || (log.collision_every > 1 && log.thermo_interval.is_some()),
+        t_start,
+        t_end,
+    })
+}

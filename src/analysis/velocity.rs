@@ -1,0 +1,273 @@
+//! The velocity distribution of each species against the 2D Maxwell–Boltzmann
+//! distribution at the measured kT (physics.md §6): a χ² test of the speed
+//! histogram and KS tests of the speeds and of each component. Velocities of one
+//! disc in snapshots too close in time are correlated, and correlated samples make
+//! the tests reject too often: with the default spacing a species whose velocities
+//! still correlate between the snapshots used (a heavy species) is tested on every
+//! k-th snapshot only. See docs/performance.md, 'analyze defaults'.
+
+use super::analyzer::Analyzer;
+use super::report::{ChiSquareReport, HistogramReport, KsReport, SpeciesMb, SpeciesUntested};
+use super::stats::{ks_test, mb_speed_test, Histogram, StatsError};
+#[cfg(doc)]
+use super::{AnalysisOptions, DECORRELATION_COLLISIONS};
+
+/// p-value below which a Maxwell–Boltzmann test counts as failed (either test).
+pub const MB_P_THRESHOLD: f64 = 1e-3;
+
+/// The largest correlation of a species' velocities between the snapshots its
+/// Maxwell–Boltzmann tests use. The default spacing ([`DECORRELATION_COLLISIONS`])
+/// is set by the collision rate of all discs, but a heavy disc keeps its velocity
+/// over about M/m collisions with light ones. A species whose velocities correlate
+/// more than this from one snapshot to the next is tested on every k-th snapshot
+/// only, k the smallest for which ρ^k falls to this (only with the default spacing;
+/// an [`AnalysisOptions::every`] asked for is used as it is). See
+/// docs/performance.md, 'analyze defaults'.
+pub const MAX_SNAPSHOT_CORRELATION: f64 = 0.05;
+
+/// The correlation of a species' velocities between consecutive snapshots: `vx`,
+/// `vy` hold `per` discs' components per snapshot, snapshot after snapshot, each
+/// disc at the same place in every snapshot. Components are taken relative to
+/// their mean over all snapshots. `None` with fewer than two snapshots or no
+/// variation.
+pub(super) fn snapshot_correlation(vx: &[f64], vy: &[f64], per: usize) -> Option<f64> {
+    let snapshots = vx.len().checked_div(per)?;
+    if snapshots < 2 {
+        return None;
+    }
+    let (mut cross, mut before, mut after) = (0.0, 0.0, 0.0);
+    for v in [vx, vy] {
+        let mean = v.iter().sum::<f64>() / v.len() as f64;
+        for (a, b) in v.iter().zip(&v[per..]) {
+            let (a, b) = (a - mean, b - mean);
+            cross += a * b;
+            before += a * a;
+            after += b * b;
+        }
+    }
+    let rho = cross / (before * after).sqrt();
+    rho.is_finite().then_some(rho)
+}
+
+/// Every how many snapshots a species whose velocities correlate `rho` between
+/// consecutive snapshots is tested ([`MAX_SNAPSHOT_CORRELATION`]); `usize::MAX`
+/// (the first snapshot only) when they hardly change.
+pub(super) fn snapshot_step(rho: Option<f64>) -> usize {
+    match rho {
+        Some(r) if r > MAX_SNAPSHOT_CORRELATION => {
+            let k = (MAX_SNAPSHOT_CORRELATION.ln() / r.min(1.0).ln()).ceil();
+            if k.is_finite() && k < 1e9 {
+                k as usize
+            } else {
+                usize::MAX
+            }
+        }
+        _ => 1,
+    }
+}
+
+/// The values of every `step`-th snapshot of `v` (`per` values per snapshot).
+pub(super) fn every_nth_snapshot(v: &[f64], per: usize, step: usize) -> Vec<f64> {
+    v.chunks(per.max(1))
+        .step_by(step)
+        .flatten()
+        .copied()
+        .collect()
+}
+
+/// The Maxwell–Boltzmann tests of every species with speeds in the window, at
+/// `kt` (`None`: no snapshot used, nothing tested), and the species that could not
+/// be tested. Thins the analyzer's samples of a correlated species.
+pub(super) fn maxwell_boltzmann(
+    a: &mut Analyzer,
+    kt: Option<f64>,
+) -> Result<(Vec<SpeciesMb>, Vec<SpeciesUntested>), StatsError> {
+    let mut maxwell_boltzmann = Vec::new();
+    let mut maxwell_boltzmann_untested = Vec::new();
+    let Some(kt) = kt else {
+        return Ok((maxwell_boltzmann, maxwell_boltzmann_untested));
+    };
+    let species = a.run.species.clone();
+    for (s, sp) in species.iter().enumerate() {
+        if a.speeds[s].len() < 2 {
+            continue;
+        }
+        // Discs of this species per snapshot. With the default spacing its
+        // samples are thinned to snapshots far enough apart for its own
+        // velocities to decorrelate; a spacing asked for is used as it is.
+        let per = a.speeds[s].len() / a.snapshots_used.len().max(1);
+        let correlation = snapshot_correlation(&a.vx[s], &a.vy[s], per);
+        let step = if a.every_default {
+            snapshot_step(correlation)
+        } else {
+            1
+        };
+        if step > 1 {
+            for v in [&mut a.speeds[s], &mut a.vx[s], &mut a.vy[s]] {
+                *v = every_nth_snapshot(v, per, step);
+            }
+        }
+        let snapshots = a.speeds[s].len() / per.max(1);
+        // Discs at rest (placed so with explicit velocities) have no
+        // distribution to test.
+        if kt <= 0.0 {
+            maxwell_boltzmann_untested.push(SpeciesUntested {
+                species: s,
+                samples: a.speeds[s].len(),
+                reason: format!("no thermal motion (kT = {kt})"),
+            });
+            continue;
+        }
+        // A species with too few speeds for the χ² test (a handful of
+        // discs in a short window) is reported as untested; the other
+        // species and the rest of the analysis go on.
+        let t = match mb_speed_test(&a.speeds[s], sp.mass, kt, a.opts.speed_bins, true) {
+            Err(StatsError::NotEnoughData(why)) => {
+                maxwell_boltzmann_untested.push(SpeciesUntested {
+                    species: s,
+                    samples: a.speeds[s].len(),
+                    reason: why,
+                });
+                continue;
+            }
+            r => r?,
+        };
+        let mb = t.reference;
+        let comp_hist = |v: &[f64]| {
+            let l = 4.5 * mb.scale();
+            Histogram::from_values(v.iter().copied(), -l, l, a.opts.speed_bins)
+        };
+        let ks_x = ks_test(&a.vx[s], |v| mb.component_cdf(v))?;
+        let ks_y = ks_test(&a.vy[s], |v| mb.component_cdf(v))?;
+        let passed = t.chi_square.p_value >= MB_P_THRESHOLD && t.ks.p_value >= MB_P_THRESHOLD;
+        maxwell_boltzmann.push(SpeciesMb {
+            species: s,
+            mass: sp.mass,
+            radius: sp.radius,
+            samples: a.speeds[s].len(),
+            snapshots,
+            snapshot_correlation: correlation,
+            snapshot_step: step.min(a.snapshots_used.len()),
+            kt,
+            speed_histogram: HistogramReport::new(&t.histogram, |v| mb.speed_pdf(v)),
+            vx_histogram: HistogramReport::new(&comp_hist(&a.vx[s])?, |v| mb.component_pdf(v)),
+            vy_histogram: HistogramReport::new(&comp_hist(&a.vy[s])?, |v| mb.component_pdf(v)),
+            chi_square: ChiSquareReport {
+                statistic: t.chi_square.statistic,
+                dof: t.chi_square.dof,
+                p_value: t.chi_square.p_value,
+                bins: t.chi_square.bins,
+            },
+            ks: KsReport::from(&t.ks),
+            ks_vx: KsReport::from(&ks_x),
+            ks_vy: KsReport::from(&ks_y),
+            passed,
+        });
+    }
+    Ok((maxwell_boltzmann, maxwell_boltzmann_untested))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::analysis::{AnalysisOptions, RunDescription};
+    use carom_core::{SimBox, Species};
+
+    fn run() -> RunDescription {
+        RunDescription::for_tests()
+    }
+
+    #[test]
+    fn snapshot_thinning_follows_the_correlation() {
+        // Two discs, three snapshots: the same velocities each time, then reversed.
+        let same = [1.0, -1.0, 1.0, -1.0, 1.0, -1.0];
+        let zeros = [0.0; 6];
+        let rho = snapshot_correlation(&same, &zeros, 2).unwrap();
+        assert!((rho - 1.0).abs() < 1e-12, "{rho}");
+        let flip = [1.0, -1.0, -1.0, 1.0, 1.0, -1.0];
+        let rho = snapshot_correlation(&flip, &zeros, 2).unwrap();
+        assert!((rho + 1.0).abs() < 1e-12, "{rho}");
+        assert_eq!(snapshot_correlation(&same[..2], &zeros[..2], 2), None);
+        assert_eq!(snapshot_correlation(&zeros, &zeros, 2), None);
+        // ρ^k ≤ 0.05: k = 1 below it, ⌈ln 0.05 / ln ρ⌉ above, the first only at 1.
+        assert_eq!(snapshot_step(None), 1);
+        assert_eq!(snapshot_step(Some(-0.9)), 1);
+        assert_eq!(snapshot_step(Some(0.05)), 1);
+        assert_eq!(snapshot_step(Some(0.5)), 5);
+        assert_eq!(snapshot_step(Some(0.9)), 29);
+        assert_eq!(snapshot_step(Some(1.0)), usize::MAX);
+        assert_eq!(
+            every_nth_snapshot(&[1.0, 2.0, 3.0, 4.0, 5.0, 6.0], 2, 2),
+            vec![1.0, 2.0, 5.0, 6.0]
+        );
+        assert_eq!(every_nth_snapshot(&flip, 2, usize::MAX), vec![1.0, -1.0]);
+    }
+
+    /// A heavy species whose velocities do not change between snapshots is tested on
+    /// one snapshot, not on the same velocities counted again and again (which fails
+    /// the tests however Maxwellian they are); the light species keeps every
+    /// snapshot. A spacing asked for is used as it is, and then the heavy species
+    /// fails.
+    #[test]
+    fn a_species_with_frozen_velocities_is_tested_once_per_disc() {
+        use rand::SeedableRng;
+        use rand_distr::{Distribution, StandardNormal};
+        let (light, heavy, snapshots) = (2000, 400, 20);
+        let mut r = run();
+        r.species = vec![Species::reference(light), Species::new(heavy, 0.5, 100.0)];
+        r.sim_box = SimBox::periodic(100.0, 100.0);
+        let mut rng = rand_pcg::Pcg64::seed_from_u64(7);
+        let mut gauss = |m: f64| {
+            let g: f64 = StandardNormal.sample(&mut rng);
+            g / m.sqrt()
+        };
+        let species: Vec<u16> = (0..light + heavy).map(|k| u16::from(k >= light)).collect();
+        let frozen: Vec<(f64, f64)> = (0..heavy).map(|_| (gauss(100.0), gauss(100.0))).collect();
+        let taken: Vec<(Vec<f64>, Vec<f64>)> = (0..snapshots)
+            .map(|_| {
+                let (mut vx, mut vy) = (Vec::new(), Vec::new());
+                for _ in 0..light {
+                    vx.push(gauss(1.0));
+                    vy.push(gauss(1.0));
+                }
+                for &(x, y) in &frozen {
+                    vx.push(x);
+                    vy.push(y);
+                }
+                (vx, vy)
+            })
+            .collect();
+        let analyse = |every: Option<f64>| {
+            // Without `every` the default spacing; no collision rate is known, so
+            // it keeps every snapshot.
+            let opts = AnalysisOptions {
+                equilibrate: Some(0.0),
+                every,
+                ..Default::default()
+            };
+            let mut a = Analyzer::new(r.clone(), opts).unwrap();
+            for (k, (vx, vy)) in taken.iter().enumerate() {
+                a.snapshot(k as f64 * 0.5, &species, vx, vy).unwrap();
+            }
+            a.finish().unwrap().maxwell_boltzmann
+        };
+        let report = analyse(None);
+        let [l, h] = &report[..] else {
+            panic!("two species tested");
+        };
+        assert_eq!(
+            (l.snapshot_step, l.snapshots, l.samples),
+            (1, snapshots, light * snapshots)
+        );
+        assert!(l.snapshot_correlation.unwrap().abs() < 0.05);
+        assert_eq!((h.snapshots, h.samples), (1, heavy));
+        assert_eq!(h.snapshot_step, snapshots);
+        assert!(h.snapshot_correlation.unwrap() > 0.999);
+        assert!(l.passed && h.passed, "{l:?}\n{h:?}");
+        let asked = analyse(Some(0.0));
+        let h = &asked[1];
+        assert_eq!((h.snapshot_step, h.snapshots), (1, snapshots));
+        assert!(h.snapshot_correlation.unwrap() > 0.999);
+        assert!(!h.passed, "{h:?}");
+    }
+}

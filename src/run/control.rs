@@ -1,0 +1,140 @@
+//! How a caller steers a run and hears from it: the stop flag, the progress
+//! callbacks (placement, reading the input of a resume, the run itself), the
+//! answer to "how much room is left on the log's disk", and how often to ask.
+//!
+//! The driver calls these about every [`Control::progress_interval`] of wall time;
+//! nothing here changes the trajectory.
+
+use std::sync::atomic::AtomicBool;
+use std::time::Duration;
+
+use carom_events::PlacementProgress;
+use carom_io::ReadProgress;
+use carom_io::Stop;
+
+use super::disk::FreeSpace;
+#[cfg(doc)]
+use super::{disk_low, free_space_for, resume};
+#[cfg(doc)]
+use carom_io::StopReason;
+
+/// A progress report, handed to the caller's callback about every
+/// [`Control::progress_interval`] of wall time.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Progress {
+    /// Current simulated time (time).
+    pub sim_time: f64,
+    /// Collisions (pair + wall) since the start of the run, including before a resume.
+    pub collisions: u64,
+    /// Collisions of this process per wall-clock second so far.
+    pub collisions_per_second: f64,
+    /// Wall-clock seconds since this process started the run.
+    pub wall_seconds: f64,
+    /// Fraction of the run done (0–1), from the stop criterion.
+    pub fraction: f64,
+    /// The stop criterion.
+    pub stop: Stop,
+    /// Bytes of the log file on disk so far (what has reached the file; the
+    /// writer's buffers and the chunk being filled are not counted yet).
+    pub log_bytes: u64,
+}
+
+impl Progress {
+    /// The size (bytes) the log would reach at the stop if it kept growing at the
+    /// rate it has so far, once that rate says something: from 1 % of the run, or
+    /// from 64 MB written (the first snapshot and checkpoint, written at the start,
+    /// would otherwise weigh too much). A log of a cooling gas grows more slowly
+    /// later, so this is an upper estimate there.
+    pub fn projected_log_bytes(&self) -> Option<f64> {
+        let sure = self.fraction >= 0.01 || self.log_bytes >= 64 << 20;
+        (sure && self.fraction > 0.0).then(|| self.log_bytes as f64 / self.fraction)
+    }
+}
+
+/// How the caller steers a run: a stop flag (for Ctrl-C) and a progress callback.
+pub struct Control<'a> {
+    /// When this becomes `true` the run stops at the next event and finishes its log
+    /// (final checkpoint and summary, `stop_reason = interrupted`).
+    pub stop: Option<&'a AtomicBool>,
+    /// Called about every `progress_interval` of wall time, and once at the end.
+    pub progress: Option<&'a mut dyn FnMut(&Progress)>,
+    /// Called about every `progress_interval` of wall time while relaxed placement
+    /// minimizes (before the run starts and its log exists), and once when it ends.
+    pub placing: Option<&'a mut dyn FnMut(&PlacementProgress)>,
+    /// Called while [`resume`] reads its input, before the run goes on: in each
+    /// [`ResumePass`] with the input reader's progress, about once per MiB read and
+    /// at the end of the pass (the whole log is read once and most of it copied,
+    /// about a minute each for a log of 10⁶ discs).
+    pub reading: Option<&'a mut dyn FnMut(ResumePass, ReadProgress)>,
+    /// How many bytes the disk of the log file given as argument still has free for
+    /// this user, asked with every progress report (also without a callback). `None`
+    /// asks the file system ([`free_space_for`]); a
+    /// caller with a quota of its own, or a test, answers here. When the room left
+    /// falls to what finishing the log needs (see [`disk_low`]) the run stops
+    /// with [`StopReason::DiskFull`] and a finished log, instead of dying later with
+    /// a write error and a log cut at its last flush.
+    pub free_space: Option<&'a mut FreeSpace<'a>>,
+    /// Wall time between progress calls, and between looks at the room left on
+    /// the log's disk.
+    pub progress_interval: Duration,
+}
+
+/// What [`resume`] is doing with its input before the run goes on.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum ResumePass {
+    /// Reading the whole log to find its last complete checkpoint.
+    FindingCheckpoint,
+    /// Copying the messages up to that checkpoint into the output.
+    Copying,
+}
+
+impl ResumePass {
+    /// One word for people, to stand before the file's name ("searching
+    /// run.mcap", "copying run.mcap").
+    pub fn as_str(self) -> &'static str {
+        match self {
+            ResumePass::FindingCheckpoint => "searching",
+            ResumePass::Copying => "copying",
+        }
+    }
+}
+
+impl Default for Control<'_> {
+    fn default() -> Self {
+        Control {
+            stop: None,
+            progress: None,
+            placing: None,
+            reading: None,
+            free_space: None,
+            progress_interval: Duration::from_millis(200),
+        }
+    }
+}
+
+impl<'a> Control<'a> {
+    /// A stop flag and a progress callback, with reports every 200 ms.
+    pub fn new(stop: &'a AtomicBool, progress: &'a mut dyn FnMut(&Progress)) -> Self {
+        Control {
+            stop: Some(stop),
+            progress: Some(progress),
+            placing: None,
+            reading: None,
+            free_space: None,
+            progress_interval: Duration::from_millis(200),
+        }
+    }
+}
+
+impl std::fmt::Debug for Control<'_> {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("Control")
+            .field("stop", &self.stop)
+            .field("progress", &self.progress.is_some())
+            .field("placing", &self.placing.is_some())
+            .field("free_space", &self.free_space.is_some())
+            .field("reading", &self.reading.is_some())
+            .field("progress_interval", &self.progress_interval)
+            .finish()
+    }
+}

@@ -1,0 +1,359 @@
+//! The event loop of a run: takes the engine's events one by one, hands
+//! collisions to the log writer, answers the observations it scheduled
+//! ([`Observation`]), reports progress, looks at the room on the log's disk, and
+//! ends the log cleanly whatever stops the run.
+//!
+//! What a run writes, in order: the `carom.run` metadata; at the start time a
+//! `/snapshot`, a `/thermo` record and a `/checkpoint` (each when enabled, the
+//! checkpoint always), then the same at start + k·interval; `/collisions` batches
+//! in between; at the end a final `/thermo` record and `/checkpoint`, and
+//! `carom.summary`. A stop at `t_end` comes after every observation due at `t_end`.
+
+use std::path::Path;
+use std::sync::atomic::Ordering;
+use std::time::Instant;
+
+use carom_events::{Engine, EngineError, Event, State};
+use carom_io::LogWriter;
+use carom_io::{now_rfc3339, StopReason, SummaryMetadata};
+use carom_io::{LogOptions, Stop};
+
+use super::disk::{disk_low, free_bytes};
+use super::observation::Observation;
+use super::thermo::thermo;
+use super::{Control, Progress, RunError, RunSummary};
+
+/// The state of a run between events.
+pub(super) struct Driver<'a> {
+    pub(super) engine: Engine,
+    pub(super) writer: LogWriter,
+    pub(super) log: LogOptions,
+    pub(super) stop: Stop,
+    pub(super) control: Control<'a>,
+    pub(super) run_start_time: f64,
+    /// (time, collisions) of the last checkpoint written.
+    pub(super) last_checkpoint_at: Option<(f64, u64)>,
+    /// (time, collisions) of the last thermo record written.
+    pub(super) last_thermo_at: Option<(f64, u64)>,
+    pub(super) collisions: u64,
+    start_collisions: u64,
+    started: Instant,
+    last_progress: Instant,
+    /// The state written by the last snapshot, kept to reuse its arrays.
+    snapshot: Option<State>,
+    /// The log's size (bytes) when the room on its disk was last looked at.
+    bytes_at_disk_check: u64,
+}
+
+impl<'a> Driver<'a> {
+    pub(super) fn new(
+        engine: Engine,
+        writer: LogWriter,
+        log: LogOptions,
+        stop: Stop,
+        control: Control<'a>,
+    ) -> Self {
+        let s = engine.stats();
+        let collisions = s.pair_collisions + s.wall_collisions;
+        Driver {
+            engine,
+            writer,
+            log,
+            stop,
+            control,
+            run_start_time: 0.0,
+            last_checkpoint_at: None,
+            last_thermo_at: None,
+            collisions,
+            start_collisions: collisions,
+            started: Instant::now(),
+            last_progress: Instant::now(),
+            snapshot: None,
+            bytes_at_disk_check: 0,
+        }
+    }
+
+    fn engine_err(&self, source: EngineError) -> RunError {
+        RunError::Engine {
+            source,
+            time: self.engine.now(),
+            log: self.writer.path().to_path_buf(),
+        }
+    }
+
+    /// Schedule the observations at the start time and the stop.
+    pub(super) fn schedule_initial(&mut self) -> Result<(), RunError> {
+        let t0 = self.run_start_time;
+        let mut due = Vec::new();
+        if self.log.snapshot_interval.is_some() {
+            due.push(Observation::Snapshot(0));
+        }
+        if self.log.thermo_interval.is_some() {
+            due.push(Observation::Thermo(0));
+        }
+        due.push(Observation::Checkpoint(0));
+        for o in due {
+            self.schedule(t0, o)?;
+        }
+        if let Stop::Time(t) = self.stop {
+            self.schedule(t, Observation::Stop)?;
+        }
+        Ok(())
+    }
+
+    /// Schedule `what` at time `t`.
+    pub(super) fn schedule(&mut self, t: f64, what: Observation) -> Result<(), RunError> {
+        self.engine
+            .schedule(t, what.encode())
+            .map_err(|e| self.engine_err(e))
+    }
+
+    /// Schedule observation k + 1 of a series `interval` apart (`next(k + 1)`),
+    /// unless the series is off or its time has passed.
+    fn schedule_next(
+        &mut self,
+        next: fn(u64) -> Observation,
+        k: u64,
+        interval: Option<f64>,
+    ) -> Result<(), RunError> {
+        if let Some(dt) = interval {
+            let t = self.run_start_time + (k + 1) as f64 * dt;
+            if t >= self.engine.now() {
+                self.schedule(t, next(k + 1))?;
+            }
+        }
+        Ok(())
+    }
+
+    fn write_snapshot(&mut self) -> Result<(), RunError> {
+        let state = match &mut self.snapshot {
+            Some(s) => {
+                self.engine.state_into(s);
+                s
+            }
+            none => none.insert(self.engine.state()),
+        };
+        self.writer.write_snapshot(state)?;
+        Ok(())
+    }
+
+    fn write_thermo(&mut self) -> Result<(), RunError> {
+        let th = thermo(&self.engine, self.run_start_time);
+        self.writer.write_thermo(&th)?;
+        self.last_thermo_at = Some((self.engine.now(), self.collisions));
+        Ok(())
+    }
+
+    fn write_checkpoint(&mut self) -> Result<(), RunError> {
+        let cp = self.engine.checkpoint();
+        self.writer.write_checkpoint(cp, self.run_start_time)?;
+        self.last_checkpoint_at = Some((self.engine.now(), self.collisions));
+        Ok(())
+    }
+
+    fn progress(&mut self) {
+        let wall = self.started.elapsed().as_secs_f64();
+        let done = self.collisions - self.start_collisions;
+        let fraction = match self.stop {
+            Stop::Time(t) => {
+                let span = t - self.run_start_time;
+                if span > 0.0 {
+                    ((self.engine.now() - self.run_start_time) / span).clamp(0.0, 1.0)
+                } else {
+                    1.0
+                }
+            }
+            Stop::Collisions(c) => {
+                if c > 0 {
+                    (self.collisions as f64 / c as f64).min(1.0)
+                } else {
+                    1.0
+                }
+            }
+        };
+        let p = Progress {
+            sim_time: self.engine.now(),
+            collisions: self.collisions,
+            collisions_per_second: if wall > 0.0 { done as f64 / wall } else { 0.0 },
+            wall_seconds: wall,
+            fraction,
+            stop: self.stop,
+            log_bytes: self.log_bytes(),
+        };
+        if let Some(cb) = self.control.progress.as_mut() {
+            cb(&p);
+        }
+        self.last_progress = Instant::now();
+    }
+
+    /// The log file's size on disk (bytes; 0 if it cannot be read).
+    fn log_bytes(&self) -> u64 {
+        std::fs::metadata(self.writer.path()).map_or(0, |m| m.len())
+    }
+
+    /// Look at the room left on the log's disk: whether the run must stop now to
+    /// finish its log ([`disk_low`]). A disk whose room cannot be told is never low.
+    fn disk_low(&mut self) -> bool {
+        let bytes = self.log_bytes();
+        let growth = bytes.saturating_sub(self.bytes_at_disk_check);
+        self.bytes_at_disk_check = bytes;
+        let free = free_bytes(&mut self.control.free_space, self.writer.path());
+        free.is_ok_and(|free| disk_low(free, self.writer.finish_bound(bytes), growth))
+    }
+
+    /// The event loop; ends the log whatever happens, except when writing it fails:
+    /// that is reported as [`RunError::LogCut`].
+    pub(super) fn run_loop(mut self, log_path: &Path) -> Result<RunSummary, RunError> {
+        self.run_events(log_path).map_err(|e| match e {
+            RunError::Write(source) => RunError::LogCut {
+                source,
+                time: self.engine.now(),
+                log: log_path.to_path_buf(),
+            },
+            e => e,
+        })
+    }
+
+    /// The body of [`Driver::run_loop`].
+    fn run_events(&mut self, log_path: &Path) -> Result<RunSummary, RunError> {
+        let stop_flag = self.control.stop;
+        let max_collisions = match self.stop {
+            Stop::Collisions(c) => c,
+            Stop::Time(_) => u64::MAX,
+        };
+        let stop_time = match self.stop {
+            Stop::Time(t) => t,
+            Stop::Collisions(_) => f64::INFINITY,
+        };
+        let mut reason = if self.collisions >= max_collisions {
+            Some(StopReason::Collisions)
+        } else {
+            None
+        };
+        let mut failure = None;
+        let mut tick: u32 = 0;
+        self.bytes_at_disk_check = self.log_bytes();
+        while reason.is_none() {
+            if stop_flag.is_some_and(|f| f.load(Ordering::Relaxed)) {
+                reason = Some(StopReason::Interrupted);
+                break;
+            }
+            let ev = match self.engine.next_event() {
+                Ok(Some(ev)) => ev,
+                Ok(None) => {
+                    reason = Some(StopReason::Exhausted);
+                    break;
+                }
+                Err(e) => {
+                    failure = Some(e);
+                    reason = Some(StopReason::Error);
+                    break;
+                }
+            };
+            match ev {
+                Event::Pair(c) => {
+                    self.collisions += 1;
+                    self.writer.observe_pair(&c)?;
+                }
+                Event::Wall(c) => {
+                    self.collisions += 1;
+                    self.writer.observe_wall(&c)?;
+                }
+                Event::Scheduled { time, tag } => match Observation::decode(tag) {
+                    Some(Observation::Snapshot(k)) => {
+                        let interval = self.log.snapshot_interval;
+                        self.schedule_next(Observation::Snapshot, k, interval)?;
+                        self.write_snapshot()?;
+                    }
+                    Some(Observation::Thermo(k)) => {
+                        let interval = self.log.thermo_interval;
+                        self.schedule_next(Observation::Thermo, k, interval)?;
+                        self.write_thermo()?;
+                    }
+                    Some(Observation::Checkpoint(k)) => {
+                        let interval = self.log.checkpoint_interval;
+                        self.schedule_next(Observation::Checkpoint, k, interval)?;
+                        self.write_checkpoint()?;
+                    }
+                    // Let every observation due at this very time come first.
+                    Some(Observation::Stop) if time >= stop_time => {
+                        self.schedule(time, Observation::FinalStop)?;
+                    }
+                    Some(Observation::FinalStop) if time >= stop_time => {
+                        reason = Some(StopReason::Time);
+                    }
+                    _ => {}
+                },
+            }
+            if self.collisions >= max_collisions {
+                reason = Some(StopReason::Collisions);
+            }
+            tick = tick.wrapping_add(1);
+            if tick.is_multiple_of(1024) {
+                self.writer.maybe_flush()?;
+                if self.last_progress.elapsed() >= self.control.progress_interval {
+                    self.progress();
+                    if reason.is_none() && self.disk_low() {
+                        reason = Some(StopReason::DiskFull);
+                    }
+                }
+            }
+        }
+        let reason = reason.unwrap_or(StopReason::Error);
+        // Finish the log.
+        if failure.is_none() {
+            let now = self.engine.now();
+            if self.log.thermo_interval.is_some()
+                && self.last_thermo_at != Some((now, self.collisions))
+            {
+                self.write_thermo()?;
+            }
+            if self.last_checkpoint_at != Some((now, self.collisions)) {
+                self.write_checkpoint()?;
+            }
+        }
+        self.progress();
+        let wall = self.started.elapsed().as_secs_f64();
+        let s = *self.engine.stats();
+        let this = self.collisions - self.start_collisions;
+        let cps = if wall > 0.0 { this as f64 / wall } else { 0.0 };
+        let kinetic_energy = self.engine.kinetic_energy();
+        let logged = self.writer.stats().logged_collisions;
+        let sm = SummaryMetadata {
+            end_time: now_rfc3339(),
+            stop_reason: reason,
+            error: failure.as_ref().map(|e| e.to_string()),
+            sim_time: self.engine.now(),
+            pair_collisions: s.pair_collisions,
+            wall_collisions: s.wall_collisions,
+            logged_collisions: logged,
+            kinetic_energy,
+            energy_lost: s.energy_lost,
+            virial_sum: s.virial_sum,
+            wall_seconds: wall,
+            collisions_per_second: cps,
+        };
+        let file_bytes = self.writer.finish(&sm.to_map())?;
+        if let Some(source) = failure {
+            return Err(RunError::Engine {
+                source,
+                time: self.engine.now(),
+                log: log_path.to_path_buf(),
+            });
+        }
+        Ok(RunSummary {
+            log: log_path.to_path_buf(),
+            stop_reason: reason,
+            sim_time: self.engine.now(),
+            pair_collisions: s.pair_collisions,
+            wall_collisions: s.wall_collisions,
+            logged_collisions: logged,
+            collisions_this_process: this,
+            wall_seconds: wall,
+            collisions_per_second: cps,
+            kinetic_energy,
+            energy_lost: s.energy_lost,
+            file_bytes,
+        })
+    }
+}

@@ -1,0 +1,110 @@
+//! Why a run or a resume failed: one error type, each variant saying what and where.
+//!
+//! A failure after the log exists still finishes the log where it can
+//! ([`RunError::Engine`]); a failure to write it leaves a log readable up to its
+//! last flush, which `carom resume` continues ([`RunError::LogCut`]).
+
+use std::path::PathBuf;
+
+use carom_events::{EngineError, InitError};
+use carom_io::ReadError;
+use carom_io::WriteError;
+use thiserror::Error;
+
+/// A run that could not be carried out. Each variant says what and where.
+#[derive(Debug, Error)]
+pub enum RunError {
+    /// The initial state could not be built.
+    #[error("initial state: {0}")]
+    Init(#[from] InitError),
+    /// An option is out of range.
+    #[error("{field}: {problem} (allowed: {allowed})")]
+    Invalid {
+        /// The option, as a dotted path (e.g. `log.snapshot_interval`).
+        field: &'static str,
+        /// What is wrong.
+        problem: String,
+        /// What is allowed.
+        allowed: &'static str,
+    },
+    /// The engine failed mid-run; the log was finished (with `stop_reason = error`
+    /// in its summary) and is readable up to the failure.
+    #[error("engine failed at simulated time {time}: {source}; the log {log} is finished and readable up to there")]
+    Engine {
+        /// The engine's error.
+        source: EngineError,
+        /// Simulated time of the failure.
+        time: f64,
+        /// The log file.
+        log: PathBuf,
+    },
+    /// The checkpoint to resume from was rejected by the engine.
+    #[error("cannot resume from the last checkpoint of {file}: {source}")]
+    BadCheckpoint {
+        /// The input log.
+        file: PathBuf,
+        /// The engine's reason.
+        source: EngineError,
+    },
+    /// Writing the log failed.
+    #[error(transparent)]
+    Write(#[from] WriteError),
+    /// Writing the log failed during the run (a full disk, a file system gone):
+    /// the log is not finished, but readable up to its last flush, and `resume`
+    /// continues it from its last complete checkpoint.
+    #[error(
+        "{source}\nthe run stopped at simulated time {}; {log} is readable up to its last \
+         flush, and `carom resume {log}` continues it from its last complete checkpoint \
+         once the cause is removed (a full disk: free space, or resume with --out on \
+         another disk)",
+        // Seven digits are plenty to say where; the log has the exact times.
+        *.time as f32
+    )]
+    LogCut {
+        /// The writer's error.
+        source: WriteError,
+        /// Simulated time when the run stopped (time).
+        time: f64,
+        /// The log file.
+        log: PathBuf,
+    },
+    /// Reading the log to resume failed.
+    #[error(transparent)]
+    Read(#[from] ReadError),
+    /// The stop flag was raised while the discs were being placed, before the log
+    /// was created: nothing was written.
+    #[error("interrupted while placing the discs (relaxed placement, after {steps} minimization steps); no log was written")]
+    InterruptedPlacing {
+        /// Minimization steps taken.
+        steps: usize,
+    },
+    /// The disk that is to hold the resumed log has too little room for even the
+    /// copy of the input up to its last checkpoint (nothing was written).
+    #[error(
+        "cannot resume into {out}: its disk has {} free, and the copy of {input} up to its \
+         last checkpoint needs about {}; free some space, or resume with --out on another \
+         disk",
+        indicatif::DecimalBytes(*.free),
+        indicatif::DecimalBytes(*.need)
+    )]
+    NoRoom {
+        /// The log being resumed.
+        input: PathBuf,
+        /// The file the resumed log was to be written to.
+        out: PathBuf,
+        /// Bytes the copy needs (taken as the input's size).
+        need: u64,
+        /// Bytes free on the output's disk.
+        free: u64,
+    },
+    /// Renaming the finished resumed log over the input failed.
+    #[error("cannot move the resumed log {from} over {to}: {source}")]
+    Rename {
+        /// The finished temporary file.
+        from: PathBuf,
+        /// The input log.
+        to: PathBuf,
+        /// The operating system's error.
+        source: std::io::Error,
+    },
+}

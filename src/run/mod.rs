@@ -1,0 +1,75 @@
+//! The run driver: builds the engine, asks it for observations at exact times,
+//! hands every event to the MCAP log writer, and ends the log cleanly.
+//!
+//! Two entry points, both blocking until the run ends: [`run`], a fresh run from a
+//! [`RunSpec`](carom_io::RunSpec) into a new log file, and [`resume`], which
+//! continues a log (complete, or cut short by a crash) from its last checkpoint.
+//! The caller steers both through a [`Control`] (stop flag, progress callbacks,
+//! the room on the log's disk).
+//!
+//! ```no_run
+//! use carom::run::{run, Control, Progress};
+//! use std::sync::atomic::AtomicBool;
+//! # fn spec() -> carom::io::RunSpec { unimplemented!() }
+//! let stop = AtomicBool::new(false); // set it from a Ctrl-C handler
+//! let mut show = |p: &Progress| eprintln!("t = {:.3}, {} collisions", p.sim_time, p.collisions);
+//! let summary = run(&spec(), "out.mcap".as_ref(), Control::new(&stop, &mut show)).unwrap();
+//! println!("{} collisions/s", summary.collisions_per_second);
+//! ```
+
+mod control;
+mod disk;
+mod driver;
+mod error;
+mod observation;
+mod resume;
+mod start;
+mod thermo;
+mod validate;
+
+use std::path::PathBuf;
+
+use carom_io::Stop;
+use carom_io::StopReason;
+
+pub use control::{Control, Progress, ResumePass};
+pub use disk::{disk_low, free_space_for, FreeSpace};
+pub use error::RunError;
+pub use resume::{resume, same_file};
+pub use start::run;
+
+/// What a finished run did.
+#[derive(Debug, Clone, PartialEq)]
+pub struct RunSummary {
+    /// The log file.
+    pub log: PathBuf,
+    /// Why it ended.
+    pub stop_reason: StopReason,
+    /// Simulated time at the end (time).
+    pub sim_time: f64,
+    /// Pair collisions over the whole run.
+    pub pair_collisions: u64,
+    /// Wall collisions over the whole run.
+    pub wall_collisions: u64,
+    /// Collisions written to `/collisions` over the whole run.
+    pub logged_collisions: u64,
+    /// Collisions processed by this process (excludes the part before a resume).
+    pub collisions_this_process: u64,
+    /// Wall-clock seconds of this process's part.
+    pub wall_seconds: f64,
+    /// `collisions_this_process / wall_seconds`.
+    pub collisions_per_second: f64,
+    /// Kinetic energy at the end (energy).
+    pub kinetic_energy: f64,
+    /// Energy dissipated over the whole run (energy).
+    pub energy_lost: f64,
+    /// Size of the log file (bytes).
+    pub file_bytes: u64,
+}
+
+/// Options of [`resume`].
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct ResumeOptions {
+    /// A new stop criterion (e.g. to extend a finished run); `None` keeps the input's.
+    pub stop: Option<Stop>,
+}

@@ -1,0 +1,184 @@
+//! Continuing a log from its last complete checkpoint.
+//!
+//! [`resume`] writes a **new** file that holds first the input's messages up to
+//! and including that checkpoint, copied byte for byte, then the continuation.
+//! The engine restarts bit-identically and the driver's counters (collision
+//! ordinal, message sequence numbers) are in the checkpoint, so the new file has
+//! exactly the messages the uninterrupted run would have written. Messages after
+//! the last checkpoint (up to a crash) are dropped and written again, identically.
+//! Resuming in place writes beside the input and renames over it once finished,
+//! so a crash during the resume leaves the input intact.
+
+use std::path::Path;
+
+use carom_events::{Engine, EngineError};
+use carom_io::LogCheckpoint;
+use carom_io::Stop;
+use carom_io::Thermo;
+use carom_io::{last_checkpoint_observed, LogReader, ReadProgress};
+use carom_io::{LogWriter, WriterOptions, WriterPosition, CH_THERMO};
+
+use super::disk::free_bytes;
+use super::driver::Driver;
+use super::observation::Observation;
+use super::validate::validate;
+use super::{Control, ResumeOptions, ResumePass, RunError, RunSummary};
+
+/// Continue the log `input` from its last complete checkpoint into `out` (which may
+/// equal `input`); see this module's documentation for the layout of the result.
+/// `input` may be truncated (a killed run) or complete (then give a later
+/// `opts.stop` to extend it).
+pub fn resume(
+    input: &Path,
+    out: &Path,
+    opts: &ResumeOptions,
+    mut control: Control<'_>,
+) -> Result<RunSummary, RunError> {
+    let mut reading = |pass: ResumePass, p: ReadProgress| {
+        if let Some(show) = control.reading.as_mut() {
+            show(pass, p);
+        }
+    };
+    let (cp, prefix, mut meta) =
+        last_checkpoint_observed(input, &mut |p| reading(ResumePass::FindingCheckpoint, p))?;
+    let LogCheckpoint { driver, engine } = cp;
+    let stop = opts.stop.unwrap_or(meta.stop);
+    validate(&meta.log, &stop, engine.now)?;
+    let pending_stops: Vec<f64> = engine
+        .scheduled
+        .iter()
+        .filter(|s| Observation::decode(s.2).is_some_and(Observation::is_stop))
+        .map(|s| s.0)
+        .collect();
+    if let Some(problem) = non_finite(&engine) {
+        return Err(RunError::BadCheckpoint {
+            file: input.to_path_buf(),
+            source: EngineError::BadCheckpoint(problem),
+        });
+    }
+    let next_ordinal = engine.stats.pair_collisions + engine.stats.wall_collisions;
+    let resumed_at = engine.now;
+    let engine = Engine::from_checkpoint(engine).map_err(|source| RunError::BadCheckpoint {
+        file: input.to_path_buf(),
+        source,
+    })?;
+    meta.resumed_from = Some(input.display().to_string());
+    meta.resumed_at = Some(resumed_at);
+    meta.stop = stop;
+    let in_place = same_file(input, out);
+    let target = if in_place {
+        let mut name = out.file_name().unwrap_or_default().to_os_string();
+        name.push(".resume-tmp");
+        out.with_file_name(name)
+    } else {
+        out.to_path_buf()
+    };
+    // The copy alone takes about as much room as the input up to its last
+    // checkpoint, most of the file: refuse at once when the input's size is not
+    // free, rather than fail part way (a log stopped because its disk was full,
+    // resumed in place, would).
+    let need = std::fs::metadata(input).map_or(0, |m| m.len());
+    if let Some(free) = free_bytes(&mut control.free_space, &target)
+        .ok()
+        .filter(|&free| free < need)
+    {
+        return Err(RunError::NoRoom {
+            input: input.to_path_buf(),
+            out: out.to_path_buf(),
+            need,
+            free,
+        });
+    }
+    let mut writer = LogWriter::create(
+        &target,
+        WriterOptions::from_log_options(&meta.log),
+        &meta.to_map(),
+        WriterPosition {
+            next_ordinal,
+            logged_collisions: driver.logged_collisions,
+            next_sequence: driver.next_sequence,
+        },
+    )?;
+    // Copy the input's messages up to and including the checkpoint.
+    let mut reader = LogReader::open(input)?;
+    let mut copied = 0u64;
+    let mut last_thermo_at = None;
+    let mut seen = 0;
+    while copied < prefix {
+        if let Some(p) = reader.progress_since(&mut seen) {
+            reading(ResumePass::Copying, p);
+        }
+        let Some(m) = reader.next_raw()? else {
+            break;
+        };
+        if m.channel == CH_THERMO {
+            if let Ok(t) = Thermo::decode(m.data) {
+                last_thermo_at = Some((t.time, t.collisions));
+            }
+        }
+        writer.copy_message(m.channel, m.sequence, m.log_time, m.publish_time, m.data)?;
+        copied += 1;
+        writer.maybe_flush()?;
+    }
+    reading(ResumePass::Copying, reader.progress());
+    drop(reader);
+    writer.flush()?;
+    let mut d = Driver::new(engine, writer, meta.log.clone(), stop, control);
+    d.run_start_time = driver.run_start_time;
+    d.last_checkpoint_at = Some((resumed_at, d.collisions));
+    d.last_thermo_at = last_thermo_at;
+    if let Stop::Time(t) = stop {
+        if !pending_stops.contains(&t) {
+            d.schedule(t, Observation::Stop)?;
+        }
+    }
+    let summary = d.run_loop(&target)?;
+    if in_place {
+        std::fs::rename(&target, out).map_err(|source| RunError::Rename {
+            from: target.clone(),
+            to: out.to_path_buf(),
+            source,
+        })?;
+        return Ok(RunSummary {
+            log: out.to_path_buf(),
+            ..summary
+        });
+    }
+    Ok(summary)
+}
+
+/// The first non-finite value among the checkpoint's times, positions and
+/// velocities (which the engine assumes finite), if any.
+fn non_finite(cp: &carom_events::Checkpoint) -> Option<String> {
+    if !cp.now.is_finite() {
+        return Some(format!("current time {} is not finite", cp.now));
+    }
+    if !cp.sim_box.size.is_finite() {
+        return Some("box size is not finite".into());
+    }
+    let bad = |name: &str, k: usize| Some(format!("{name} of disc slot {k} is not finite"));
+    for (k, p) in cp.positions.iter().enumerate() {
+        if !p.is_finite() {
+            return bad("position", k);
+        }
+    }
+    for (k, v) in cp.velocities.iter().enumerate() {
+        if !v.is_finite() {
+            return bad("velocity", k);
+        }
+    }
+    for (k, t) in cp.times.iter().enumerate() {
+        if !t.is_finite() {
+            return bad("update time", k);
+        }
+    }
+    None
+}
+
+/// Whether paths `a` and `b` name the same existing file (or are equal).
+pub fn same_file(a: &Path, b: &Path) -> bool {
+    match (a.canonicalize(), b.canonicalize()) {
+        (Ok(x), Ok(y)) => x == y,
+        _ => a == b,
+    }
+}

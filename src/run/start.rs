@@ -1,0 +1,100 @@
+//! A fresh run: check the options, place the discs (reporting relaxed placement's
+//! progress and heeding the stop flag, before any log exists), build the engine,
+//! write the run's metadata and hand over to the [`Driver`].
+
+use std::ops::ControlFlow;
+use std::path::Path;
+use std::sync::atomic::Ordering;
+use std::time::Instant;
+
+use carom_events::{Engine, PlacementProgress, State, SystemSpec};
+use carom_io::{
+    now_rfc3339, LogWriter, RunFacts, RunMetadata, RunSpec, WriterOptions, WriterPosition,
+    LOG_FORMAT_VERSION,
+};
+
+use super::driver::Driver;
+use super::validate::validate;
+use super::{Control, RunError, RunSummary};
+
+/// Start a fresh run of `spec`, logging to `out` (created or truncated). Blocks
+/// until the run stops (stop criterion, `control.stop`, or an engine failure, after
+/// which the log is still finished). The log holds what `run/driver.rs` describes.
+pub fn run(spec: &RunSpec, out: &Path, mut control: Control<'_>) -> Result<RunSummary, RunError> {
+    // Before placement, which can take a minute: a fresh state starts at time 0.
+    validate(&spec.log, &spec.stop, 0.0)?;
+    let state = place(&spec.system, &mut control)?;
+    debug_assert_eq!(state.time, 0.0);
+    let n = state.len();
+    let facts = RunFacts::new(&state.species, &state.sim_box, &spec.params, &spec.log);
+    let engine = Engine::new(state, spec.params).map_err(|source| RunError::Engine {
+        source,
+        time: 0.0,
+        log: out.to_path_buf(),
+    })?;
+    let meta = RunMetadata {
+        log_format: LOG_FORMAT_VERSION.into(),
+        carom_version: env!("CARGO_PKG_VERSION").into(),
+        config: spec.config_json.clone(),
+        seed: spec.system.seed,
+        start_time: now_rfc3339(),
+        n_discs: n as u64,
+        stop: spec.stop,
+        log: spec.log.clone(),
+        resumed_from: None,
+        resumed_at: None,
+        run_facts: Some(facts),
+    };
+    let writer = LogWriter::create(
+        out,
+        WriterOptions::from_log_options(&spec.log),
+        &meta.to_map(),
+        WriterPosition::default(),
+    )?;
+    let mut d = Driver::new(engine, writer, spec.log.clone(), spec.stop, control);
+    d.run_start_time = d.engine.now();
+    d.schedule_initial()?;
+    d.run_loop(out)
+}
+
+/// Build the initial state of `system`, reporting relaxed placement's progress to
+/// `control.placing` (every `control.progress_interval`, and once at the end) and
+/// stopping it when `control.stop` is raised.
+fn place(system: &SystemSpec, control: &mut Control<'_>) -> Result<State, RunError> {
+    let mut last_report: Option<Instant> = None;
+    let mut latest = None;
+    let mut observe = |p: &PlacementProgress| {
+        latest = Some(*p);
+        if let Some(show) = control.placing.as_mut() {
+            if last_report.is_none_or(|t| t.elapsed() >= control.progress_interval) {
+                show(p);
+                last_report = Some(Instant::now());
+            }
+        }
+        match control.stop {
+            Some(flag) if flag.load(Ordering::Relaxed) => ControlFlow::Break(()),
+            _ => ControlFlow::Continue(()),
+        }
+    };
+    let state = system.build_observed(&mut observe);
+    if let (Some(show), Some(p)) = (control.placing.as_mut(), latest) {
+        // Reported before each step: a placement that succeeded took one more, and
+        // left nothing too close.
+        let done = PlacementProgress {
+            steps: p.steps + 1,
+            close: 0,
+            ..p
+        };
+        show(if matches!(state, Ok(Some(_))) {
+            &done
+        } else {
+            &p
+        });
+    }
+    match state? {
+        Some(state) => Ok(state),
+        None => Err(RunError::InterruptedPlacing {
+            steps: latest.map_or(0, |p| p.steps),
+        }),
+    }
+}
