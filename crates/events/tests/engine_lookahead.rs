@@ -7,8 +7,8 @@
 //! seen through two images, where the look-ahead's block wraps), a mixture and an
 //! inelastic run with the TC model cover every event kind the look-ahead reads.
 
-use carom::core::{Boundary, Restitution, SimBox, Species};
-use carom::events::{Engine, EngineParams, SystemSpec};
+use carom_core::{Boundary, Restitution, SimBox, Species};
+use carom_events::{Engine, EngineParams, SystemSpec};
 
 mod engine_common;
 use engine_common::{lattice_spec, mono};
