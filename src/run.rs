@@ -40,8 +40,8 @@
 //! input path the new file is written beside it and renamed over the input only once
 //! it is finished, so a crash during the resume leaves the input intact.
 
+use carom_core::observables::degrees_of_freedom;
 use carom_core::{Boundary, DVec2};
-use carom_events::state::degrees_of_freedom;
 use carom_events::{Engine, EngineError, Event, InitError, PlacementProgress, State, SystemSpec};
 use carom_io::checkpoint_codec::LogCheckpoint;
 use carom_io::config::MAX_RECORDS;

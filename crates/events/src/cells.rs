@@ -39,10 +39,8 @@
 //! at N = 10⁶ and 0.93 (6) at 10⁴; same trajectory.
 
 use crate::memory;
+use crate::NO_DISC;
 use carom_core::{DVec2, SimBox};
-
-/// Marker for "no disc" in the linked lists.
-pub const NONE: u32 = u32::MAX;
 
 /// A disc's place in the grid: its cell and the next disc in that cell's list.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -50,7 +48,7 @@ pub const NONE: u32 = u32::MAX;
 pub struct Link {
     /// Cell coordinates (column, row); at most 2¹⁵ cells per axis.
     pub cell: [u16; 2],
-    /// Next disc in the same cell, or [`NONE`].
+    /// Next disc in the same cell, or [`NO_DISC`].
     pub next: u32,
 }
 
@@ -58,7 +56,7 @@ impl Link {
     /// Not in any list, cell (0, 0).
     pub const UNLINKED: Link = Link {
         cell: [0, 0],
-        next: NONE,
+        next: NO_DISC,
     };
 
     /// The cell coordinates (column, row).
@@ -126,7 +124,7 @@ pub struct CellGrid {
     pub size: DVec2,
     /// Whether each axis is periodic.
     pub periodic: [bool; 2],
-    /// First disc of each cell, or [`NONE`].
+    /// First disc of each cell, or [`NO_DISC`].
     pub head: Vec<u32>,
 }
 
@@ -150,7 +148,7 @@ impl CellGrid {
                 sim_box.boundary[0].is_periodic(),
                 sim_box.boundary[1].is_periodic(),
             ],
-            head: memory::filled(n[0] as usize * n[1] as usize, NONE),
+            head: memory::filled(n[0] as usize * n[1] as usize, NO_DISC),
         }
     }
 
@@ -253,7 +251,7 @@ impl CellGrid {
             let mut j = self.head[k];
             std::iter::from_fn(move || {
                 let cur = j;
-                (cur != NONE).then(|| {
+                (cur != NO_DISC).then(|| {
                     j = members[cur as usize].link().next;
                     cur
                 })
@@ -293,16 +291,16 @@ impl CellGrid {
         )
     }
 
-    /// The previous disc in its cell's list of each disc, or [`NONE`] for the first
+    /// The previous disc in its cell's list of each disc, or [`NO_DISC`] for the first
     /// (the back links checkpoints store). The lists must pass
     /// [`CellGrid::check_lists`].
     pub fn prev_links<M: Member>(&self, members: &[M]) -> Vec<u32> {
-        let mut prev = vec![NONE; members.len()];
+        let mut prev = vec![NO_DISC; members.len()];
         for &h in &self.head {
             let mut j = h;
-            while j != NONE {
+            while j != NO_DISC {
                 let next = members[j as usize].link().next;
-                if next != NONE {
+                if next != NO_DISC {
                     prev[next as usize] = j;
                 }
                 j = next;
@@ -314,6 +312,7 @@ impl CellGrid {
     /// Check that the lists describe a partition of the discs: every disc is listed
     /// exactly once, in the list of the cell its record names. Returns what is wrong
     /// otherwise (for checkpoints read from disk, and the tests).
+    #[cfg(test)]
     pub fn check_lists<M: Member>(&self, members: &[M]) -> Result<(), String> {
         self.check_lists_of(members, |_| true)
     }
@@ -332,7 +331,7 @@ impl CellGrid {
         for cy in 0..self.n[1] {
             for cx in 0..self.n[0] {
                 let mut j = self.head[self.index([cx, cy])];
-                while j != NONE {
+                while j != NO_DISC {
                     let Some(link) = members.get(j as usize).map(Member::link) else {
                         return Err(format!(
                             "cell ({cx}, {cy}) lists disc {j}, beyond {n} discs"
@@ -436,7 +435,7 @@ mod tests {
     fn list(g: &CellGrid, links: &[Link], c: [u32; 2]) -> Vec<u32> {
         let mut out = vec![];
         let mut j = g.head[g.index(c)];
-        while j != NONE {
+        while j != NO_DISC {
             out.push(j);
             j = links[j as usize].next;
         }
@@ -472,7 +471,7 @@ mod tests {
                     prop_assert_eq!(prev[w[1] as usize], w[0]);
                 }
                 if let Some(&first) = l.first() {
-                    prop_assert_eq!(prev[first as usize], NONE);
+                    prop_assert_eq!(prev[first as usize], NO_DISC);
                 }
             }
         }
@@ -491,7 +490,7 @@ mod tests {
         assert_eq!(g.check_lists(&cyc), Err("disc 2 is listed twice".into()));
         // A disc left out of every list.
         let mut lost = links.clone();
-        lost[1].next = NONE;
+        lost[1].next = NO_DISC;
         assert_eq!(
             g.check_lists(&lost),
             Err("disc 0 is in no cell's list".into())

@@ -43,7 +43,8 @@
 //! lengths); otherwise, and for one species, there is a single grid exactly as
 //! before.
 
-use crate::cells::{CellGrid, Member, NONE};
+use crate::cells::{CellGrid, Member};
+use crate::NO_DISC;
 use carom_core::{SimBox, Species};
 
 /// Relative margin on a scan's reach into another grid, so that rounding of
@@ -133,11 +134,6 @@ impl Grids {
         1 + self.rest.len()
     }
 
-    /// Always false: there is at least one grid.
-    pub fn is_empty(&self) -> bool {
-        false
-    }
-
     /// Class of species `s`.
     #[inline(always)]
     pub fn class(&self, s: u16) -> u8 {
@@ -185,13 +181,13 @@ impl Grids {
         (a + self.radius[c as usize]) * (1.0 + REACH_MARGIN)
     }
 
-    /// The previous disc in its cell's list of each disc, or [`NONE`] for the first
+    /// The previous disc in its cell's list of each disc, or [`NO_DISC`] for the first
     /// ([`CellGrid::prev_links`] over all the grids).
     pub fn prev_links<M: Member>(&self, members: &[M]) -> Vec<u32> {
-        let mut prev = vec![NONE; members.len()];
+        let mut prev = vec![NO_DISC; members.len()];
         for grid in self.iter() {
             for (p, q) in prev.iter_mut().zip(grid.prev_links(members)) {
-                if q != NONE {
+                if q != NO_DISC {
                     *p = q;
                 }
             }

@@ -44,13 +44,14 @@
 //! enter.
 
 use crate::memory;
+use crate::NO_DISC;
 use ordered_float::NotNan;
 
 /// Event time in the queue's key type (time unit of the simulation, never NaN).
 pub type Time = NotNan<f64>;
 
-/// "No disc" / "no chunk".
-pub const NIL: u32 = u32::MAX;
+/// "No chunk" at the end of a slot's chain or of the free list.
+const NO_CHUNK: u32 = u32::MAX;
 
 /// Discs held in one slot or chunk.
 pub const SLOT_DISCS: usize = 7;
@@ -96,13 +97,13 @@ struct Item {
 }
 
 /// A calendar slot, or a chunk of a slot's chain: up to [`SLOT_DISCS`] disc indices
-/// (filled from the front, [`NIL`] after the last) and the next chunk.
+/// (filled from the front, [`NO_DISC`] after the last) and the next chunk.
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[repr(C, align(32))]
 struct Slot {
     /// Discs filed in this bucket (current or stale entries).
     disc: [u32; SLOT_DISCS],
-    /// Next chunk of the chain (or of the free list), or [`NIL`].
+    /// Next chunk of the chain (or of the free list), or [`NO_CHUNK`].
     more: u32,
 }
 
@@ -110,8 +111,8 @@ const _: () = assert!(std::mem::size_of::<Slot>() == 32);
 
 impl Slot {
     const EMPTY: Slot = Slot {
-        disc: [NIL; SLOT_DISCS],
-        more: NIL,
+        disc: [NO_DISC; SLOT_DISCS],
+        more: NO_CHUNK,
     };
 
     /// Put `d` in the first free place; false if the slot is full.
@@ -128,7 +129,7 @@ impl Slot {
     /// slot from the front).
     #[inline]
     fn len(&self) -> usize {
-        self.disc.iter().map(|&x| (x != NIL) as usize).sum()
+        self.disc.iter().map(|&x| (x != NO_DISC) as usize).sum()
     }
 }
 
@@ -187,7 +188,7 @@ impl EventQueue {
             n,
             slots: memory::filled(m, Slot::EMPTY),
             chunks: memory::with_capacity(Self::chunk_limit_for(n)),
-            free: NIL,
+            free: NO_CHUNK,
             chunks_used: 0,
             overflow: Vec::new(),
             heap: Vec::new(),
@@ -228,7 +229,7 @@ impl EventQueue {
         };
         self.slots.fill(Slot::EMPTY);
         self.chunks.clear();
-        self.free = NIL;
+        self.free = NO_CHUNK;
         self.chunks_used = 0;
         self.overflow.clear();
         // The heap can be large right after construction (every first prediction
@@ -269,11 +270,11 @@ impl EventQueue {
     }
 
     /// Discs likely to have the events after the earliest: the two children of the
-    /// head of the current bucket's heap ([`NIL`] where there are none). A hint for
+    /// head of the current bucket's heap ([`NO_DISC`] where there are none). A hint for
     /// fetching their records early; it says nothing certain about the order.
     #[inline]
     pub fn upcoming(&self) -> [u32; 2] {
-        let at = |k: usize| self.heap.get(k).map_or(NIL, |item| item.disc);
+        let at = |k: usize| self.heap.get(k).map_or(NO_DISC, |item| item.disc);
         [at(1), at(2)]
     }
 
@@ -298,7 +299,7 @@ impl EventQueue {
     }
 
     /// Discs filed in the bucket `k` ≥ 1 places after the current one (the first
-    /// [`SLOT_DISCS`] of them, [`NIL`] after the last; some may be stale). A hint
+    /// [`SLOT_DISCS`] of them, [`NO_DISC`] after the last; some may be stale). A hint
     /// for fetching their records before they are needed.
     #[inline]
     pub fn ahead(&self, k: u64) -> &[u32; SLOT_DISCS] {
@@ -317,7 +318,7 @@ impl EventQueue {
     ) -> impl Iterator<Item = u32> + 'a {
         self.ahead(k)
             .iter()
-            .take_while(|&&d| d != NIL)
+            .take_while(|&&d| d != NO_DISC)
             .copied()
             .filter(move |&d| self.bucket(times.time(d)) == self.cur.wrapping_add(k))
     }
@@ -397,7 +398,7 @@ impl EventQueue {
             return;
         }
         let c = self.slots[s].more;
-        if c != NIL && self.chunks[c as usize].add(d) {
+        if c != NO_CHUNK && self.chunks[c as usize].add(d) {
             return;
         }
         let mut chunk = Slot::EMPTY;
@@ -427,7 +428,7 @@ impl EventQueue {
     fn chunk(&mut self, chunk: Slot) -> u32 {
         self.chunks_used += 1;
         let k = self.free;
-        if k != NIL {
+        if k != NO_CHUNK {
             self.free = self.chunks[k as usize].more;
             self.chunks[k as usize] = chunk;
             k
@@ -485,7 +486,7 @@ impl EventQueue {
         let before = self.heap.len();
         self.pour(times, &slot);
         let mut c = slot.more;
-        while c != NIL {
+        while c != NO_CHUNK {
             let chunk = self.chunks[c as usize];
             self.pour(times, &chunk);
             self.chunks[c as usize].more = self.free;

@@ -2,7 +2,7 @@
 //! overlap energy, for dense mixtures that no lattice holds.
 //!
 //! The discs start at random positions at the requested density (one in each
-//! cell of a grid of about N cells, see `init`), where they overlap heavily. Each overlapping pair, with its radii inflated by
+//! cell of a grid of about N cells, see `init::relaxed`), where they overlap heavily. Each overlapping pair, with its radii inflated by
 //! [`INFLATE`], is then given the harmonic energy U = ½ δ² (δ the overlap of the
 //! inflated discs, length), and so is a disc reaching into a wall. U is minimized
 //! with FIRE (E. Bitzek et al., Phys. Rev. Lett. 97, 170201 (2006)), the usual
@@ -23,12 +23,12 @@ use std::ops::ControlFlow;
 
 /// Factor on the radii while minimizing (dimensionless): the inflated discs are
 /// pushed apart, so the real ones end with gaps.
-pub const INFLATE: f64 = 1.0 + 2e-3;
+pub(super) const INFLATE: f64 = 1.0 + 2e-3;
 
 /// The minimization stops once every pair of discs is at least this factor times
 /// its contact distance a_i + a_j apart, and every disc at least this factor times
 /// its radius from a wall (dimensionless).
-pub const MARGIN: f64 = 1.0 + 1e-3;
+pub(super) const MARGIN: f64 = 1.0 + 1e-3;
 
 /// FIRE parameters (Bitzek et al. 2006, in the time unit of a unit mass on a unit
 /// spring): first and largest step, steps of positive power before the step grows,
