@@ -1,42 +1,17 @@
 //! Neighbour search: a grid of cells at least one contact distance wide.
 //!
-//! Two discs can touch only if their centres lie in the same or adjacent cells, so a
-//! disc predicts collisions only with the discs of its 3 × 3 block. Crossing a cell
-//! wall is itself an event of the engine, which keeps every disc in the cell that
-//! contains its centre. Each cell holds an intrusive singly linked list of its discs;
-//! a disc's cell and its list link share one 8-byte record ([`Link`]), which the
-//! grid does not own: it lives in whatever per-disc record the caller keeps (a
-//! [`Member`]). The engine keeps it inside each disc's 64-byte record, so that
-//! walking a cell's list reads only the records a scan needs anyway. Taking a disc
-//! out of its cell walks the cell's list to its predecessor, a walk through the few
-//! discs ahead of it in a list the event has just scanned; a back link would not fit
-//! in the record.
-//!
-//! On a periodic axis the block wraps around; a neighbour reached across the box edge
-//! is seen through its periodic image, shifted by ±L. Boxes narrower than three cells
-//! work too: the same cell is then visited more than once, each time with a different
-//! image shift, which is exactly the set of images a disc can reach.
-//!
-//! A grid serves the discs of one size class: every species in a mixture of
-//! similar sizes, or in one of very different sizes, where that is estimated to be
-//! faster, each class of similar sizes its own grid (see [`crate::classes`]). Its
-//! cells are as wide as the largest contact distance among its discs.
-//!
-//! The cells are as narrow as the contact distance allows: a scan's cost follows the
-//! area of its block, and wider cells save fewer crossings than they add tests.
-//! Widened by 15, 30 and 50 % (`examples/profile`, η = 0.5, one run each), cells
-//! cut crossings per collision from 0.455 to 0.39, 0.35 and 0.30, but slowed
-//! N = 10⁴ by 21, 17 and 35 % and N = 10⁶ by 16, 35 and 44 %.
-//!
-//! The heads lie row by row, so a block's heads span three rows (about 3.4 cache
-//! lines). Heads stored in tiles of 4 × 4 cells, one cache line each (2.25 lines
-//! per block on average), were slower: 0.91 at N = 10⁶ and 0.92 at N = 10⁴
-//! (η = 0.5, both builds side by side on the two cores, medians of 8 and 6 runs).
-//! So were rows stored in interleaved pairs, (0, 0), (0, 1), (1, 0), (1, 1), ...,
-//! which put a block's heads on about 2.6 lines: at N = 10⁶ the last-level misses
-//! per collision fell from 19.1 to 17.9 (cachegrind, 4 MB LL) but the index
-//! arithmetic added 250 instructions to 3540, and the speed was 0.96 (median of 8)
-//! at N = 10⁶ and 0.93 (6) at 10⁴; same trajectory.
+//! Two discs can touch only if their centres lie in the same or adjacent cells
+//! (|r_i − r_j| = a_i + a_j ≤ cell width), so a disc predicts collisions only with
+//! the discs of its 3 × 3 block. Crossing a cell wall is itself an event of the
+//! engine, which keeps every disc in the cell that contains its centre. Each cell
+//! holds an intrusive singly linked list of its discs; a disc's cell and list link
+//! share one 8-byte [`Link`] that lives in the caller's per-disc record (a
+//! [`Member`]), so walking a list reads only records a scan needs anyway. On a
+//! periodic axis the block wraps around, a neighbour across the edge seen through
+//! its image shifted by ±L; boxes narrower than three cells visit a cell once per
+//! image. The cells are as narrow as the contact distance allows (at most
+//! [`CELLS_PER_DISC`] per disc), the heads stored row by row. See
+//! docs/performance.md, "cells".
 
 use crate::memory;
 use crate::NO_DISC;
@@ -88,10 +63,8 @@ impl Member for Link {
 
 /// The most cells per disc a grid gets (see [`CellGrid::new`]). Cells narrower than
 /// this allows (packing fraction above π/16 ≈ 0.2 for cells one diameter wide) are
-/// never widened. Below that the wider cells save crossings: `examples/profile`,
-/// N = 10⁴, both builds side by side (medians of 4): η = 0.02, 34.2 → 10.9 crossings
-/// per collision and 2.44× the collisions per second; η = 0.1, 5.99 → 4.27 and
-/// +8 %.
+/// never widened. Below that the wider cells save crossings (see
+/// docs/performance.md, "cells").
 pub const CELLS_PER_DISC: u64 = 4;
 
 /// Cells per axis: `n` (each axis as many as fit), reduced in the same proportion

@@ -50,8 +50,9 @@ pub struct Checkpoint {
     pub last_collision: Vec<f64>,
     /// Time of each disc's pending event (+∞ if none; time).
     pub event_times: Vec<f64>,
-    /// Pair candidate and pending event of each disc: [candidate's partner ([`NO_DISC`](crate::NO_DISC)
-    /// for none), partner's counter when found, pending kind | aux << 8]. Kinds: 0
+    /// Pair candidate and pending event of each disc: [candidate's partner
+    /// ([`NO_DISC`](crate::NO_DISC) for none), partner's counter when found,
+    /// pending kind | aux << 8]. Kinds: 0
     /// none, 1 the pair candidate, 2 wall, 3 cell crossing. aux bits 0–1: wall 2·axis +
     /// side (1 = high) or crossing 2·axis + (1 if upwards); bits 2–5: the candidate's
     /// image shift code (sx+1) + 3 (sy+1).
@@ -63,7 +64,8 @@ pub struct Checkpoint {
     /// stored the candidate's time also when a crossing or wall came first.)
     pub pair_times: Vec<f64>,
 
-    /// First disc of each cell ([`NO_DISC`](crate::NO_DISC) for none), one entry per cell.
+    /// First disc of each cell ([`NO_DISC`](crate::NO_DISC) for none), one entry
+    /// per cell.
     pub cell_head: Vec<u32>,
     /// Next disc in the same cell.
     pub cell_next: Vec<u32>,

@@ -1,4 +1,4 @@
-//! Fetching ahead (`carom_events::lookahead`) is a speed setting: it only issues
+//! Fetching ahead (the engine's look-ahead) is a speed setting: it only issues
 //! prefetch hints, so it must never change a trajectory. By default it is off below
 //! 20 000 discs and chosen by timing above, so the systems here switch it on
 //! explicitly, and every event of

@@ -1,7 +1,7 @@
 //! Boxes only two or three cells across, where the neighbour search sees the same
 //! cell through more than one periodic image, and where a cell crossing brings
 //! cells next to a disc that it saw before through another image. The engine scans
-//! only the newly adjacent cells after a crossing (see `carom_events::engine`), so
+//! only the newly adjacent cells after a crossing (see the engine's `predict` module), so
 //! these are the boxes where a mistake in which cells (and which images) are new
 //! would show: a missed collision lets two discs pass through each other, and the
 //! overlap check catches it within a few events.

@@ -587,7 +587,7 @@ fn oracle_channel_mixture() {
 }
 
 /// Small discs (diameter 1, mass 1) and a few much larger ones (diameter `ratio`,
-/// mass ∝ area): each size gets its own cell grid (see `carom_events::classes`).
+/// mass ∝ area): each size gets its own cell grid (a grid per size class).
 fn asymmetric(n_small: usize, n_large: usize, ratio: f64) -> Vec<Species> {
     vec![Species::reference(n_small), Species::scaled(n_large, ratio)]
 }

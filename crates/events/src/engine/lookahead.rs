@@ -52,20 +52,15 @@ impl Engine {
         let bodies = self.bodies.as_slice();
         let last = self.bodies.len() - 1;
         // The first disc of a cell, or (for an empty cell) the last disc: a needless
-        // but harmless load, cheaper than a branch on emptiness. (Chosen with
-        // `select_unpredictable`: `min` compiled to a branch, and whether a cell is
-        // empty is a coin toss; cachegrind at N = 10⁴, look-ahead forced on: 7 fewer
-        // mispredicted branches per collision, 1.38 → 1.66 M/s median of 9.)
+        // but harmless load, cheaper than a branch on emptiness (chosen with
+        // `select_unpredictable`: whether a cell is empty is a coin toss).
         let fetch_first = |head: u32| {
             let h = std::hint::select_unpredictable(head == NO_DISC, last, head as usize);
             prefetch_at(&self.bodies, h);
         };
         // Stale entries (about 4 in 10: every collision leaves the partner's old
-        // entry behind) are skipped already here: their loads would only
-        // compete with the useful ones for the processor's miss buffers (N = 10⁶:
-        // 1.06 → 1.16 M/s, median of 7 alternating runs). Now that the records
-        // come a bucket earlier and only labels are fetched here, skipping still
-        // pays: labels of every entry without the check, 0.94 (8 side by side).
+        // entry behind) are skipped already here: their loads would only compete
+        // with the useful ones for the processor's miss buffers.
         for d in self.queue.filed_ahead(bodies, 3) {
             prefetch_at(&self.label, d as usize);
         }
@@ -163,9 +158,7 @@ fn for_block(grid: &CellGrid, c: [u32; 2], mut f: impl FnMut(u32)) {
 /// Call `f` with the linear index of the first and the last cell of each row of the
 /// 3 × 3 block around `c` (wrapped around the box): the three cells of a row are
 /// consecutive in memory, so their ends name every cache line the row touches (the
-/// middle alone misses the second line of the one row in eight that straddles two;
-/// naming both gave +2.7 % at N = 10⁶ in one comparison of five alternating runs,
-/// within the noise of later ones).
+/// middle alone misses the second line of the one row in eight that straddles two).
 #[inline(always)]
 fn for_rows(grid: &CellGrid, c: [u32; 2], mut f: impl FnMut(usize)) {
     let [nx, ny] = grid.n;

@@ -88,7 +88,7 @@ pub struct Engine {
     bodies: Vec<Body>,
     last_collision: Vec<f64>,
     queue: EventQueue,
-    /// The cell grids, one per size class (see [`crate::classes`]).
+    /// The cell grids, one per size class.
     grids: Grids,
     scheduled: BinaryHeap<Reverse<(Time, u64, u64)>>,
     next_seq: u64,
@@ -250,12 +250,12 @@ impl Engine {
     }
 
     /// Cells per axis of the neighbour grid (of the smallest discs, when a mixture
-    /// has a grid per size class: see [`crate::classes`]).
+    /// has a grid per size class).
     pub fn cells(&self) -> [u32; 2] {
         self.grids.first.n
     }
 
-    /// Number of cell grids: one per size class (see [`crate::classes`]).
+    /// Number of cell grids: one per size class.
     pub fn grid_count(&self) -> usize {
         self.grids.len()
     }
@@ -365,12 +365,7 @@ impl Engine {
             let (t, who) = self.queue.peek(self.bodies.as_slice());
             // Start fetching the records (and cell coordinates) of the likely next
             // events while this one is processed: at large N each is a cache miss.
-            // A prefetch hint only; nothing depends on it. (`examples/profile`,
-            // η = 0.5: a plain read of the record gave +2 % at N = 10⁴ and +6 % at
-            // 10⁶; the prefetch instruction, which does not hold up the processor
-            // until the line arrives, with the cell coordinates, another +2.5 % at
-            // 10⁴ (2.01 → 2.06 M/s, three alternating runs each) and +2 % at 10⁶.
-            // Reading the partners' records as well was slower.)
+            // A prefetch hint only; nothing depends on it.
             for d in self.queue.upcoming() {
                 if let Some(b) = self.bodies.get(d as usize) {
                     memory::prefetch(b);

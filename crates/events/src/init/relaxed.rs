@@ -15,12 +15,11 @@ use rand::RngExt;
 use rand_pcg::Pcg64;
 use std::ops::ControlFlow;
 
-/// Most minimization steps of relaxed placement (about 2 minutes at N = 10⁴; the
-/// equimolar 1 : 1.4 mixture at η = 0.83 needs about a thousand, and is found
-/// jammed at 0.85 after some 10⁴).
+/// Most minimization steps of relaxed placement (see docs/performance.md,
+/// "initial states").
 const RELAX_STEPS: usize = 100_000;
 
-/// Relaxed placement (see [`crate::relax`]); `None` when `observe` stopped it.
+/// Relaxed placement (see `init::relax`); `None` when `observe` stopped it.
 pub(super) fn relaxed(
     spec: &SystemSpec,
     species_of: &[u16],

@@ -32,8 +32,8 @@ pub struct PlacementProgress {
     pub steps: usize,
     /// The most steps relaxed placement takes before it gives up.
     pub max_steps: usize,
-    /// Pairs and wall contacts still closer than [`crate::relax::MARGIN`] allows;
-    /// placement is done when none is left.
+    /// Pairs and wall contacts still closer than the minimizer's margin
+    /// (`init::relax::MARGIN`) allows; placement is done when none is left.
     pub close: usize,
 }
 
@@ -46,7 +46,7 @@ pub enum Placement {
     Random,
     /// Random positions (one per cell of a grid of about N cells) made free of
     /// overlaps by minimizing a soft overlap energy (any mixture up to just below
-    /// jamming, η ≈ 0.83 for the equimolar 1 : 1.4 mixture; see [`crate::relax`]).
+    /// jamming, η ≈ 0.83 for the equimolar 1 : 1.4 mixture; see `init::relax`).
     Relaxed,
     /// At the given centre positions, one per disc (length).
     Explicit(Vec<DVec2>),
