@@ -1,48 +1,21 @@
 //! Neighbour search: a grid of cells at least one contact distance wide.
 //!
-//! Two discs can touch only if their centres lie in the same or adjacent cells, so a
-//! disc predicts collisions only with the discs of its 3 × 3 block. Crossing a cell
-//! wall is itself an event of the engine, which keeps every disc in the cell that
-//! contains its centre. Each cell holds an intrusive singly linked list of its discs;
-//! a disc's cell and its list link share one 8-byte record ([`Link`]), which the
-//! grid does not own: it lives in whatever per-disc record the caller keeps (a
-//! [`Member`]). The engine keeps it inside each disc's 64-byte record, so that
-//! walking a cell's list reads only the records a scan needs anyway. Taking a disc
-//! out of its cell walks the cell's list to its predecessor, a walk through the few
-//! discs ahead of it in a list the event has just scanned; a back link would not fit
-//! in the record.
-//!
-//! On a periodic axis the block wraps around; a neighbour reached across the box edge
-//! is seen through its periodic image, shifted by ±L. Boxes narrower than three cells
-//! work too: the same cell is then visited more than once, each time with a different
-//! image shift, which is exactly the set of images a disc can reach.
-//!
-//! A grid serves the discs of one size class: every species in a mixture of
-//! similar sizes, or in one of very different sizes, where that is estimated to be
-//! faster, each class of similar sizes its own grid (see [`crate::classes`]). Its
-//! cells are as wide as the largest contact distance among its discs.
-//!
-//! The cells are as narrow as the contact distance allows: a scan's cost follows the
-//! area of its block, and wider cells save fewer crossings than they add tests.
-//! Widened by 15, 30 and 50 % (`examples/profile`, η = 0.5, one run each), cells
-//! cut crossings per collision from 0.455 to 0.39, 0.35 and 0.30, but slowed
-//! N = 10⁴ by 21, 17 and 35 % and N = 10⁶ by 16, 35 and 44 %.
-//!
-//! The heads lie row by row, so a block's heads span three rows (about 3.4 cache
-//! lines). Heads stored in tiles of 4 × 4 cells, one cache line each (2.25 lines
-//! per block on average), were slower: 0.91 at N = 10⁶ and 0.92 at N = 10⁴
-//! (η = 0.5, both builds side by side on the two cores, medians of 8 and 6 runs).
-//! So were rows stored in interleaved pairs, (0, 0), (0, 1), (1, 0), (1, 1), ...,
-//! which put a block's heads on about 2.6 lines: at N = 10⁶ the last-level misses
-//! per collision fell from 19.1 to 17.9 (cachegrind, 4 MB LL) but the index
-//! arithmetic added 250 instructions to 3540, and the speed was 0.96 (median of 8)
-//! at N = 10⁶ and 0.93 (6) at 10⁴; same trajectory.
+//! Two discs can touch only if their centres lie in the same or adjacent cells
+//! (|r_i − r_j| = a_i + a_j ≤ cell width), so a disc predicts collisions only with
+//! the discs of its 3 × 3 block. Crossing a cell wall is itself an event of the
+//! engine, which keeps every disc in the cell that contains its centre. Each cell
+//! holds an intrusive singly linked list of its discs; a disc's cell and list link
+//! share one 8-byte [`Link`] that lives in the caller's per-disc record (a
+//! [`Member`]), so walking a list reads only records a scan needs anyway. On a
+//! periodic axis the block wraps around, a neighbour across the edge seen through
+//! its image shifted by ±L; boxes narrower than three cells visit a cell once per
+//! image. The cells are as narrow as the contact distance allows (at most
+//! [`CELLS_PER_DISC`] per disc), the heads stored row by row. See
+//! docs/performance.md, "cells".
 
 use crate::memory;
+use crate::NO_DISC;
 use carom_core::{DVec2, SimBox};
-
-/// Marker for "no disc" in the linked lists.
-pub const NONE: u32 = u32::MAX;
 
 /// A disc's place in the grid: its cell and the next disc in that cell's list.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -50,7 +23,7 @@ pub const NONE: u32 = u32::MAX;
 pub struct Link {
     /// Cell coordinates (column, row); at most 2¹⁵ cells per axis.
     pub cell: [u16; 2],
-    /// Next disc in the same cell, or [`NONE`].
+    /// Next disc in the same cell, or [`NO_DISC`].
     pub next: u32,
 }
 
@@ -58,7 +31,7 @@ impl Link {
     /// Not in any list, cell (0, 0).
     pub const UNLINKED: Link = Link {
         cell: [0, 0],
-        next: NONE,
+        next: NO_DISC,
     };
 
     /// The cell coordinates (column, row).
@@ -90,10 +63,8 @@ impl Member for Link {
 
 /// The most cells per disc a grid gets (see [`CellGrid::new`]). Cells narrower than
 /// this allows (packing fraction above π/16 ≈ 0.2 for cells one diameter wide) are
-/// never widened. Below that the wider cells save crossings: `examples/profile`,
-/// N = 10⁴, both builds side by side (medians of 4): η = 0.02, 34.2 → 10.9 crossings
-/// per collision and 2.44× the collisions per second; η = 0.1, 5.99 → 4.27 and
-/// +8 %.
+/// never widened. Below that the wider cells save crossings (see
+/// docs/performance.md, "cells").
 pub const CELLS_PER_DISC: u64 = 4;
 
 /// Cells per axis: `n` (each axis as many as fit), reduced in the same proportion
@@ -126,7 +97,7 @@ pub struct CellGrid {
     pub size: DVec2,
     /// Whether each axis is periodic.
     pub periodic: [bool; 2],
-    /// First disc of each cell, or [`NONE`].
+    /// First disc of each cell, or [`NO_DISC`].
     pub head: Vec<u32>,
 }
 
@@ -150,7 +121,7 @@ impl CellGrid {
                 sim_box.boundary[0].is_periodic(),
                 sim_box.boundary[1].is_periodic(),
             ],
-            head: memory::filled(n[0] as usize * n[1] as usize, NONE),
+            head: memory::filled(n[0] as usize * n[1] as usize, NO_DISC),
         }
     }
 
@@ -253,7 +224,7 @@ impl CellGrid {
             let mut j = self.head[k];
             std::iter::from_fn(move || {
                 let cur = j;
-                (cur != NONE).then(|| {
+                (cur != NO_DISC).then(|| {
                     j = members[cur as usize].link().next;
                     cur
                 })
@@ -293,16 +264,16 @@ impl CellGrid {
         )
     }
 
-    /// The previous disc in its cell's list of each disc, or [`NONE`] for the first
+    /// The previous disc in its cell's list of each disc, or [`NO_DISC`] for the first
     /// (the back links checkpoints store). The lists must pass
     /// [`CellGrid::check_lists`].
     pub fn prev_links<M: Member>(&self, members: &[M]) -> Vec<u32> {
-        let mut prev = vec![NONE; members.len()];
+        let mut prev = vec![NO_DISC; members.len()];
         for &h in &self.head {
             let mut j = h;
-            while j != NONE {
+            while j != NO_DISC {
                 let next = members[j as usize].link().next;
-                if next != NONE {
+                if next != NO_DISC {
                     prev[next as usize] = j;
                 }
                 j = next;
@@ -314,6 +285,7 @@ impl CellGrid {
     /// Check that the lists describe a partition of the discs: every disc is listed
     /// exactly once, in the list of the cell its record names. Returns what is wrong
     /// otherwise (for checkpoints read from disk, and the tests).
+    #[cfg(test)]
     pub fn check_lists<M: Member>(&self, members: &[M]) -> Result<(), String> {
         self.check_lists_of(members, |_| true)
     }
@@ -332,7 +304,7 @@ impl CellGrid {
         for cy in 0..self.n[1] {
             for cx in 0..self.n[0] {
                 let mut j = self.head[self.index([cx, cy])];
-                while j != NONE {
+                while j != NO_DISC {
                     let Some(link) = members.get(j as usize).map(Member::link) else {
                         return Err(format!(
                             "cell ({cx}, {cy}) lists disc {j}, beyond {n} discs"
@@ -436,7 +408,7 @@ mod tests {
     fn list(g: &CellGrid, links: &[Link], c: [u32; 2]) -> Vec<u32> {
         let mut out = vec![];
         let mut j = g.head[g.index(c)];
-        while j != NONE {
+        while j != NO_DISC {
             out.push(j);
             j = links[j as usize].next;
         }
@@ -472,7 +444,7 @@ mod tests {
                     prop_assert_eq!(prev[w[1] as usize], w[0]);
                 }
                 if let Some(&first) = l.first() {
-                    prop_assert_eq!(prev[first as usize], NONE);
+                    prop_assert_eq!(prev[first as usize], NO_DISC);
                 }
             }
         }
@@ -491,7 +463,7 @@ mod tests {
         assert_eq!(g.check_lists(&cyc), Err("disc 2 is listed twice".into()));
         // A disc left out of every list.
         let mut lost = links.clone();
-        lost[1].next = NONE;
+        lost[1].next = NO_DISC;
         assert_eq!(
             g.check_lists(&lost),
             Err("disc 0 is in no cell's list".into())

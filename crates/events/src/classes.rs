@@ -1,49 +1,22 @@
 //! Size classes: a cell grid for each class of similar disc sizes.
 //!
 //! One grid for every species needs cells as wide as the largest contact distance,
-//! so in a mixture with a few much larger discs every scan walks many small discs
-//! per cell. With 1 % large discs (20 000 + 200 at η = 0.4, periodic) a diameter
-//! ratio of 2, 5 and 10 ran at 0.63, 0.18 and 0.088 of the equal-size speed
-//! (1.69 M collisions/s; `examples/mixture`). With a grid per size class the
-//! ratios 5 and 10 run at 0.82–1.04 and 0.50–0.68 M collisions/s, against 0.33–0.37
-//! and 0.14–0.15 M with one grid (the two builds side by side on the two cores,
-//! three runs each); ratio 3 at 0.74–1.00 against 0.56–0.68 M.
-//!
-//! The species with discs are therefore sorted by radius and may be split into
-//! classes of consecutive sizes. Each class has its own grid, with cells at least
-//! the largest contact distance *within* the class wide, and its discs cross only
-//! the cells of their own grid (crossings are events as before). A disc scans the
-//! 3 × 3 block of its own grid as before, and in the grid of every other class b
-//! every cell within reach of its own cell: the cells meeting its cell widened on
-//! all sides by a_i + a_max(b) (its contact distance with the largest disc of class
-//! b), with a hair of margin for rounding.
-//!
-//! Splitting is not always faster: the small discs get narrower cells and cross
-//! them more often, and every scan also visits the other grids. When the large
-//! discs are many, or cover most of the area, one grid wins (10 000 + 10 000 discs
-//! with a diameter ratio of 3 at η = 0.5: 1.28 M collisions/s with one grid,
-//! 0.75 M with two; 2000 + 2000 with ratio 10: 1.51 against 0.60 M). So the
-//! layout is chosen by an estimate of the neighbour search's work per unit time
-//! (`work` in the source), a deterministic function of the species, their counts and the box:
-//! the same configuration always gets the same grids, and so the same trajectory.
-//!
-//! Why nothing is missed (the argument of the module docs of [`crate::engine`],
-//! for discs of two grids): let discs i and j meet at time t before either has
-//! another event. Each disc's cell changes only at a crossing, which predicts
-//! again, so at the later of their last predictions, say i's, both were already in
-//! the cells they are in at t. At t their centres are a contact distance σ_ij ≤
-//! a_i + a_max(b) apart, so j's cell meets i's cell widened by that, and i's scan
-//! read it. The crossing's shortcut (only the three newly adjacent cells of the own
-//! grid, keeping the pair candidate) holds as before; the other grids are scanned
-//! whole around the new cell at every crossing.
-//!
-//! A class is split off only when every periodic axis is longer than each disc's
-//! cell widened by its reach into every other class, so that a scan sees each cell
-//! of another grid at most once, through one image (shift −1, 0 or +1 box
-//! lengths); otherwise, and for one species, there is a single grid exactly as
-//! before.
+//! so with a few much larger discs every scan walks many small discs per cell. The
+//! species with discs are therefore sorted by radius and may be split into classes
+//! of consecutive sizes, each with its own grid (cells at least the largest contact
+//! distance within the class wide). A disc crosses only the cells of its own grid
+//! and scans its 3 × 3 block there, and in every other class b's grid every cell
+//! meeting its own cell widened by a_i + a_max(b) (its largest contact distance
+//! with class b, plus a hair for rounding): if i and j meet at t, at i's last
+//! prediction both were already in their cells at t, at most σ_ij apart, so i's
+//! scan read j's cell. Whether to split is decided by a deterministic estimate of
+//! the scans' work per unit time (`work`), so a configuration always gets the same
+//! grids and trajectory; a class is split off only when every periodic axis is
+//! longer than each widened cell (one image per cell). See docs/performance.md,
+//! "size classes".
 
-use crate::cells::{CellGrid, Member, NONE};
+use crate::cells::{CellGrid, Member};
+use crate::NO_DISC;
 use carom_core::{SimBox, Species};
 
 /// Relative margin on a scan's reach into another grid, so that rounding of
@@ -133,11 +106,6 @@ impl Grids {
         1 + self.rest.len()
     }
 
-    /// Always false: there is at least one grid.
-    pub fn is_empty(&self) -> bool {
-        false
-    }
-
     /// Class of species `s`.
     #[inline(always)]
     pub fn class(&self, s: u16) -> u8 {
@@ -185,13 +153,13 @@ impl Grids {
         (a + self.radius[c as usize]) * (1.0 + REACH_MARGIN)
     }
 
-    /// The previous disc in its cell's list of each disc, or [`NONE`] for the first
+    /// The previous disc in its cell's list of each disc, or [`NO_DISC`] for the first
     /// ([`CellGrid::prev_links`] over all the grids).
     pub fn prev_links<M: Member>(&self, members: &[M]) -> Vec<u32> {
-        let mut prev = vec![NONE; members.len()];
+        let mut prev = vec![NO_DISC; members.len()];
         for grid in self.iter() {
             for (p, q) in prev.iter_mut().zip(grid.prev_links(members)) {
-                if q != NONE {
+                if q != NO_DISC {
                     *p = q;
                 }
             }

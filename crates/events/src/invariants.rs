@@ -175,14 +175,15 @@ fn momentum(engine: &Engine) -> (DVec2, f64) {
 pub fn max_overlap(engine: &Engine) -> Option<(usize, usize, f64)> {
     let sim_box = engine.sim_box();
     let n = engine.len();
-    let a_max = crate::engine::largest_radius(engine.species(), engine.species_of());
+    let radius = |i: usize| engine.species()[engine.species_of()[i] as usize].radius;
+    // Cells as wide as the largest contact distance among the discs present.
+    let a_max = (0..n).map(radius).fold(0.0, f64::max);
     let mut grid = crate::cells::CellGrid::new(sim_box, 2.0 * a_max, n);
     let mut links = vec![crate::cells::Link::UNLINKED; n];
     let pos: Vec<DVec2> = (0..n).map(|i| engine.position(i)).collect();
     for (i, r) in pos.iter().enumerate() {
         grid.insert(&mut links, i as u32, grid.coords_of(*r));
     }
-    let radius = |i: usize| engine.species()[engine.species_of()[i] as usize].radius;
     let mut worst: Option<(usize, usize, f64)> = None;
     for i in 0..n {
         for j in grid

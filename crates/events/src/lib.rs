@@ -1,34 +1,45 @@
 //! # carom-events
 //!
-//! The exact event-driven engine: discs fly straight between events, a queue of
-//! predicted event times says what happens next, and each collision is resolved in
-//! closed form.
+//! The exact event-driven engine for hard discs: discs fly straight between events,
+//! a calendar of predicted event times says what happens next, and each collision
+//! is resolved in closed form (physics.md §1–§4).
 //!
-//! * [`queue`] — one pending event per disc in an event calendar keyed by time;
-//! * [`cells`] — the cell grid used for neighbour search (crossings are events);
-//! * [`classes`] — a grid per size class in mixtures of very different sizes;
-//! * [`engine`] — the event loop ([`Engine`]);
-//! * [`init`] — initial states from a seed ([`SystemSpec`]);
-//! * [`checkpoint`] — the engine's complete state, for bit-identical resume;
-//! * [`invariants`] — the invariant checker used by the tests;
-//! * [`state`], [`event`], [`error`] — the plain data going in and coming out.
+//! * [`SystemSpec`] builds an initial [`State`] from a seed ([`Placement`],
+//!   [`Velocities`]);
+//! * [`Engine`] runs it with [`EngineParams`], handing out [`Event`]s
+//!   ([`PairCollision`], [`WallCollision`], scheduled observations) and keeping
+//!   running [`Stats`];
+//! * [`Checkpoint`] is the engine's complete state, for a bit-identical resume;
+//! * [`InvariantChecker`] checks conservation and overlaps, for tests.
 //!
 //! Data flows one way: a [`State`] goes in, [`Event`]s come out; the engine knows
 //! nothing about files.
+//!
+//! ```
+//! use carom_events::{Engine, EngineParams, Event, SystemSpec};
+//!
+//! // 100 discs of diameter 1 at packing fraction 0.3 in a periodic box.
+//! let state = SystemSpec::periodic_fluid(100, 0.3, 7).build().unwrap();
+//! let mut engine = Engine::new(state, EngineParams::default()).unwrap();
+//! let energy = engine.kinetic_energy();
+//! let collisions = engine.run_until(2.0).unwrap();
+//! assert!(collisions > 0);
+//! assert!((engine.kinetic_energy() - energy).abs() < 1e-9 * energy);
+//! ```
 
-pub mod cells;
-pub mod checkpoint;
-pub mod classes;
-pub mod engine;
-pub mod error;
-pub mod event;
-pub mod init;
-pub mod invariants;
-pub mod lookahead;
+#![warn(missing_docs)]
+
+mod cells;
+mod checkpoint;
+mod classes;
+mod engine;
+mod error;
+mod event;
+mod init;
+mod invariants;
 mod memory;
-pub mod queue;
-pub mod relax;
-pub mod state;
+mod queue;
+mod state;
 
 pub use checkpoint::Checkpoint;
 pub use engine::{Engine, EngineParams, Stats};
@@ -39,3 +50,7 @@ pub use init::{
 };
 pub use invariants::{InvariantChecker, Violation};
 pub use state::State;
+
+/// "No disc": the end of a cell's list, an empty place in the event calendar, a
+/// disc without a pair candidate; in a [`Checkpoint`] too.
+pub const NO_DISC: u32 = u32::MAX;

@@ -1,24 +1,13 @@
-//! Large arrays backed by transparent huge pages (Linux).
+//! Large arrays backed by transparent huge pages (Linux), and prefetch hints.
 //!
 //! At N = 10⁶ the engine's arrays span ~130 MB and every event lands at a random
-//! place in them. With 4 KiB pages nearly every such access also misses the TLB
-//! and walks the page table; with 2 MiB pages the whole state is covered by a few
-//! dozen TLB entries. Measured with `crates/events/examples/profile.rs` at N = 10⁶,
-//! η = 0.5: 0.47 → 0.55 million collisions/s. Many kernels hand out huge pages only
-//! to memory marked with `madvise(MADV_HUGEPAGE)` (the `madvise` setting of
-//! `/sys/kernel/mm/transparent_hugepage/enabled`), so large arrays are allocated
-//! here and marked before they are first written.
-//!
-//! Marking rounds inward to whole 2 MiB pages, so the ends of each array stay on
-//! 4 KiB pages (at N = 10⁶, 102 of the 145 MB resident were on huge pages; about
-//! 2 of the 6.3 MB of cell heads were not). Covering everything instead, with the
-//! system-wide `always` setting, was no faster: 0.97, 1.03, 1.01 and 0.85 against
-//! this marking in four alternating pairs of `examples/profile` runs (η = 0.5).
-//!
-//! Nothing about the values changes: this is a hint about how to map memory.
-//!
-//! [`prefetch`] is the other memory hint: start loading a cache line that the next
-//! events will need.
+//! place in them; with 4 KiB pages nearly every access also misses the TLB, with
+//! 2 MiB pages a few dozen TLB entries cover the state. Many kernels hand out huge
+//! pages only to memory marked with `madvise(MADV_HUGEPAGE)`, so large arrays are
+//! allocated here and marked (rounded inward to whole 2 MiB pages) before they are
+//! first written. Nothing about the values changes: this is a hint about how to
+//! map memory. [`prefetch`] is the other hint: start loading a cache line the next
+//! events will need. See docs/performance.md, "memory".
 
 /// Arrays smaller than this are left alone (they cannot fill a huge page).
 const HUGE_PAGE: usize = 2 << 20;

@@ -1,56 +1,26 @@
 //! The event queue: one pending event time per disc, in an event calendar.
 //!
-//! Every disc owns exactly one current event time (`+∞` for none). The queue does
-//! not hold the times: it reads and writes them through [`EventTimes`], so that the
-//! engine keeps each disc's time in the disc's own record, which an event reads
-//! anyway (at large N a separate array of times cost a cache miss per disc an event
-//! touches). Times are sorted
-//! into buckets of width Δ (bucket b = ⌊(t − t₀)/Δ⌋, a monotone function of t):
-//! buckets ahead of the current one are unsorted slots of a circular calendar of M
-//! buckets, events beyond the calendar wait in an overflow list, and only the
-//! current bucket is kept sorted, in a small binary heap. Inserting is O(1); popping
-//! is O(log k) for k events per bucket (G. Paul, J. Comput. Phys. 221, 615 (2007);
-//! Smallenburg's EDMD).
-//!
-//! A calendar slot is 32 bytes: the indices of up to seven discs, and a chain of
-//! further 32-byte chunks for a crowded bucket (a bucket near the current one holds
-//! about five entries, current or stale). Slots lie in bucket order, so pouring the next bucket reads memory
-//! sequentially, and the discs of the buckets ahead are known early enough to fetch
-//! their records before they are needed ([`EventQueue::ahead`]). At large N a linked
-//! list of entries scattered over a pool cost a cache miss per entry instead.
-//!
-//! Deletion is lazy: setting a disc's time files the disc in the bucket of its new
-//! time and leaves the old entry where it is. When a bucket is poured, an entry is
-//! kept only if its disc's current time falls in that bucket, so an entry left
-//! behind by a change of time is dropped there. A disc can be filed twice in one
-//! bucket (a time changed within the bucket, or set away and back); both copies then
-//! enter the heap with the same, current, time: whichever comes first is the disc's
-//! current event, and the other is dropped as soon as the time changes (an item of
-//! the heap is dropped when its time is no longer its disc's current time). A change
-//! of a disc's time therefore touches no other disc's entry. When stale entries pile
-//! up beyond a fixed bound the calendar is rebuilt from the current times.
-//!
-//! Filing into a slot far ahead costs a cache miss at large N (prefetched, through
-//! the `pending` buffer). A two-level calendar was measured against this one: far
-//! entries appended to one list per 2048 buckets and poured into a 4096-slot near
-//! calendar a list at a time, so that no write lands at a random place. At N = 10⁶
-//! it cut last-level misses from 20.9 to 18.7 per collision (cachegrind, 8 MB LL),
-//! yet ran no faster (median ratio 0.95 over 20 alternating pairs) and took 34 more
-//! bytes per disc: the writes it saved were prefetched and cost only bandwidth.
-//!
-//! The order is exactly lexicographic in (time, disc index): ties are broken by disc
-//! index, and Δ and the order of entries in a slot only affect speed, never the
-//! order of events. Keys are [`NotNan<f64>`](ordered_float::NotNan): a NaN cannot
-//! enter.
+//! Every disc owns exactly one current event time (`+∞` for none), which the queue
+//! reads and writes through [`EventTimes`] (the engine keeps it in the disc's own
+//! record). Times are sorted into buckets of width Δ, bucket b = ⌊(t − t₀)/Δ⌋ (a
+//! monotone function of t): buckets ahead are unsorted 32-byte slots of a circular
+//! calendar (up to seven discs each, then a chain of chunks), events beyond it wait
+//! in an overflow list, and only the current bucket is sorted, in a small binary
+//! heap. Inserting is O(1), popping O(log k) for k events per bucket (G. Paul,
+//! J. Comput. Phys. 221, 615 (2007)). Deletion is lazy: an entry is kept when its
+//! bucket is poured only if its disc's current time still falls there. The order
+//! is exactly lexicographic in (time, disc index); Δ only affects speed. Keys are
+//! [`NotNan<f64>`](ordered_float::NotNan). See docs/performance.md, "queue".
 
 use crate::memory;
+use crate::NO_DISC;
 use ordered_float::NotNan;
 
 /// Event time in the queue's key type (time unit of the simulation, never NaN).
 pub type Time = NotNan<f64>;
 
-/// "No disc" / "no chunk".
-pub const NIL: u32 = u32::MAX;
+/// "No chunk" at the end of a slot's chain or of the free list.
+const NO_CHUNK: u32 = u32::MAX;
 
 /// Discs held in one slot or chunk.
 pub const SLOT_DISCS: usize = 7;
@@ -96,13 +66,13 @@ struct Item {
 }
 
 /// A calendar slot, or a chunk of a slot's chain: up to [`SLOT_DISCS`] disc indices
-/// (filled from the front, [`NIL`] after the last) and the next chunk.
+/// (filled from the front, [`NO_DISC`] after the last) and the next chunk.
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[repr(C, align(32))]
 struct Slot {
     /// Discs filed in this bucket (current or stale entries).
     disc: [u32; SLOT_DISCS],
-    /// Next chunk of the chain (or of the free list), or [`NIL`].
+    /// Next chunk of the chain (or of the free list), or [`NO_CHUNK`].
     more: u32,
 }
 
@@ -110,8 +80,8 @@ const _: () = assert!(std::mem::size_of::<Slot>() == 32);
 
 impl Slot {
     const EMPTY: Slot = Slot {
-        disc: [NIL; SLOT_DISCS],
-        more: NIL,
+        disc: [NO_DISC; SLOT_DISCS],
+        more: NO_CHUNK,
     };
 
     /// Put `d` in the first free place; false if the slot is full.
@@ -128,7 +98,7 @@ impl Slot {
     /// slot from the front).
     #[inline]
     fn len(&self) -> usize {
-        self.disc.iter().map(|&x| (x != NIL) as usize).sum()
+        self.disc.iter().map(|&x| (x != NO_DISC) as usize).sum()
     }
 }
 
@@ -187,7 +157,7 @@ impl EventQueue {
             n,
             slots: memory::filled(m, Slot::EMPTY),
             chunks: memory::with_capacity(Self::chunk_limit_for(n)),
-            free: NIL,
+            free: NO_CHUNK,
             chunks_used: 0,
             overflow: Vec::new(),
             heap: Vec::new(),
@@ -207,10 +177,8 @@ impl EventQueue {
     /// finite times, so the calendar spans at least two mean event intervals (the
     /// buckets next to the current one hold about five events each, about two
     /// collisions' worth, as most events are due soon); refile every current time and drop
-    /// stale entries. Changes speed only, never the order. (Factor 2 measured best
-    /// with `examples/profile` at N = 10⁴ and 10⁶; 4 and 1 were slower. Re-measured
-    /// with the look-ahead as it is now, alternating pairs at N = 10⁶: factor 3
-    /// −13 %, 1.5 and 1 within the noise; at N = 10⁴ factor 1 −5 %, 1.5 the same.)
+    /// stale entries. Changes speed only, never the order (factor 2: see
+    /// docs/performance.md, "queue").
     pub fn retune<T: EventTimes + ?Sized>(&mut self, times: &T, now: f64) {
         let (mut sum, mut k) = (0.0, 0usize);
         for i in 0..self.n as u32 {
@@ -228,7 +196,7 @@ impl EventQueue {
         };
         self.slots.fill(Slot::EMPTY);
         self.chunks.clear();
-        self.free = NIL;
+        self.free = NO_CHUNK;
         self.chunks_used = 0;
         self.overflow.clear();
         // The heap can be large right after construction (every first prediction
@@ -269,11 +237,11 @@ impl EventQueue {
     }
 
     /// Discs likely to have the events after the earliest: the two children of the
-    /// head of the current bucket's heap ([`NIL`] where there are none). A hint for
+    /// head of the current bucket's heap ([`NO_DISC`] where there are none). A hint for
     /// fetching their records early; it says nothing certain about the order.
     #[inline]
     pub fn upcoming(&self) -> [u32; 2] {
-        let at = |k: usize| self.heap.get(k).map_or(NIL, |item| item.disc);
+        let at = |k: usize| self.heap.get(k).map_or(NO_DISC, |item| item.disc);
         [at(1), at(2)]
     }
 
@@ -298,7 +266,7 @@ impl EventQueue {
     }
 
     /// Discs filed in the bucket `k` ≥ 1 places after the current one (the first
-    /// [`SLOT_DISCS`] of them, [`NIL`] after the last; some may be stale). A hint
+    /// [`SLOT_DISCS`] of them, [`NO_DISC`] after the last; some may be stale). A hint
     /// for fetching their records before they are needed.
     #[inline]
     pub fn ahead(&self, k: u64) -> &[u32; SLOT_DISCS] {
@@ -317,7 +285,7 @@ impl EventQueue {
     ) -> impl Iterator<Item = u32> + 'a {
         self.ahead(k)
             .iter()
-            .take_while(|&&d| d != NIL)
+            .take_while(|&&d| d != NO_DISC)
             .copied()
             .filter(move |&d| self.bucket(times.time(d)) == self.cur.wrapping_add(k))
     }
@@ -397,7 +365,7 @@ impl EventQueue {
             return;
         }
         let c = self.slots[s].more;
-        if c != NIL && self.chunks[c as usize].add(d) {
+        if c != NO_CHUNK && self.chunks[c as usize].add(d) {
             return;
         }
         let mut chunk = Slot::EMPTY;
@@ -427,7 +395,7 @@ impl EventQueue {
     fn chunk(&mut self, chunk: Slot) -> u32 {
         self.chunks_used += 1;
         let k = self.free;
-        if k != NIL {
+        if k != NO_CHUNK {
             self.free = self.chunks[k as usize].more;
             self.chunks[k as usize] = chunk;
             k
@@ -485,7 +453,7 @@ impl EventQueue {
         let before = self.heap.len();
         self.pour(times, &slot);
         let mut c = slot.more;
-        while c != NIL {
+        while c != NO_CHUNK {
             let chunk = self.chunks[c as usize];
             self.pour(times, &chunk);
             self.chunks[c as usize].more = self.free;
@@ -596,175 +564,4 @@ impl EventQueue {
 }
 
 #[cfg(test)]
-mod tests {
-    use super::*;
-    use proptest::prelude::*;
-
-    fn t(x: f64) -> Time {
-        NotNan::new(x).unwrap()
-    }
-
-    /// A queue with its times in a plain array, as the tests drive it.
-    struct Q {
-        q: EventQueue,
-        times: Vec<f64>,
-    }
-
-    impl Q {
-        fn new(n: usize) -> Q {
-            Q {
-                q: EventQueue::new(n),
-                times: vec![f64::INFINITY; n],
-            }
-        }
-        fn set(&mut self, i: u32, x: Time) {
-            self.q.set(self.times.as_mut_slice(), i, x);
-        }
-        fn retune(&mut self, now: f64) {
-            self.q.retune(self.times.as_slice(), now);
-        }
-        fn peek(&mut self) -> (Time, u32) {
-            self.q.peek(self.times.as_slice())
-        }
-        fn get(&self, i: u32) -> Time {
-            t(self.times[i as usize])
-        }
-    }
-
-    #[test]
-    fn ties_go_to_the_smaller_index() {
-        let mut q = Q::new(5);
-        q.set(3, t(1.0));
-        q.set(1, t(1.0));
-        q.set(4, t(1.0));
-        assert_eq!(q.peek(), (t(1.0), 1));
-        q.set(1, t(2.0));
-        assert_eq!(q.peek(), (t(1.0), 3));
-    }
-
-    #[test]
-    fn far_future_events_come_back_from_overflow() {
-        let mut q = Q::new(4);
-        q.set(0, t(0.5));
-        q.retune(0.0);
-        q.set(1, t(1e6));
-        q.set(2, t(3e3));
-        q.set(0, t(f64::INFINITY));
-        assert_eq!(q.peek(), (t(3e3), 2));
-        q.set(2, t(f64::INFINITY));
-        assert_eq!(q.peek(), (t(1e6), 1));
-        q.set(1, t(f64::INFINITY));
-        assert!(q.peek().0.is_infinite());
-    }
-
-    #[test]
-    fn a_time_set_back_is_found_and_stale_copies_are_dropped() {
-        let mut q = Q::new(3);
-        q.set(0, t(5.0));
-        q.set(1, t(6.0));
-        q.retune(0.0);
-        // Disc 0 moves away and back: two entries with time 5 exist, both true.
-        q.set(0, t(9.0));
-        q.set(0, t(5.0));
-        assert_eq!(q.peek(), (t(5.0), 0));
-        q.set(0, t(7.0));
-        // Both old entries are stale now; the next event is disc 1's.
-        assert_eq!(q.peek(), (t(6.0), 1));
-        q.set(1, t(f64::INFINITY));
-        assert_eq!(q.peek(), (t(7.0), 0));
-        q.set(0, t(f64::INFINITY));
-        assert!(q.peek().0.is_infinite());
-    }
-
-    #[test]
-    fn piled_up_stale_entries_are_collected() {
-        let n = 10;
-        let mut q = Q::new(n);
-        for i in 0..n {
-            q.set(i as u32, t(100.0 + i as f64));
-        }
-        q.retune(0.0);
-        // Many changes of far-future times leave stale entries behind; the pool
-        // must stay bounded and the order exact.
-        for k in 0..100_000u32 {
-            let i = k % n as u32;
-            q.set(i, t(50.0 + (k % 977) as f64 * 0.1 + i as f64 * 1e-3));
-            assert!(q.q.chunks_used <= q.q.chunk_limit());
-            assert!(q.q.overflow.len() <= q.q.overflow_limit());
-        }
-        let (t0, i0) = q.peek();
-        let best = (0..n as u32).map(|i| (q.get(i), i)).min().unwrap();
-        assert_eq!((t0, i0), best);
-    }
-
-    #[test]
-    fn a_crowded_bucket_spills_into_chunks_and_keeps_the_order() {
-        // Every disc at one time: after the retune they all share one bucket, far
-        // more than a slot holds. The rebuild must not loop, and the events must come
-        // out in index order, each exactly once.
-        let n = 1000;
-        let mut q = Q::new(n);
-        for i in 0..n as u32 {
-            q.set(i, t(5.0));
-        }
-        q.retune(0.0);
-        q.q.flush();
-        assert!(
-            q.q.chunks_used >= n / SLOT_DISCS - 1,
-            "{} chunks",
-            q.q.chunks_used
-        );
-        for i in 0..n as u32 {
-            assert_eq!(q.peek(), (t(5.0), i));
-            q.set(i, t(f64::INFINITY));
-        }
-        assert!(q.peek().0.is_infinite());
-    }
-
-    #[test]
-    fn entries_waiting_to_be_filed_are_found() {
-        // Fewer sets than the pending buffer holds, then more: both must be seen.
-        for k in [3usize, PENDING, 3 * PENDING + 1] {
-            let n = 64;
-            let mut q = Q::new(n);
-            q.set(0, t(1.0));
-            q.retune(0.0);
-            for i in 1..=k as u32 {
-                q.set(i % n as u32, t(0.5 + 0.01 * i as f64));
-            }
-            let best = (0..n as u32).map(|i| (q.get(i), i)).min().unwrap();
-            assert_eq!(q.peek(), best, "k = {k}");
-        }
-    }
-
-    proptest! {
-        /// Popping in a simulation-like pattern (the head moves to a later time, others
-        /// change anywhere ahead of the head) always yields the (time, index) minimum.
-        #[test]
-        fn head_is_lexicographic_minimum(
-            n in 1usize..40,
-            width in 0.01f64..10.0,
-            ops in proptest::collection::vec((0usize..40, 0u32..2000, any::<bool>()), 1..300),
-        ) {
-            let mut q = Q::new(n);
-            let mut model = vec![f64::INFINITY; n];
-            for (k, m) in model.iter_mut().enumerate() {
-                *m = k as f64 * 0.37;
-                q.set(k as u32, t(*m));
-            }
-            q.retune(0.0);
-            let mut now = 0.0;
-            for (i, dt, pop) in ops {
-                let (qt, qi) = q.peek();
-                let (bt, bi) = model.iter().enumerate()
-                    .fold((f64::INFINITY, 0usize), |acc, (k, &x)| if x < acc.0 { (x, k) } else { acc });
-                prop_assert_eq!(qt.into_inner(), bt);
-                if bt.is_finite() { prop_assert_eq!(qi as usize, bi); now = bt; }
-                let target = if pop && bt.is_finite() { bi } else { i % n };
-                let v = if dt == 1999 { f64::INFINITY } else { now + (dt / 7) as f64 * width };
-                q.set(target as u32, t(v));
-                model[target] = v;
-            }
-        }
-    }
-}
+mod tests;

@@ -1,7 +1,7 @@
 //! The plain state of a system of discs: what goes into the engine and what the
 //! caller sees at observation times.
 
-use carom_core::{DVec2, SimBox, Species};
+use carom_core::{observables, DVec2, SimBox, Species};
 
 /// Positions, velocities and species of every disc at one time.
 ///
@@ -59,39 +59,25 @@ impl State {
 
     /// Degrees of freedom f = 2N − (conserved momentum components) (physics.md §5).
     pub fn degrees_of_freedom(&self) -> usize {
-        degrees_of_freedom(self.len(), &self.sim_box)
+        observables::degrees_of_freedom(self.len(), &self.sim_box)
     }
 
     /// Kinetic temperature kT = 2K/f (energy), physics.md §5.
     pub fn temperature(&self) -> f64 {
-        2.0 * self.kinetic_energy() / self.degrees_of_freedom().max(1) as f64
+        observables::temperature(self.kinetic_energy(), self.degrees_of_freedom())
     }
 
     /// Packing fraction η = Σ π a² / A.
     pub fn packing_fraction(&self) -> f64 {
-        packing_fraction(&self.species, &self.sim_box)
+        observables::packing_fraction(&self.species, &self.sim_box)
     }
 }
 
 /// K = Σ m v²/2 over discs with the given species (energy).
-pub fn kinetic_energy(species: &[Species], species_of: &[u16], velocities: &[DVec2]) -> f64 {
+pub(crate) fn kinetic_energy(species: &[Species], species_of: &[u16], velocities: &[DVec2]) -> f64 {
     velocities
         .iter()
         .zip(species_of)
         .map(|(v, &s)| 0.5 * species[s as usize].mass * v.length_squared())
         .sum()
-}
-
-/// f = 2N − (number of periodic axes) (physics.md §5).
-pub fn degrees_of_freedom(n: usize, sim_box: &SimBox) -> usize {
-    (2 * n).saturating_sub(sim_box.conserved_momentum_components())
-}
-
-/// η = Σ_s count_s π a_s² / (L_x L_y).
-pub fn packing_fraction(species: &[Species], sim_box: &SimBox) -> f64 {
-    species
-        .iter()
-        .map(|s| s.count as f64 * s.disc_area())
-        .sum::<f64>()
-        / sim_box.area()
 }

@@ -1,4 +1,4 @@
-//! Fetching ahead (`carom_events::lookahead`) is a speed setting: it only issues
+//! Fetching ahead (the engine's look-ahead) is a speed setting: it only issues
 //! prefetch hints, so it must never change a trajectory. By default it is off below
 //! 20 000 discs and chosen by timing above, so the systems here switch it on
 //! explicitly, and every event of
@@ -7,8 +7,8 @@
 //! seen through two images, where the look-ahead's block wraps), a mixture and an
 //! inelastic run with the TC model cover every event kind the look-ahead reads.
 
-use carom::core::{Boundary, Restitution, SimBox, Species};
-use carom::events::{Engine, EngineParams, SystemSpec};
+use carom_core::{Boundary, Restitution, SimBox, Species};
+use carom_events::{Engine, EngineParams, SystemSpec};
 
 mod engine_common;
 use engine_common::{lattice_spec, mono};

@@ -11,7 +11,7 @@
 //! * Across several clock restarts, observations scheduled at exact times are
 //!   delivered at exactly those times, and event times never decrease.
 
-use carom::events::{Engine, EngineParams, Event, InvariantChecker, State, SystemSpec};
+use carom_events::{Engine, EngineParams, Event, InvariantChecker, State, SystemSpec};
 
 const N: usize = 400;
 
@@ -102,7 +102,7 @@ fn observations_keep_their_exact_times_across_clock_restarts() {
 /// of its momentum had collisions 10⁻⁹ off contact.)
 #[test]
 fn a_drifting_pair_meets_at_contact_however_far_it_drifted() {
-    use carom::core::{DVec2, SimBox, Species};
+    use carom_core::{DVec2, SimBox, Species};
     let delta = 2.5e-8;
     let state = State {
         sim_box: SimBox::periodic(10.0, 10.0),

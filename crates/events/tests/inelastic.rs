@@ -33,12 +33,10 @@
 //!   one, reports the impulse m (1 + e_w)|v_n| and dissipates exactly
 //!   ½ m (1 − e_w²) v_n², which is also the engine's kinetic-energy change.
 
-use carom::core::boundary::Boundary;
-use carom::core::collision::reduced_mass;
-use carom::core::{DVec2, Restitution, Species};
-use carom::events::{
-    Engine, EngineError, EngineParams, Event, InvariantChecker, State, SystemSpec,
-};
+use carom_core::boundary::Boundary;
+use carom_core::collision::reduced_mass;
+use carom_core::{DVec2, Restitution, Species};
+use carom_events::{Engine, EngineError, EngineParams, Event, InvariantChecker, State, SystemSpec};
 
 fn state(n: usize, eta: f64, boundary: [Boundary; 2], seed: u64) -> State {
     let species = vec![Species::reference(n)];
@@ -347,7 +345,7 @@ fn wall_run(boundary: [Boundary; 2], seed: u64, events: u64) {
                     w.energy_lost
                 );
                 assert!((w.impulse - m * (1.0 + e) * vn.abs()).abs() <= 1e-14 * w.impulse);
-                impulse_sum[ax][(w.side == carom::core::WallSide::High) as usize] += w.impulse;
+                impulse_sum[ax][(w.side == carom_core::WallSide::High) as usize] += w.impulse;
                 assert!(
                     ((k_prev - k) - w.energy_lost).abs() <= 1e-12 * e0,
                     "engine energy {k_prev} → {k} vs wall loss {}",
@@ -491,7 +489,7 @@ fn a_pair_left_without_normal_velocity_does_not_meet_again_at_once() {
             let mut r1 = r0 + n * 5.01;
             r1.x %= 40.0;
             let state = State {
-                sim_box: carom::core::SimBox::periodic(40.0, 40.0),
+                sim_box: carom_core::SimBox::periodic(40.0, 40.0),
                 species: vec![Species::new(2, 2.5, 1.0)],
                 species_of: vec![0, 0],
                 positions: vec![r0, r1],
@@ -573,7 +571,7 @@ fn restitution_zero_with_the_tc_model_runs_without_stalling() {
 /// randomized search, 6.5·10⁻⁵ time units before it collapsed.)
 fn wedge(tc: f64) -> Engine {
     let state = State {
-        sim_box: carom::core::SimBox {
+        sim_box: carom_core::SimBox {
             size: DVec2::new(2.3867422009521384, 5.704801131163117),
             boundary: [
                 Boundary::Walls {
@@ -645,8 +643,8 @@ fn the_tc_model_covers_wall_collisions() {
             }
             Ok(Some(Event::Wall(w))) => {
                 let k = match w.axis {
-                    carom::core::Axis::X => 0,
-                    carom::core::Axis::Y => 1,
+                    carom_core::Axis::X => 0,
+                    carom_core::Axis::Y => 1,
                 };
                 let i = w.i as usize;
                 if w.time - last[i] < tc {

@@ -1,8 +1,8 @@
 //! Shared helpers of the engine tests: systems built on a lattice in a given box.
 #![allow(dead_code)]
 
-use carom::core::{SimBox, Species};
-use carom::events::{Placement, SystemSpec, Velocities};
+use carom_core::{SimBox, Species};
+use carom_events::{Placement, SystemSpec, Velocities};
 
 /// `species` on a lattice in `sim_box`, Maxwell–Boltzmann velocities at T = 1.
 pub fn lattice_spec(species: Vec<Species>, sim_box: SimBox, seed: u64) -> SystemSpec {
@@ -27,8 +27,8 @@ pub fn mono(n: usize) -> Vec<Species> {
 pub fn draw_dynamics(
     g: &mut rand_pcg::Pcg64,
     tc_exponents: std::ops::Range<f64>,
-) -> (carom::core::Restitution, f64) {
-    use carom::core::Restitution;
+) -> (carom_core::Restitution, f64) {
+    use carom_core::Restitution;
     use rand::RngExt;
     let restitution = match g.random_range(0..3) {
         0 => Restitution::Elastic,

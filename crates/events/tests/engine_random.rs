@@ -28,8 +28,8 @@
 //! The same random systems also resume from a checkpoint bit-identically.
 
 mod engine_common;
-use carom::core::{Axis, Boundary, SimBox, Species, WallSide};
-use carom::events::{
+use carom_core::{Axis, Boundary, SimBox, Species, WallSide};
+use carom_events::{
     box_size_for, Engine, EngineError, EngineParams, Event, InvariantChecker, Placement,
     SystemSpec, Velocities,
 };

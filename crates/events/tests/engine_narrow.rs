@@ -1,7 +1,7 @@
 //! Boxes only two or three cells across, where the neighbour search sees the same
 //! cell through more than one periodic image, and where a cell crossing brings
 //! cells next to a disc that it saw before through another image. The engine scans
-//! only the newly adjacent cells after a crossing (see `carom_events::engine`), so
+//! only the newly adjacent cells after a crossing (see the engine's `predict` module), so
 //! these are the boxes where a mistake in which cells (and which images) are new
 //! would show: a missed collision lets two discs pass through each other, and the
 //! overlap check catches it within a few events.
@@ -11,8 +11,8 @@
 //! edges above two diameters); every 5000: energy and momentum conserved to the
 //! checker's 1e-12. 10⁵ collisions per system.
 
-use carom::core::{SimBox, Species};
-use carom::events::{Engine, EngineParams, InvariantChecker, SystemSpec};
+use carom_core::{SimBox, Species};
+use carom_events::{Engine, EngineParams, InvariantChecker, SystemSpec};
 
 mod engine_common;
 use engine_common::{lattice_spec, mono};
@@ -80,6 +80,6 @@ fn periodic_mixture_two_cells_across() {
 fn narrow_walled_channel() {
     // Periodic along y, walls along x, two cells between the walls.
     let mut b = SimBox::walled(2.6, 30.0, 1.0);
-    b.boundary[1] = carom::core::Boundary::Periodic;
+    b.boundary[1] = carom_core::Boundary::Periodic;
     run_checked("channel 2.6 wide, N = 30", lattice_spec(mono(30), b, 4), 2);
 }

@@ -55,11 +55,11 @@
 //! alone decides (one such pair was 2·10⁻³ off); that much is allowed on top.
 
 mod engine_common;
-use carom::core::boundary::{wall_time, Boundary, SimBox, WallSide};
-use carom::core::collision::resolve;
-use carom::core::kinematics::contact_time;
-use carom::core::{Axis, DVec2, Restitution, Species};
-use carom::events::{
+use carom_core::boundary::{wall_time, Boundary, SimBox, WallSide};
+use carom_core::collision::resolve;
+use carom_core::kinematics::contact_time;
+use carom_core::{Axis, DVec2, Restitution, Species};
+use carom_events::{
     box_size_for, Engine, EngineError, EngineParams, Event, Placement, State, SystemSpec,
     Velocities,
 };
@@ -587,7 +587,7 @@ fn oracle_channel_mixture() {
 }
 
 /// Small discs (diameter 1, mass 1) and a few much larger ones (diameter `ratio`,
-/// mass ∝ area): each size gets its own cell grid (see `carom::events::classes`).
+/// mass ∝ area): each size gets its own cell grid (a grid per size class).
 fn asymmetric(n_small: usize, n_large: usize, ratio: f64) -> Vec<Species> {
     vec![Species::reference(n_small), Species::scaled(n_large, ratio)]
 }

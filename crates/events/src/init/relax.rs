@@ -1,21 +1,16 @@
-//! Relaxed placement: random positions made free of overlaps by minimizing a soft
-//! overlap energy, for dense mixtures that no lattice holds.
+//! The minimizer of relaxed placement: random positions made free of overlaps by
+//! minimizing a soft overlap energy.
 //!
-//! The discs start at random positions at the requested density (one in each
-//! cell of a grid of about N cells, see `init`), where they overlap heavily. Each overlapping pair, with its radii inflated by
-//! [`INFLATE`], is then given the harmonic energy U = ½ δ² (δ the overlap of the
-//! inflated discs, length), and so is a disc reaching into a wall. U is minimized
-//! with FIRE (E. Bitzek et al., Phys. Rev. Lett. 97, 170201 (2006)), the usual
-//! minimizer of jamming studies, until every pair of the real discs is at least
-//! [`MARGIN`] times its contact distance apart. Below the jamming density of the
-//! mixture (about 0.84 for discs in 2D) the energy of the inflated discs reaches
-//! zero, so the minimization ends: for N = 10⁴ discs of the equimolar 1 : 1.4
-//! mixture the whole `carom run` setup takes 0.3 s at η = 0.80 and 1.1 s at 0.83.
-//! Above it the forces balance while overlaps remain (jammed), and relaxation
-//! reports that (after 15 s at η = 0.85). The result is a disordered,
-//! overlap-free state (an instantaneous quench, not an equilibrium one: run the
-//! engine to equilibrate it). Every step is a fixed sequence of f64 operations, so
-//! the same seed gives the same placement bit for bit.
+//! Each overlapping pair, with its radii inflated by [`INFLATE`], gets the harmonic
+//! energy U = ½ δ² (δ the overlap of the inflated discs, length), and so does a
+//! disc reaching into a wall. U is minimized with FIRE (E. Bitzek et al., Phys.
+//! Rev. Lett. 97, 170201 (2006)) until every pair of the real discs is at least
+//! [`MARGIN`] times its contact distance apart. Below the mixture's jamming density
+//! (about 0.84 in 2D) U reaches zero and the minimization ends; above it the forces
+//! balance while overlaps remain (jammed), which is reported. The result is an
+//! instantaneous quench, not an equilibrium state. Every step is a fixed sequence
+//! of f64 operations, so a seed gives the same placement bit for bit. See
+//! docs/performance.md, "initial states".
 
 use crate::cells::CellGrid;
 use carom_core::{DVec2, SimBox};
@@ -23,12 +18,12 @@ use std::ops::ControlFlow;
 
 /// Factor on the radii while minimizing (dimensionless): the inflated discs are
 /// pushed apart, so the real ones end with gaps.
-pub const INFLATE: f64 = 1.0 + 2e-3;
+pub(super) const INFLATE: f64 = 1.0 + 2e-3;
 
 /// The minimization stops once every pair of discs is at least this factor times
 /// its contact distance a_i + a_j apart, and every disc at least this factor times
 /// its radius from a wall (dimensionless).
-pub const MARGIN: f64 = 1.0 + 1e-3;
+pub(super) const MARGIN: f64 = 1.0 + 1e-3;
 
 /// FIRE parameters (Bitzek et al. 2006, in the time unit of a unit mass on a unit
 /// spring): first and largest step, steps of positive power before the step grows,

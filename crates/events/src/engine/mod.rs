@@ -1,0 +1,456 @@
+//! The event loop: the [`Engine`] type, its parameters and its public API.
+//!
+//! Each disc keeps its state as of its own last update ("delayed states",
+//! physics.md §1) as a straight path r(t) = r0 + v t on an internal clock, and owns
+//! exactly one pending event: the earliest of its next pair collision (contact time
+//! of physics.md §2), wall collision and cell crossing. The queue hands out the
+//! earliest; an event moves only the discs it touches. A pair prediction remembers
+//! the partner's collision counter, so one made obsolete by the partner's other
+//! collisions is recognised at the head of the queue and recomputed: the earliest
+//! true event is always queued, because of any pair the disc updated last scanned
+//! the other with both current paths.
+//!
+//! The engine is split by phase, one `impl` block per file: prediction and the
+//! neighbour scan (`predict`), resolution of collisions, wall hits and crossings
+//! (`resolve`), the clock and renumbering (`clock`), fetching ahead (`lookahead`)
+//! and the checkpoint (`checkpoint`). See docs/performance.md, "engine".
+
+mod body;
+mod checkpoint;
+mod clock;
+mod lookahead;
+mod predict;
+mod resolve;
+
+use crate::cells::Link;
+use crate::classes::Grids;
+use crate::error::EngineError;
+use crate::event::Event;
+use crate::memory;
+use crate::queue::{EventQueue, Time};
+use crate::state::State;
+use crate::NO_DISC;
+use body::{Aux, Body, Pending};
+use carom_core::{DVec2, Restitution, SimBox, Species};
+use clock::{origin_limit, reorder_interval};
+use ordered_float::NotNan;
+use std::cmp::Reverse;
+use std::collections::BinaryHeap;
+
+/// Parameters of the dynamics.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct EngineParams {
+    /// Collision rule for pairs (physics.md §3–4).
+    pub restitution: Restitution,
+    /// TC model duration t_c (time; physics.md §4): a collision is elastic when either
+    /// disc collided less than t_c ago; a wall collision counts as a collision of its
+    /// disc and is elastic likewise. 0 disables it.
+    pub tc: f64,
+    /// Collisions allowed at one instant before the engine reports a runaway
+    /// (inelastic collapse) instead of hanging.
+    pub max_events_without_time_advance: u64,
+}
+
+impl Default for EngineParams {
+    fn default() -> Self {
+        EngineParams {
+            restitution: Restitution::Elastic,
+            tc: 0.0,
+            max_events_without_time_advance: 100_000,
+        }
+    }
+}
+
+/// Running totals since the start of the run.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct Stats {
+    /// Pair collisions resolved.
+    pub pair_collisions: u64,
+    /// Wall collisions resolved.
+    pub wall_collisions: u64,
+    /// Cell crossings processed (internal events).
+    pub cell_crossings: u64,
+    /// Predictions found obsolete at the head of the queue and recomputed.
+    pub stale_events: u64,
+    /// Σ r_ij·Δp_i over pair collisions (physics.md §5; length·momentum).
+    pub virial_sum: f64,
+    /// Σ |Δp| given to each wall, indexed [axis][0 = low, 1 = high] (momentum).
+    pub wall_impulse: [[f64; 2]; 2],
+    /// Kinetic energy dissipated in pair and wall collisions (energy).
+    pub energy_lost: f64,
+}
+
+/// The exact event-driven engine for hard discs.
+#[derive(Debug, Clone)]
+pub struct Engine {
+    sim_box: SimBox,
+    species: Vec<Species>,
+    bodies: Vec<Body>,
+    last_collision: Vec<f64>,
+    queue: EventQueue,
+    /// The cell grids, one per size class.
+    grids: Grids,
+    scheduled: BinaryHeap<Reverse<(Time, u64, u64)>>,
+    next_seq: u64,
+    params: EngineParams,
+    /// The internal clock (time since `epoch`): every per-disc time, event time and
+    /// the queue run on it, so that their rounding stays that of times since the
+    /// last renumbering rather than of the whole run (see [`Engine::rebase_clock`]).
+    clock: f64,
+    /// Time of the internal clock's zero (time).
+    epoch: f64,
+    /// The current time as reported to the caller (time): `epoch + clock` rounded, or
+    /// a scheduled event's own time; never decreasing.
+    reported: f64,
+    /// Collisions so far at the instant `clock` (0 when the clock last moved for
+    /// another kind of event).
+    same_time_collisions: u64,
+    stats: Stats,
+    /// External (user) index of each internal slot.
+    label: Vec<u32>,
+    /// Internal slot of each external index.
+    index_of: Vec<u32>,
+    /// Species of each disc in external order.
+    species_of: Vec<u16>,
+    /// Pair-collision count at which discs are next renumbered along the Z curve.
+    next_reorder: u64,
+    /// Whether to fetch the next events' memory ahead (see `engine::lookahead`).
+    look_ahead: bool,
+    /// Times fetching ahead on and off and keeps the faster.
+    tuner: lookahead::Tuner,
+    /// The largest |r0| component before the clock is restarted early (length;
+    /// [`Engine::keep_origin_near`]; derived from the box and the grid).
+    origin_limit: f64,
+}
+
+#[inline]
+fn time_key(t: f64) -> Time {
+    NotNan::new(t).expect("event times are never NaN: inputs are validated finite")
+}
+
+impl Engine {
+    /// An engine starting from `state` with dynamics `params`.
+    ///
+    /// The state must come from [`crate::SystemSpec::build`] or satisfy the same
+    /// rules (finite values, discs inside the box, no overlap).
+    pub fn new(state: State, params: EngineParams) -> Result<Engine, EngineError> {
+        Self::with_grids(state, params, true)
+    }
+
+    /// [`Engine::new`] with a cell grid per size class where that is estimated to
+    /// be faster (`split`), or one grid for all discs (as carom had before size
+    /// classes; for tests of old checkpoints).
+    fn with_grids(state: State, params: EngineParams, split: bool) -> Result<Engine, EngineError> {
+        let n = state.len();
+        let mut grids = Grids::new(&state.sim_box, &state.species, &state.species_of, split);
+        let mut bodies: Vec<Body> = memory::collect(
+            n,
+            (0..n).map(|i| Body {
+                r0: state.sim_box.wrap(state.positions[i]),
+                v: state.velocities[i],
+                event_time: f64::INFINITY,
+                count: 0,
+                partner: NO_DISC,
+                partner_count: 0,
+                pending: Pending::None,
+                aux: Aux::EMPTY,
+                species: state.species_of[i],
+                link: Link::UNLINKED,
+            }),
+        );
+        for i in 0..n {
+            let grid = grids.get_mut(grids.class(bodies[i].species));
+            let c = grid.coords_of(bodies[i].r0);
+            grid.insert(&mut bodies, i as u32, c);
+        }
+        let limit = origin_limit(state.sim_box.size, grids.first.width);
+        let mut engine = Engine {
+            sim_box: state.sim_box,
+            species: state.species,
+            species_of: state.species_of,
+            label: (0..n as u32).collect(),
+            index_of: (0..n as u32).collect(),
+            next_reorder: reorder_interval(n),
+            look_ahead: lookahead::worthwhile(n),
+            tuner: lookahead::Tuner::new(n),
+            origin_limit: limit,
+            bodies,
+            last_collision: memory::filled(n, f64::NEG_INFINITY),
+            queue: EventQueue::new(n),
+            grids,
+            scheduled: BinaryHeap::new(),
+            next_seq: 0,
+            params,
+            clock: 0.0,
+            epoch: state.time,
+            reported: state.time,
+            same_time_collisions: 0,
+            stats: Stats::default(),
+        };
+        engine.reorder();
+        for i in 0..n {
+            engine.predict(i);
+        }
+        engine.queue.retune(engine.bodies.as_slice(), engine.clock);
+        Ok(engine)
+    }
+
+    /// The current simulation time (time).
+    pub fn now(&self) -> f64 {
+        self.reported
+    }
+
+    /// Number of discs N.
+    pub fn len(&self) -> usize {
+        self.bodies.len()
+    }
+
+    /// True when there are no discs.
+    pub fn is_empty(&self) -> bool {
+        self.bodies.is_empty()
+    }
+
+    /// The box.
+    pub fn sim_box(&self) -> &SimBox {
+        &self.sim_box
+    }
+
+    /// The species.
+    pub fn species(&self) -> &[Species] {
+        &self.species
+    }
+
+    /// Species index of each disc.
+    pub fn species_of(&self) -> &[u16] {
+        &self.species_of
+    }
+
+    /// The dynamics parameters.
+    pub fn params(&self) -> &EngineParams {
+        &self.params
+    }
+
+    /// Running totals since the start.
+    pub fn stats(&self) -> &Stats {
+        &self.stats
+    }
+
+    /// Turn fetching ahead on or off for good (a speed setting that never changes
+    /// the trajectory). By default it is off below 20 000 discs, and from there on
+    /// chosen by timing both settings from time to time, starting on from 170 000
+    /// discs (see `engine::lookahead`).
+    pub fn set_look_ahead(&mut self, on: bool) {
+        self.look_ahead = on;
+        self.tuner = lookahead::Tuner::off();
+    }
+
+    /// Whether fetching ahead is on (see [`Engine::set_look_ahead`]).
+    pub fn look_ahead_enabled(&self) -> bool {
+        self.look_ahead
+    }
+
+    /// Cells per axis of the neighbour grid (of the smallest discs, when a mixture
+    /// has a grid per size class).
+    pub fn cells(&self) -> [u32; 2] {
+        self.grids.first.n
+    }
+
+    /// Number of cell grids: one per size class.
+    pub fn grid_count(&self) -> usize {
+        self.grids.len()
+    }
+
+    /// Position of disc `i` at the current time (length), inside the box.
+    pub fn position(&self, i: usize) -> DVec2 {
+        let b = &self.bodies[self.index_of[i] as usize];
+        self.sim_box.wrap(b.at(self.clock))
+    }
+
+    /// Velocity of disc `i` (length/time).
+    pub fn velocity(&self, i: usize) -> DVec2 {
+        self.bodies[self.index_of[i] as usize].v
+    }
+
+    /// Total kinetic energy K = Σ m v²/2 (energy).
+    pub fn kinetic_energy(&self) -> f64 {
+        self.bodies
+            .iter()
+            .map(|b| 0.5 * self.species[b.species as usize].mass * b.v.length_squared())
+            .sum()
+    }
+
+    /// The exact state of every disc at the current time. Reading it does not
+    /// disturb the trajectory.
+    pub fn state(&self) -> State {
+        let mut s = State {
+            sim_box: self.sim_box,
+            species: Vec::new(),
+            species_of: Vec::new(),
+            positions: Vec::new(),
+            velocities: Vec::new(),
+            time: self.reported,
+        };
+        self.state_into(&mut s);
+        s
+    }
+
+    /// [`Engine::state`] written into `out`, reusing its allocations (for callers
+    /// that take many snapshots). The records are read once each, in storage order,
+    /// and the positions and velocities written at the discs' own indices: at
+    /// large N, reading the records by disc index instead (two random reads per
+    /// disc) took most of a snapshot's time.
+    pub fn state_into(&self, out: &mut State) {
+        let n = self.len();
+        out.sim_box = self.sim_box;
+        out.species.clone_from(&self.species);
+        out.species_of.clone_from(&self.species_of);
+        out.positions.resize(n, DVec2::ZERO);
+        out.velocities.resize(n, DVec2::ZERO);
+        out.time = self.reported;
+        for (b, &i) in self.bodies.iter().zip(&self.label) {
+            out.positions[i as usize] = self.sim_box.wrap(b.at(self.clock));
+            out.velocities[i as usize] = b.v;
+        }
+    }
+
+    /// Heap bytes held by the engine (for the memory report).
+    pub fn heap_bytes(&self) -> usize {
+        self.bodies.capacity() * std::mem::size_of::<Body>()
+            + self.last_collision.capacity() * 8
+            + self.species_of.capacity() * 2
+            + (self.label.capacity() + self.index_of.capacity()) * 4
+            + self.queue.heap_bytes()
+            + self.grids.heap_bytes()
+    }
+
+    /// Ask for an [`Event::Scheduled`] with `tag` at time `time` (≥ now). Events at the
+    /// same time are delivered in the order they were scheduled, before any collision
+    /// at that time.
+    pub fn schedule(&mut self, time: f64, tag: u64) -> Result<(), EngineError> {
+        if time.is_nan() || time < self.reported || time.is_infinite() {
+            return Err(EngineError::ScheduleInPast {
+                time,
+                now: self.reported,
+            });
+        }
+        self.scheduled
+            .push(Reverse((time_key(time), self.next_seq, tag)));
+        self.next_seq += 1;
+        Ok(())
+    }
+
+    /// Process events until the next observable one and return it; `None` when
+    /// nothing will ever happen again (all discs at rest and nothing scheduled).
+    ///
+    /// Cell crossings are not observable, so in a system whose discs move but never
+    /// collide again (a lone disc in a periodic box) this call returns only at the
+    /// next scheduled event: schedule a stop ([`Engine::schedule`], or use
+    /// [`Engine::run_until`]) rather than waiting for collisions that never come.
+    pub fn next_event(&mut self) -> Result<Option<Event>, EngineError> {
+        loop {
+            self.tuner.left -= 1;
+            if self.tuner.left == 0 {
+                self.tune_look_ahead();
+            }
+            if self.stats.pair_collisions >= self.next_reorder {
+                // The renumbering is not the look-ahead's doing: leave its time out
+                // of the tuner's window.
+                let started = self.tuner.active().then(std::time::Instant::now);
+                self.reorder();
+                if let Some(t) = started {
+                    self.tuner.exclude(t.elapsed());
+                }
+                self.next_reorder += reorder_interval(self.len());
+            }
+            let (t, who) = self.queue.peek(self.bodies.as_slice());
+            // Start fetching the records (and cell coordinates) of the likely next
+            // events while this one is processed: at large N each is a cache miss.
+            // A prefetch hint only; nothing depends on it.
+            for d in self.queue.upcoming() {
+                if let Some(b) = self.bodies.get(d as usize) {
+                    memory::prefetch(b);
+                }
+            }
+            if self.look_ahead && self.queue.moved_on() {
+                self.look_ahead();
+            }
+            if let Some(&Reverse((ts, _, tag))) = self.scheduled.peek() {
+                // Scheduled times are the caller's; on the internal clock, never
+                // before now (rounding of the difference).
+                let ts = ts.into_inner();
+                let internal = (ts - self.epoch).max(self.clock);
+                if internal <= t.into_inner() {
+                    self.scheduled.pop();
+                    self.move_clock(internal);
+                    self.reported = self.reported.max(ts);
+                    return Ok(Some(Event::Scheduled {
+                        time: self.reported,
+                        tag,
+                    }));
+                }
+            }
+            let t = t.into_inner();
+            if t == f64::INFINITY {
+                return Ok(None);
+            }
+            debug_assert!(t >= self.clock, "event in the past: {t} < {}", self.clock);
+            let i = who as usize;
+            let b = &self.bodies[i];
+            let (pending, aux) = (b.pending, b.aux);
+            match pending {
+                Pending::Pair => {
+                    let j = b.partner as usize;
+                    if self.bodies[j].count != b.partner_count {
+                        self.move_clock(t);
+                        self.stats.stale_events += 1;
+                        self.predict(i);
+                        continue;
+                    }
+                    self.advance_clock(t)?;
+                    return Ok(Some(Event::Pair(self.collide(i, j, aux.image()))));
+                }
+                Pending::Wall => {
+                    self.advance_clock(t)?;
+                    return Ok(Some(Event::Wall(self.hit_wall(i, aux.face()))));
+                }
+                Pending::Cell => {
+                    self.move_clock(t);
+                    self.cross(i, aux.face());
+                }
+                Pending::None => unreachable!("a disc with no event has time +∞"),
+            }
+        }
+    }
+
+    /// Run until time `t_end` (≥ now): the engine stops with every disc's state known
+    /// at exactly `t_end`. Returns the number of collisions (pair + wall) processed.
+    pub fn run_until(&mut self, t_end: f64) -> Result<u64, EngineError> {
+        const STOP_TAG: u64 = u64::MAX;
+        self.schedule(t_end, STOP_TAG)?;
+        let mut collisions = 0;
+        while let Some(ev) = self.next_event()? {
+            match ev {
+                Event::Scheduled { tag: STOP_TAG, .. } => break,
+                Event::Scheduled { .. } => {}
+                _ => collisions += 1,
+            }
+        }
+        Ok(collisions)
+    }
+
+    /// Run `n` collisions (pair + wall), skipping scheduled events. Stops early if
+    /// nothing will ever happen again; returns the number processed. (Like
+    /// [`Engine::next_event`], it does not return while discs that never collide
+    /// again keep crossing cells.)
+    pub fn run_collisions(&mut self, n: u64) -> Result<u64, EngineError> {
+        let mut done = 0;
+        while done < n {
+            match self.next_event()? {
+                Some(Event::Scheduled { .. }) => {}
+                Some(_) => done += 1,
+                None => break,
+            }
+        }
+        Ok(done)
+    }
+}

@@ -1,0 +1,25 @@
+//! Initial states: placement of the discs and their velocities, reproducible from a
+//! seed (a `rand_pcg` generator).
+//!
+//! A [`SystemSpec`] names the species, the box, the temperature, the seed and how
+//! to place the discs; [`SystemSpec::build`] validates it and returns a [`State`]
+//! with no overlaps. Lattice placement (`lattice`) picks the arrangement whose
+//! closest pair is farthest apart; random placement (`random`) inserts discs one by
+//! one, largest first, for low densities; relaxed placement (`relaxed`, with the
+//! minimizer in `relax`) removes the overlaps of random positions by minimizing a
+//! soft overlap energy, up to just below jamming. Velocities (`velocities`) are
+//! Maxwell–Boltzmann at kT or of one speed per species, shifted to zero momentum
+//! and scaled so that 2K/f = kT exactly (physics.md §5–§6).
+//!
+//! [`State`]: crate::State
+
+mod lattice;
+mod random;
+mod relax;
+mod relaxed;
+mod spec;
+mod velocities;
+
+pub use spec::{
+    box_size_for, largest_radius, Placement, PlacementProgress, SystemSpec, Velocities,
+};

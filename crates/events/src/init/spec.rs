@@ -1,0 +1,354 @@
+//! What an initial state is asked to be: [`SystemSpec`], its placement and
+//! velocity choices, and the one validation of a request.
+//!
+//! A request names the species (count, radius, mass), the box, the temperature
+//! kT, the seed, the placement and the velocities. Every field is checked before
+//! anything is drawn, each refusal naming the field, what is wrong and what is
+//! allowed; so are the scales (speeds times box size must stay far from overflow).
+//! [`SystemSpec::build`] then places the discs and draws their velocities from one
+//! `Pcg64` stream seeded with the seed, so the same request gives the same state
+//! bit for bit.
+
+use super::lattice::lattice;
+use super::random::{check_explicit, random};
+use super::relaxed::relaxed;
+use super::velocities::{equal_speed, maxwell_boltzmann};
+
+use crate::error::InitError;
+use crate::state::State;
+use carom_core::observables::packing_fraction;
+use carom_core::{Boundary, DVec2, SimBox, Species};
+use rand::SeedableRng;
+use rand_pcg::Pcg64;
+use std::ops::ControlFlow;
+
+/// How far relaxed placement has got, reported to the observer of
+/// [`SystemSpec::build_observed`] before every minimization step.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct PlacementProgress {
+    /// Discs being placed.
+    pub discs: usize,
+    /// Minimization steps taken so far.
+    pub steps: usize,
+    /// The most steps relaxed placement takes before it gives up.
+    pub max_steps: usize,
+    /// Pairs and wall contacts still closer than the minimizer's margin
+    /// (`init::relax::MARGIN`) allows; placement is done when none is left.
+    pub close: usize,
+}
+
+/// How the discs are placed.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Placement {
+    /// On the best-fitting square or triangular lattice (any density up to ~0.72).
+    Lattice,
+    /// Uniformly at random without overlap (low density only).
+    Random,
+    /// Random positions (one per cell of a grid of about N cells) made free of
+    /// overlaps by minimizing a soft overlap energy (any mixture up to just below
+    /// jamming, η ≈ 0.83 for the equimolar 1 : 1.4 mixture; see `init::relax`).
+    Relaxed,
+    /// At the given centre positions, one per disc (length).
+    Explicit(Vec<DVec2>),
+}
+
+/// How initial velocities are drawn.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Velocities {
+    /// Maxwell–Boltzmann at the requested temperature, zero total momentum.
+    MaxwellBoltzmann,
+    /// Every disc of a species has the same speed, in a random direction, with the
+    /// temperature 2K/f equal to kT (a deliberately non-equilibrium start).
+    EqualSpeed,
+    /// The given velocities, one per disc (length/time).
+    Explicit(Vec<DVec2>),
+}
+
+/// Everything needed to build an initial [`State`].
+#[derive(Debug, Clone, PartialEq)]
+pub struct SystemSpec {
+    /// The species (count, radius, mass); discs are numbered species by species.
+    pub species: Vec<Species>,
+    /// The box.
+    pub sim_box: SimBox,
+    /// Temperature kT (energy) for drawn velocities.
+    pub temperature: f64,
+    /// Seed of the random generator (placement shuffles and velocities).
+    pub seed: u64,
+    /// Placement of the discs.
+    pub placement: Placement,
+    /// Initial velocities.
+    pub velocities: Velocities,
+}
+
+/// Box edge lengths (L_x, L_y) giving packing fraction `eta` with aspect ratio
+/// L_x/L_y = `aspect` for the given species (length).
+pub fn box_size_for(species: &[Species], eta: f64, aspect: f64) -> DVec2 {
+    let covered: f64 = species.iter().map(|s| s.count as f64 * s.disc_area()).sum();
+    let area = covered / eta;
+    let lx = (area * aspect).sqrt();
+    DVec2::new(lx, area / lx)
+}
+
+/// The largest radius among the species with a count above 0 (length; 0 for
+/// none): a species with count 0 sets neither the lattice spacing nor the cell
+/// size, nor how narrow a box may be.
+pub fn largest_radius(species: &[Species]) -> f64 {
+    species
+        .iter()
+        .filter(|s| s.count > 0)
+        .map(|s| s.radius)
+        .fold(0.0, f64::max)
+}
+
+fn check_finite_positive(field: &str, x: f64) -> Result<(), InitError> {
+    if !x.is_finite() || x <= 0.0 {
+        return Err(InitError::invalid(
+            field,
+            format!("value {x} is not a positive finite number"),
+            "finite numbers > 0",
+        ));
+    }
+    Ok(())
+}
+
+/// The largest allowed product of the fastest disc's speed and the longest box edge
+/// (length²/time). The contact time (physics.md §2) squares products of a
+/// separation and a relative velocity, and positions and kinetic energies square
+/// or multiply these scales too: kept below 1e150, every such square stays far from
+/// the overflow of f64 at 1.8e308 (an infinity there would stop every collision,
+/// or put NaN into the event times).
+pub const SPEED_TIMES_SIZE_LIMIT: f64 = 1e150;
+
+/// Refuse velocities whose scale would overflow the engine's arithmetic (see
+/// [`SPEED_TIMES_SIZE_LIMIT`]); `field` names where they came from. When even a
+/// box one diameter across would pass (fastest speed × largest diameter within the
+/// limit), the box is what is too large, and the error names `box.size`.
+fn check_scales(
+    spec: &SystemSpec,
+    species_of: &[u16],
+    velocities: &[DVec2],
+    field: &str,
+) -> Result<(), InitError> {
+    let fastest = velocities.iter().map(|v| v.length()).fold(0.0, f64::max);
+    let edge = spec.sim_box.size.max_element();
+    let product = fastest * edge;
+    if product.is_nan() || product > SPEED_TIMES_SIZE_LIMIT {
+        let box_too_large = fastest * 2.0 * spec.largest_radius() <= SPEED_TIMES_SIZE_LIMIT;
+        return Err(InitError::invalid(
+            if box_too_large { "box.size" } else { field },
+            format!(
+                "the fastest disc's speed {fastest:.3e} times the longest box edge {edge:.3e} \
+                 is {product:.3e}, beyond what f64 arithmetic on contact times can hold"
+            ),
+            format!("speed × box edge ≤ {SPEED_TIMES_SIZE_LIMIT:e}"),
+        ));
+    }
+    let energy = crate::state::kinetic_energy(&spec.species, species_of, velocities);
+    if !energy.is_finite() {
+        return Err(InitError::invalid(
+            field,
+            "the total kinetic energy overflows f64",
+            "masses and speeds whose Σ m v²/2 is finite",
+        ));
+    }
+    Ok(())
+}
+
+impl SystemSpec {
+    /// The reference system of physics.md: `n` discs of diameter σ = 1 and mass 1 at
+    /// packing fraction `eta` in a square periodic box, on a lattice, with
+    /// Maxwell–Boltzmann velocities at kT = 1 drawn from `seed`.
+    pub fn periodic_fluid(n: usize, eta: f64, seed: u64) -> SystemSpec {
+        let species = vec![Species::reference(n)];
+        SystemSpec::square_box(species, eta, [Boundary::Periodic; 2], seed)
+    }
+
+    /// `species` on a lattice in a square box sized for packing fraction `eta`, with
+    /// the boundaries `boundary` (x, y), and Maxwell–Boltzmann velocities at kT = 1
+    /// drawn from `seed`.
+    pub fn square_box(
+        species: Vec<Species>,
+        eta: f64,
+        boundary: [Boundary; 2],
+        seed: u64,
+    ) -> SystemSpec {
+        let size = box_size_for(&species, eta, 1.0);
+        SystemSpec {
+            species,
+            sim_box: SimBox { size, boundary },
+            temperature: 1.0,
+            seed,
+            placement: Placement::Lattice,
+            velocities: Velocities::MaxwellBoltzmann,
+        }
+    }
+
+    /// Check every field, place the discs and draw velocities.
+    pub fn build(&self) -> Result<State, InitError> {
+        let state = self.build_observed(&mut |_| ControlFlow::Continue(()))?;
+        Ok(state.expect("an observer that never stops"))
+    }
+
+    /// [`SystemSpec::build`], reporting the progress of relaxed placement (the one
+    /// placement that can take long: about a minute for 10⁶ discs, more near
+    /// jamming) to `observe` before every minimization step. When `observe` breaks,
+    /// building stops and returns `Ok(None)`. Other placements never call it.
+    pub fn build_observed(
+        &self,
+        observe: &mut dyn FnMut(&PlacementProgress) -> ControlFlow<()>,
+    ) -> Result<Option<State>, InitError> {
+        self.validate()?;
+        let n: usize = self.species.iter().map(|s| s.count).sum();
+        let mut species_of = Vec::with_capacity(n);
+        for (k, s) in self.species.iter().enumerate() {
+            species_of.extend(std::iter::repeat_n(k as u16, s.count));
+        }
+        let mut rng = Pcg64::seed_from_u64(self.seed);
+        let positions = match &self.placement {
+            Placement::Lattice => lattice(self, &species_of, &mut rng)?,
+            Placement::Random => random(self, &species_of, &mut rng)?,
+            Placement::Relaxed => match relaxed(self, &species_of, &mut rng, observe)? {
+                Some(p) => p,
+                None => return Ok(None),
+            },
+            Placement::Explicit(p) => {
+                check_explicit(self, &species_of, p)?;
+                p.iter().map(|&r| self.sim_box.wrap(r)).collect()
+            }
+        };
+        let velocities = match &self.velocities {
+            Velocities::MaxwellBoltzmann => maxwell_boltzmann(self, &species_of, &mut rng),
+            Velocities::EqualSpeed => equal_speed(self, &species_of, &mut rng),
+            Velocities::Explicit(v) => {
+                if v.len() != n {
+                    return Err(InitError::invalid(
+                        "velocities",
+                        format!("{} velocities given for {n} discs", v.len()),
+                        "exactly one velocity per disc",
+                    ));
+                }
+                if let Some(k) = v.iter().position(|v| !v.is_finite()) {
+                    return Err(InitError::invalid(
+                        format!("velocities[{k}]"),
+                        "velocity is not finite",
+                        "finite numbers",
+                    ));
+                }
+                v.clone()
+            }
+        };
+        let field = match &self.velocities {
+            Velocities::Explicit(_) => "velocities",
+            _ => "temperature",
+        };
+        check_scales(self, &species_of, &velocities, field)?;
+        Ok(Some(State {
+            sim_box: self.sim_box,
+            species: self.species.clone(),
+            species_of,
+            positions,
+            velocities,
+            time: 0.0,
+        }))
+    }
+
+    /// The largest radius of the species that have discs (length; see
+    /// [`largest_radius`]).
+    pub(super) fn largest_radius(&self) -> f64 {
+        largest_radius(&self.species)
+    }
+
+    fn validate(&self) -> Result<(), InitError> {
+        if self.species.is_empty() {
+            return Err(InitError::invalid(
+                "species",
+                "no species given",
+                "at least one species",
+            ));
+        }
+        if self.species.len() > u16::MAX as usize {
+            return Err(InitError::invalid(
+                "species",
+                "too many species",
+                "at most 65535",
+            ));
+        }
+        let mut n = 0usize;
+        for (k, s) in self.species.iter().enumerate() {
+            check_finite_positive(&format!("species[{k}].radius"), s.radius)?;
+            check_finite_positive(&format!("species[{k}].mass"), s.mass)?;
+            n += s.count;
+        }
+        if n == 0 {
+            return Err(InitError::invalid(
+                "species",
+                "zero discs in total",
+                "at least one disc",
+            ));
+        }
+        if n >= u32::MAX as usize {
+            return Err(InitError::invalid(
+                "species",
+                format!("{n} discs"),
+                "fewer than 2^32 − 1 discs",
+            ));
+        }
+        for (k, name) in ["x", "y"].iter().enumerate() {
+            check_finite_positive(&format!("box.size.{name}"), self.sim_box.size[k])?;
+            if let Boundary::Walls { restitution } = self.sim_box.boundary[k] {
+                if !(0.0..=1.0).contains(&restitution) {
+                    return Err(InitError::invalid(
+                        format!("box.boundary.{name}.restitution"),
+                        format!("value {restitution}"),
+                        "0 ≤ restitution ≤ 1",
+                    ));
+                }
+            }
+            let a_max = self.largest_radius();
+            if self.sim_box.size[k] <= 2.0 * a_max {
+                return Err(InitError::invalid(
+                    format!("box.size.{name}"),
+                    format!(
+                        "edge {} is not longer than the largest diameter {}",
+                        self.sim_box.size[k],
+                        2.0 * a_max
+                    ),
+                    "edges longer than the largest disc diameter",
+                ));
+            }
+        }
+        if !self.temperature.is_finite() || self.temperature < 0.0 {
+            return Err(InitError::invalid(
+                "temperature",
+                format!("value {}", self.temperature),
+                "finite kT ≥ 0",
+            ));
+        }
+        // Drawn velocities have zero total momentum, which leaves a single disc at
+        // rest: a temperature above 0 would be silently ignored.
+        let discs: usize = self.species.iter().map(|s| s.count).sum();
+        if discs == 1
+            && self.temperature > 0.0
+            && !matches!(self.velocities, Velocities::Explicit(_))
+        {
+            return Err(InitError::invalid(
+                "temperature",
+                format!(
+                    "kT = {} for a single disc, which zero total momentum leaves at rest",
+                    self.temperature
+                ),
+                "at least two discs, or explicit velocities",
+            ));
+        }
+        let eta = packing_fraction(&self.species, &self.sim_box);
+        if eta >= std::f64::consts::PI / (2.0 * 3f64.sqrt()) {
+            return Err(InitError::invalid(
+                "packing_fraction",
+                format!("{eta:.4} is above hexagonal close packing"),
+                "η < 0.9069 (and ≤ 0.72 for lattice placement, at N ≥ 34 or where a lattice fits)",
+            ));
+        }
+        Ok(())
+    }
+}
