@@ -1,12 +1,12 @@
 //! Which run a log holds: species, box, collision rule, logging stride and time
 //! span, derived once per log by [`describe`].
 //!
-//! The species, box and rule come from the configuration stored in the log,
-//! resolved by the config front end (which derives the box from η; no disc is
-//! placed). Only when that configuration cannot be read are they taken from the
+//! The species, box and rule come from the run's facts in the log's metadata
+//! (format 1.2 on). Older logs derive them from the configuration stored in the
+//! log, resolved by the config front end (which derives the box from η; no disc is
+//! placed); only when that configuration cannot be read are they taken from the
 //! first snapshot (counts per species, radii, masses, box, boundaries; collisions
-//! then assumed elastic). When the log's metadata describes its run itself (a
-//! newer log format), that description is to be read here instead.
+//! then assumed elastic).
 
 use carom_core::{Boundary, Restitution, SimBox, Species};
 use carom_io::Snapshot;
@@ -82,7 +82,7 @@ struct Resolved {
     restitution: Restitution,
 }
 
-/// From the configuration stored in a log.
+/// From the configuration stored in a log of format ≤ 1.1.
 fn from_config(config: &str) -> Result<Resolved, ConfigError> {
     let spec = Config::from_json_str(config)?.to_run_spec()?;
     Ok(Resolved {
@@ -158,7 +158,12 @@ pub(super) fn describe(
             "{file} holds no data spanning any simulated time"
         )));
     }
-    let resolved = match from_config(&info.run.config) {
+    let stored = info.run.run_facts.as_ref().map(|f| Resolved {
+        species: f.species.clone(),
+        sim_box: f.sim_box,
+        restitution: f.restitution,
+    });
+    let resolved = match stored.map_or_else(|| from_config(&info.run.config), Ok) {
         Ok(r) => r,
         Err(e) => {
             let s = first_snapshot()?.ok_or_else(|| {
@@ -187,4 +192,89 @@ pub(super) fn describe(
         t_start,
         t_end,
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use carom_events::EngineParams;
+    use carom_io::{LogEnd, LogOptions, RunFacts, RunMetadata, Stop};
+
+    /// A log's scan with the stored configuration `config` and the given facts.
+    fn info(config: &str, facts: Option<RunFacts>) -> LogInfo {
+        LogInfo {
+            run: RunMetadata {
+                log_format: "1.2".into(),
+                carom_version: "0".into(),
+                config: config.into(),
+                seed: 0,
+                start_time: String::new(),
+                n_discs: 7,
+                stop: Stop::Time(5.0),
+                log: LogOptions::default(),
+                resumed_from: None,
+                resumed_at: None,
+                run_facts: facts,
+            },
+            summary: None,
+            end: LogEnd::Complete,
+            channels: [true; 4],
+            messages: [1; 4],
+            logged_collisions: 0,
+            time_span: [Some((0.0, 5.0)); 4],
+            last_checkpoint_time: None,
+            thermo_counts: None,
+            file_bytes: 0,
+        }
+    }
+
+    fn describe_quietly(info: &LogInfo) -> (Result<RunDescription, AnalysisError>, bool) {
+        let mut asked = false;
+        let d = describe(
+            "log.mcap",
+            info,
+            &mut || {
+                asked = true;
+                Ok(None)
+            },
+            &mut |_| {},
+        );
+        (d, asked)
+    }
+
+    #[test]
+    fn the_run_facts_describe_the_run_without_the_configuration() {
+        let species = [Species::new(4, 0.5, 1.0), Species::new(3, 0.7, 2.0)];
+        let sim_box = SimBox::walled(12.0, 9.0, 0.9);
+        let params = EngineParams {
+            restitution: Restitution::Normal(0.8),
+            ..EngineParams::default()
+        };
+        let facts = RunFacts::new(&species, &sim_box, &params, &LogOptions::default());
+        // The stored configuration is unreadable: only the facts can describe the run.
+        let (d, asked) = describe_quietly(&info("not json", Some(facts)));
+        let d = d.unwrap();
+        assert!(
+            !asked,
+            "the first snapshot was read although the facts describe the run"
+        );
+        assert_eq!(d.species, species);
+        assert_eq!(d.sim_box, sim_box);
+        assert_eq!(d.restitution, Restitution::Normal(0.8));
+        assert_eq!((d.t_start, d.t_end), (0.0, 5.0));
+    }
+
+    #[test]
+    fn a_log_without_facts_is_described_by_its_configuration() {
+        let config = r#"{"species": [{"count": 30, "radius": 0.5, "mass": 2}],
+            "box": {"size": [20, 10], "boundary": "walls"}}"#;
+        let (d, asked) = describe_quietly(&info(config, None));
+        let d = d.unwrap();
+        assert!(!asked);
+        assert_eq!(d.species, vec![Species::new(30, 0.5, 2.0)]);
+        assert_eq!(d.sim_box.size, carom_core::DVec2::new(20.0, 10.0));
+        // Neither facts nor a readable configuration: the first snapshot is asked for.
+        let (d, asked) = describe_quietly(&info("not json", None));
+        assert!(asked && d.is_err());
+    }
 }

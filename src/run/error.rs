@@ -7,8 +7,8 @@
 use std::path::PathBuf;
 
 use carom_events::{EngineError, InitError};
-use carom_io::ReadError;
 use carom_io::WriteError;
+use carom_io::{OptionsError, ReadError};
 use thiserror::Error;
 
 /// A run that could not be carried out. Each variant says what and where.
@@ -25,7 +25,7 @@ pub enum RunError {
         /// What is wrong.
         problem: String,
         /// What is allowed.
-        allowed: &'static str,
+        allowed: String,
     },
     /// The engine failed mid-run; the log was finished (with `stop_reason = error`
     /// in its summary) and is readable up to the failure.
@@ -107,4 +107,14 @@ pub enum RunError {
         /// The operating system's error.
         source: std::io::Error,
     },
+}
+
+impl From<OptionsError> for RunError {
+    fn from(e: OptionsError) -> Self {
+        RunError::Invalid {
+            field: e.field,
+            problem: e.problem,
+            allowed: e.allowed,
+        }
+    }
 }

@@ -25,7 +25,6 @@ mod observation;
 mod resume;
 mod start;
 mod thermo;
-mod validate;
 
 use std::path::PathBuf;
 

@@ -15,13 +15,12 @@ use carom_events::{Engine, EngineError};
 use carom_io::LogCheckpoint;
 use carom_io::Stop;
 use carom_io::Thermo;
-use carom_io::{last_checkpoint_observed, LogReader, ReadProgress};
+use carom_io::{check_log_options, last_checkpoint_observed, LogReader, ReadProgress};
 use carom_io::{LogWriter, WriterOptions, WriterPosition, CH_THERMO};
 
 use super::disk::free_bytes;
 use super::driver::Driver;
 use super::observation::Observation;
-use super::validate::validate;
 use super::{Control, ResumeOptions, ResumePass, RunError, RunSummary};
 
 /// Continue the log `input` from its last complete checkpoint into `out` (which may
@@ -43,7 +42,7 @@ pub fn resume(
         last_checkpoint_observed(input, &mut |p| reading(ResumePass::FindingCheckpoint, p))?;
     let LogCheckpoint { driver, engine } = cp;
     let stop = opts.stop.unwrap_or(meta.stop);
-    validate(&meta.log, &stop, engine.now)?;
+    check_log_options(&meta.log, &stop, engine.now, "stop.time")?;
     let pending_stops: Vec<f64> = engine
         .scheduled
         .iter()

@@ -9,12 +9,11 @@ use std::time::Instant;
 
 use carom_events::{Engine, PlacementProgress, State, SystemSpec};
 use carom_io::{
-    now_rfc3339, LogWriter, RunFacts, RunMetadata, RunSpec, WriterOptions, WriterPosition,
-    LOG_FORMAT_VERSION,
+    check_log_options, now_rfc3339, LogWriter, RunFacts, RunMetadata, RunSpec, WriterOptions,
+    WriterPosition, LOG_FORMAT_VERSION,
 };
 
 use super::driver::Driver;
-use super::validate::validate;
 use super::{Control, RunError, RunSummary};
 
 /// Start a fresh run of `spec`, logging to `out` (created or truncated). Blocks
@@ -22,7 +21,7 @@ use super::{Control, RunError, RunSummary};
 /// which the log is still finished). The log holds what `run/driver.rs` describes.
 pub fn run(spec: &RunSpec, out: &Path, mut control: Control<'_>) -> Result<RunSummary, RunError> {
     // Before placement, which can take a minute: a fresh state starts at time 0.
-    validate(&spec.log, &spec.stop, 0.0)?;
+    check_log_options(&spec.log, &spec.stop, 0.0, "stop.duration")?;
     let state = place(&spec.system, &mut control)?;
     debug_assert_eq!(state.time, 0.0);
     let n = state.len();
