@@ -10,8 +10,7 @@
 
 mod common;
 
-use carom::events::Engine;
-use common::{equilibrated_fluid as engine, time_batches};
+use common::{bench_built_once, equilibrated_fluid as engine};
 use criterion::{criterion_group, criterion_main, Criterion, Throughput};
 use std::time::Duration;
 
@@ -23,20 +22,14 @@ fn bench(c: &mut Criterion) {
             group.throughput(Throughput::Elements(batch));
             group.sample_size(if n >= 100_000 { 10 } else { 20 });
             group.measurement_time(Duration::from_secs(if n >= 100_000 { 20 } else { 8 }));
-            // Built once, on first use (criterion calls the closure several times,
-            // and only for the cases the filter selects).
-            let mut slot: Option<Engine> = None;
-            group.bench_function(format!("N={n}"), |b| {
-                let e = slot.get_or_insert_with(|| {
-                    let e = engine(n, eta);
-                    eprintln!(
-                        "\n[eta={eta:.2} N={n}] cells {:?}, heap bytes per disc: {:.1}",
-                        e.cells(),
-                        e.heap_bytes() as f64 / n as f64
-                    );
-                    e
-                });
-                time_batches(b, e, batch);
+            bench_built_once(&mut group, format!("N={n}"), batch, || {
+                let e = engine(n, eta);
+                eprintln!(
+                    "\n[eta={eta:.2} N={n}] cells {:?}, heap bytes per disc: {:.1}",
+                    e.cells(),
+                    e.heap_bytes() as f64 / n as f64
+                );
+                e
             });
         }
         group.finish();

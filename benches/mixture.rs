@@ -2,7 +2,7 @@
 //! few large discs: 20 000 discs of diameter 1 and 200 of diameter 1, 2, 5 and 10
 //! (masses ∝ area) at η = 0.4 in a periodic square box, relaxed placement,
 //! equilibrated for 10 collisions per disc. Shows what a grid per size class
-//! (`carom_events::classes`) buys where it is chosen (ratios 5 and 10) and that the
+//! (the engine's size classes) buys where it is chosen (ratios 5 and 10) and that the
 //! other cases keep one grid.
 //!
 //! Run: `cargo bench --bench mixture`; one case:
@@ -11,8 +11,7 @@
 
 mod common;
 
-use carom::events::Engine;
-use common::{equilibrated_mixture, time_batches};
+use common::{bench_built_once, equilibrated_mixture};
 use criterion::{criterion_group, criterion_main, Criterion, Throughput};
 use std::time::Duration;
 
@@ -23,15 +22,10 @@ fn bench(c: &mut Criterion) {
     group.sample_size(20);
     group.measurement_time(Duration::from_secs(8));
     for ratio in [1.0, 2.0, 5.0, 10.0] {
-        // Built once, on first use (only for the cases the filter selects).
-        let mut slot: Option<Engine> = None;
-        group.bench_function(format!("ratio={ratio}"), |b| {
-            let e = slot.get_or_insert_with(|| {
-                let e = equilibrated_mixture(20_000, 200, ratio, 0.4);
-                eprintln!("\n[ratio={ratio}] {} cell grid(s)", e.grid_count());
-                e
-            });
-            time_batches(b, e, batch);
+        bench_built_once(&mut group, format!("ratio={ratio}"), batch, || {
+            let e = equilibrated_mixture(20_000, 200, ratio, 0.4);
+            eprintln!("\n[ratio={ratio}] {} cell grid(s)", e.grid_count());
+            e
         });
     }
     group.finish();

@@ -1,6 +1,8 @@
 //! What the engine benches share: the system they time.
 
 use carom::events::{Engine, EngineParams, SystemSpec};
+use criterion::measurement::WallTime;
+use criterion::BenchmarkGroup;
 use std::time::Instant;
 
 /// An equilibrated periodic fluid of `n` monodisperse discs (σ = 1, m = 1, kT = 1,
@@ -39,12 +41,30 @@ pub fn equilibrated_mixture(small: usize, large: usize, ratio: f64, eta: f64) ->
 /// Time criterion's `iters` batches of `batch` collisions of `e` (wall time), for
 /// `Bencher::iter_custom`: the engine runs on from where the last batch left it.
 #[allow(dead_code)] // the ratio bench times its own batches
-pub fn time_batches(b: &mut criterion::Bencher, e: &mut Engine, batch: u64) {
+fn time_batches(b: &mut criterion::Bencher, e: &mut Engine, batch: u64) {
     b.iter_custom(|iters| {
         let start = Instant::now();
         for _ in 0..iters {
             e.run_collisions(batch).expect("no runaway in elastic runs");
         }
         start.elapsed()
+    });
+}
+
+/// Bench `name` in `group`: batches of `batch` collisions of the engine that
+/// `build` makes on first use (criterion calls the closure several times, and only
+/// for the cases the filter selects); `build` may print what it built.
+#[allow(dead_code)] // the ratio bench times its own batches
+pub fn bench_built_once(
+    group: &mut BenchmarkGroup<'_, WallTime>,
+    name: String,
+    batch: u64,
+    build: impl FnOnce() -> Engine,
+) {
+    let mut build = Some(build);
+    let mut slot: Option<Engine> = None;
+    group.bench_function(name, |b| {
+        let e = slot.get_or_insert_with(|| build.take().expect("built once")());
+        time_batches(b, e, batch);
     });
 }

@@ -6,10 +6,12 @@
 //! `temperature` (kT against time), `pressure` (Z against time with the mean and
 //! one standard error).
 
+use std::ops::Range;
 use std::path::Path;
 use std::sync::Once;
 
 use carom::analysis::{HistogramReport, Report, SpeciesMb};
+use plotters::coord::types::RangedCoordf64;
 use plotters::coord::Shift;
 use plotters::prelude::*;
 
@@ -100,12 +102,47 @@ fn range(values: impl Iterator<Item = f64>) -> (f64, f64) {
     (lo - pad, hi + pad)
 }
 
+/// A chart with f64 axes on both sides.
+type Chart<'a, DB> = ChartContext<'a, DB, Cartesian2d<RangedCoordf64, RangedCoordf64>>;
+
+/// The chart every figure uses: a caption, labelled axes over `x` × `y`.
+fn axes<'a, DB: DrawingBackend>(
+    root: &'a DrawingArea<DB, Shift>,
+    caption: &str,
+    (x_desc, y_desc): (&str, &str),
+    x: Range<f64>,
+    y: Range<f64>,
+) -> Result<Chart<'a, DB>, DrawingAreaErrorKind<DB::ErrorType>> {
+    let mut chart = ChartBuilder::on(root)
+        .caption(caption, ("sans-serif", 22))
+        .margin(15)
+        .x_label_area_size(45)
+        .y_label_area_size(70)
+        .build_cartesian_2d(x, y)?;
+    chart
+        .configure_mesh()
+        .x_desc(x_desc)
+        .y_desc(y_desc)
+        .draw()?;
+    Ok(chart)
+}
+
+/// The legend of the labelled series drawn so far.
+fn legend<'a, DB: DrawingBackend + 'a>(chart: &mut Chart<'a, DB>) -> DrawResult<DB> {
+    chart
+        .configure_series_labels()
+        .background_style(WHITE.mix(0.8))
+        .border_style(BLACK)
+        .draw()
+}
+
+/// The largest of `values`, times 1.1 (a density axis's top), at least 10⁻¹².
+fn top(values: impl Iterator<Item = f64>) -> f64 {
+    (values.fold(0.0, f64::max) * 1.1).max(1e-12)
+}
+
 fn histogram_series<DB: DrawingBackend>(
-    chart: &mut ChartContext<
-        '_,
-        DB,
-        Cartesian2d<plotters::coord::types::RangedCoordf64, plotters::coord::types::RangedCoordf64>,
-    >,
+    chart: &mut Chart<'_, DB>,
     h: &HistogramReport,
     colour: RGBColor,
     label: &str,
@@ -121,11 +158,7 @@ fn histogram_series<DB: DrawingBackend>(
 }
 
 fn theory_line<DB: DrawingBackend>(
-    chart: &mut ChartContext<
-        '_,
-        DB,
-        Cartesian2d<plotters::coord::types::RangedCoordf64, plotters::coord::types::RangedCoordf64>,
-    >,
+    chart: &mut Chart<'_, DB>,
     h: &HistogramReport,
     label: &str,
 ) -> DrawResult<DB> {
@@ -143,42 +176,20 @@ fn theory_line<DB: DrawingBackend>(
 fn draw_speed<DB: DrawingBackend>(root: &DrawingArea<DB, Shift>, m: &SpeciesMb) -> DrawResult<DB> {
     let h = &m.speed_histogram;
     let x_max = *h.edges.last().unwrap_or(&1.0);
-    let y_max = h
-        .density
-        .iter()
-        .chain(&h.theory)
-        .copied()
-        .fold(0.0, f64::max)
-        * 1.1;
-    let mut chart = ChartBuilder::on(root)
-        .caption(
-            format!(
-                "species {} (m = {}): speeds, χ² p = {:.3}, KS p = {:.3}",
-                m.species, m.mass, m.chi_square.p_value, m.ks.p_value
-            ),
-            ("sans-serif", 22),
-        )
-        .margin(15)
-        .x_label_area_size(45)
-        .y_label_area_size(60)
-        .build_cartesian_2d(0.0..x_max, 0.0..y_max.max(1e-12))?;
-    chart
-        .configure_mesh()
-        .x_desc("speed v")
-        .y_desc("probability density")
-        .draw()?;
+    let y_max = top(h.density.iter().chain(&h.theory).copied());
+    let caption = format!(
+        "species {} (m = {}): speeds, χ² p = {:.3}, KS p = {:.3}",
+        m.species, m.mass, m.chi_square.p_value, m.ks.p_value
+    );
+    let axis = ("speed v", "probability density");
+    let mut chart = axes(root, &caption, axis, 0.0..x_max, 0.0..y_max)?;
     histogram_series(&mut chart, h, BLUE, &format!("{} speeds", m.samples))?;
     theory_line(
         &mut chart,
         h,
         &format!("Maxwell–Boltzmann, kT = {:.4}", m.kt),
     )?;
-    chart
-        .configure_series_labels()
-        .background_style(WHITE.mix(0.8))
-        .border_style(BLACK)
-        .draw()?;
-    Ok(())
+    legend(&mut chart)
 }
 
 fn draw_components<DB: DrawingBackend>(
@@ -188,31 +199,18 @@ fn draw_components<DB: DrawingBackend>(
     let (hx, hy) = (&m.vx_histogram, &m.vy_histogram);
     let x_lo = *hx.edges.first().unwrap_or(&-1.0);
     let x_hi = *hx.edges.last().unwrap_or(&1.0);
-    let y_max = hx
+    let y_max = top(hx
         .density
         .iter()
         .chain(&hy.density)
         .chain(&hx.theory)
-        .copied()
-        .fold(0.0, f64::max)
-        * 1.1;
-    let mut chart = ChartBuilder::on(root)
-        .caption(
-            format!(
-                "species {}: velocity components, KS p(vx) = {:.3}, p(vy) = {:.3}",
-                m.species, m.ks_vx.p_value, m.ks_vy.p_value
-            ),
-            ("sans-serif", 22),
-        )
-        .margin(15)
-        .x_label_area_size(45)
-        .y_label_area_size(60)
-        .build_cartesian_2d(x_lo..x_hi, 0.0..y_max.max(1e-12))?;
-    chart
-        .configure_mesh()
-        .x_desc("velocity component")
-        .y_desc("probability density")
-        .draw()?;
+        .copied());
+    let caption = format!(
+        "species {}: velocity components, KS p(vx) = {:.3}, p(vy) = {:.3}",
+        m.species, m.ks_vx.p_value, m.ks_vy.p_value
+    );
+    let axis = ("velocity component", "probability density");
+    let mut chart = axes(root, &caption, axis, x_lo..x_hi, 0.0..y_max)?;
     histogram_series(&mut chart, hx, BLUE, "vx")?;
     histogram_series(&mut chart, hy, RED, "vy")?;
     theory_line(
@@ -220,12 +218,7 @@ fn draw_components<DB: DrawingBackend>(
         hx,
         &format!("Gaussian, variance kT/m = {:.4}", m.kt / m.mass),
     )?;
-    chart
-        .configure_series_labels()
-        .background_style(WHITE.mix(0.8))
-        .border_style(BLACK)
-        .draw()?;
-    Ok(())
+    legend(&mut chart)
 }
 
 fn draw_temperature<DB: DrawingBackend>(
@@ -235,13 +228,8 @@ fn draw_temperature<DB: DrawingBackend>(
     let s = &r.temperature.series;
     let (x0, x1) = range(s.iter().map(|p| p[0]));
     let (y0, y1) = range(s.iter().map(|p| p[1]).chain([0.0]));
-    let mut chart = ChartBuilder::on(root)
-        .caption("temperature kT = 2K/f against time", ("sans-serif", 22))
-        .margin(15)
-        .x_label_area_size(45)
-        .y_label_area_size(70)
-        .build_cartesian_2d(x0..x1, y0..y1)?;
-    chart.configure_mesh().x_desc("time").y_desc("kT").draw()?;
+    let caption = "temperature kT = 2K/f against time";
+    let mut chart = axes(root, caption, ("time", "kT"), x0..x1, y0..y1)?;
     chart.draw_series(LineSeries::new(
         s.iter().map(|p| (p[0], p[1])),
         BLUE.stroke_width(2),
@@ -255,11 +243,7 @@ fn draw_temperature<DB: DrawingBackend>(
             .draw_series(LineSeries::new(haff, BLACK.stroke_width(1)))?
             .label("Haff's law")
             .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 15, y)], BLACK));
-        chart
-            .configure_series_labels()
-            .background_style(WHITE.mix(0.8))
-            .border_style(BLACK)
-            .draw()?;
+        legend(&mut chart)?;
     }
     Ok(())
 }
@@ -269,16 +253,8 @@ fn draw_pressure<DB: DrawingBackend>(root: &DrawingArea<DB, Shift>, r: &Report) 
     let s = &p.series;
     let (x0, x1) = range(s.iter().map(|q| q[0]));
     let (y0, y1) = range(s.iter().map(|q| q[1]));
-    let mut chart = ChartBuilder::on(root)
-        .caption(
-            format!("Z = βPA/N = {:.4} ± {:.4}", p.z, p.z_std_error),
-            ("sans-serif", 22),
-        )
-        .margin(15)
-        .x_label_area_size(45)
-        .y_label_area_size(70)
-        .build_cartesian_2d(x0..x1, y0..y1)?;
-    chart.configure_mesh().x_desc("time").y_desc("Z").draw()?;
+    let caption = format!("Z = βPA/N = {:.4} ± {:.4}", p.z, p.z_std_error);
+    let mut chart = axes(root, &caption, ("time", "Z"), x0..x1, y0..y1)?;
     chart.draw_series(std::iter::once(Rectangle::new(
         [(x0, p.z - p.z_std_error), (x1, p.z + p.z_std_error)],
         GREEN.mix(0.3).filled(),

@@ -21,7 +21,7 @@ use super::{Control, RunError, RunSummary};
 /// which the log is still finished). The log holds what `run/driver.rs` describes.
 pub fn run(spec: &RunSpec, out: &Path, mut control: Control<'_>) -> Result<RunSummary, RunError> {
     // Before placement, which can take a minute: a fresh state starts at time 0.
-    check_log_options(&spec.log, &spec.stop, 0.0, "stop.duration")?;
+    check_log_options(&spec.log, &spec.stop, 0.0, "stop.time")?;
     let state = place(&spec.system, &mut control)?;
     debug_assert_eq!(state.time, 0.0);
     let n = state.len();

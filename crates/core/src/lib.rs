@@ -24,4 +24,4 @@ pub mod species;
 pub use boundary::{Axis, Boundary, SimBox, WallSide};
 pub use collision::{Resolution, Restitution};
 pub use glam::DVec2;
-pub use species::Species;
+pub use species::{check_species, Species, SpeciesProblem};

@@ -43,6 +43,67 @@ impl Species {
     }
 }
 
+/// Why a list of species cannot make a system: the species it concerns (`None`: the
+/// list as a whole) and which of its settings, what was wrong and what is allowed.
+#[derive(Debug, Clone, PartialEq)]
+pub struct SpeciesProblem {
+    /// The species and setting (`"radius"`, `"mass"`), or `None` for the list.
+    pub setting: Option<(usize, &'static str)>,
+    /// What was wrong.
+    pub problem: String,
+    /// What is allowed.
+    pub allowed: &'static str,
+}
+
+/// The one check of a list of species: at least one and at most 65535 species,
+/// finite positive radii and masses, and 1 ≤ N < 2³² − 1 discs in all (disc
+/// numbers are `u32`, with `u32::MAX` meaning none). Returns N.
+pub fn check_species(species: &[Species]) -> Result<usize, SpeciesProblem> {
+    let whole = |problem: String, allowed| SpeciesProblem {
+        setting: None,
+        problem,
+        allowed,
+    };
+    if species.is_empty() {
+        return Err(whole(
+            "the list is empty".into(),
+            "at least one species {\"count\": N, \"radius\": a, \"mass\": m}",
+        ));
+    }
+    if species.len() > u16::MAX as usize {
+        return Err(whole(
+            format!("{} species", species.len()),
+            "at most 65535 species",
+        ));
+    }
+    let mut n = 0usize;
+    for (k, s) in species.iter().enumerate() {
+        for (setting, x) in [("radius", s.radius), ("mass", s.mass)] {
+            if !(x.is_finite() && x > 0.0) {
+                return Err(SpeciesProblem {
+                    setting: Some((k, setting)),
+                    problem: format!("value {x} is not a positive finite number"),
+                    allowed: "finite numbers > 0",
+                });
+            }
+        }
+        n = n.saturating_add(s.count);
+    }
+    if n == 0 {
+        return Err(whole(
+            "zero discs in total".into(),
+            "at least one disc (some species' count ≥ 1)",
+        ));
+    }
+    if n >= u32::MAX as usize {
+        return Err(whole(
+            format!("{n} discs in total"),
+            "fewer than 4294967295 discs",
+        ));
+    }
+    Ok(n)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -63,5 +124,34 @@ mod tests {
             );
         }
         assert_eq!(Species::scaled(5, 1.0), Species::reference(5));
+    }
+
+    #[test]
+    fn the_species_check_names_what_is_wrong() {
+        let ok = [Species::new(3, 0.5, 1.0), Species::new(0, 0.7, 2.0)];
+        assert_eq!(check_species(&ok), Ok(3));
+        assert_eq!(check_species(&[]).unwrap_err().setting, None);
+        let bad_mass = [ok[0], Species::new(2, 0.7, f64::NAN)];
+        assert_eq!(
+            check_species(&bad_mass).unwrap_err().setting,
+            Some((1, "mass"))
+        );
+        let bad_radius = [Species::new(1, -0.5, 1.0)];
+        assert_eq!(
+            check_species(&bad_radius).unwrap_err().setting,
+            Some((0, "radius"))
+        );
+        let none = [Species::new(0, 0.5, 1.0)];
+        assert!(check_species(&none)
+            .unwrap_err()
+            .problem
+            .contains("zero discs"));
+        let many = [Species::new(u32::MAX as usize, 0.5, 1.0)];
+        assert_eq!(check_species(&many).unwrap_err().setting, None);
+        let kinds = vec![Species::new(1, 0.5, 1.0); 65536];
+        assert!(check_species(&kinds)
+            .unwrap_err()
+            .problem
+            .contains("65536 species"));
     }
 }

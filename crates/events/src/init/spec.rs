@@ -17,7 +17,7 @@ use super::velocities::{equal_speed, maxwell_boltzmann};
 use crate::error::InitError;
 use crate::state::State;
 use carom_core::observables::packing_fraction;
-use carom_core::{Boundary, DVec2, SimBox, Species};
+use carom_core::{check_species, Boundary, DVec2, SimBox, Species};
 use rand::SeedableRng;
 use rand_pcg::Pcg64;
 use std::ops::ControlFlow;
@@ -260,40 +260,13 @@ impl SystemSpec {
     }
 
     fn validate(&self) -> Result<(), InitError> {
-        if self.species.is_empty() {
-            return Err(InitError::invalid(
-                "species",
-                "no species given",
-                "at least one species",
-            ));
-        }
-        if self.species.len() > u16::MAX as usize {
-            return Err(InitError::invalid(
-                "species",
-                "too many species",
-                "at most 65535",
-            ));
-        }
-        let mut n = 0usize;
-        for (k, s) in self.species.iter().enumerate() {
-            check_finite_positive(&format!("species[{k}].radius"), s.radius)?;
-            check_finite_positive(&format!("species[{k}].mass"), s.mass)?;
-            n += s.count;
-        }
-        if n == 0 {
-            return Err(InitError::invalid(
-                "species",
-                "zero discs in total",
-                "at least one disc",
-            ));
-        }
-        if n >= u32::MAX as usize {
-            return Err(InitError::invalid(
-                "species",
-                format!("{n} discs"),
-                "fewer than 2^32 − 1 discs",
-            ));
-        }
+        check_species(&self.species).map_err(|p| {
+            let field = match p.setting {
+                Some((k, setting)) => format!("species[{k}].{setting}"),
+                None => "species".to_owned(),
+            };
+            InitError::invalid(field, p.problem, p.allowed)
+        })?;
         for (k, name) in ["x", "y"].iter().enumerate() {
             check_finite_positive(&format!("box.size.{name}"), self.sim_box.size[k])?;
             if let Boundary::Walls { restitution } = self.sim_box.boundary[k] {

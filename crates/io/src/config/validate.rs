@@ -6,6 +6,7 @@
 
 use super::{AxisBoundary, CollisionModel, Config, ConfigError, PlacementConfig, VelocitiesConfig};
 use crate::options::check_log_options;
+use carom_core::{check_species, Species};
 
 /// Hexagonal close packing π/(2√3), the largest packing fraction discs can reach.
 const ETA_CLOSE_PACKED: f64 = 0.906_899_682_117_108_9;
@@ -25,37 +26,27 @@ impl Config {
         Ok(())
     }
 
-    /// The species: at least one, radii and masses finite and > 0, and between 1
-    /// and 2³² − 2 discs in total (their number).
+    /// The species, by the one check of `carom_core::check_species`; their
+    /// number of discs.
     fn check_species(&self) -> Result<usize, ConfigError> {
-        if self.species.is_empty() {
-            return Err(ConfigError::invalid(
-                "species",
-                "the list is empty",
-                "at least one species {\"count\": N, \"radius\": a, \"mass\": m}",
-            ));
-        }
-        let mut total: u64 = 0;
-        for (k, s) in self.species.iter().enumerate() {
-            positive_finite(&format!("species.{k}.radius"), s.radius)?;
-            positive_finite(&format!("species.{k}.mass"), s.mass)?;
-            total = total.saturating_add(s.count);
-        }
-        if total == 0 {
-            return Err(ConfigError::invalid(
-                "species",
-                "zero discs in total",
-                "at least one disc (some species.N.count ≥ 1)",
-            ));
-        }
-        if total >= u32::MAX as u64 {
-            return Err(ConfigError::invalid(
-                "species",
-                format!("{total} discs in total"),
-                "fewer than 4294967295 discs",
-            ));
-        }
-        Ok(total as usize)
+        let species: Vec<Species> = self
+            .species
+            .iter()
+            .map(|s| {
+                Species::new(
+                    usize::try_from(s.count).unwrap_or(usize::MAX),
+                    s.radius,
+                    s.mass,
+                )
+            })
+            .collect();
+        check_species(&species).map_err(|p| {
+            let field = match p.setting {
+                Some((k, setting)) => format!("species.{k}.{setting}"),
+                None => "species".to_owned(),
+            };
+            ConfigError::invalid(field, p.problem, p.allowed)
+        })
     }
 
     /// The box: either its size or its packing fraction and aspect, and a wall
@@ -240,17 +231,5 @@ impl Config {
             _ => {}
         }
         Ok(())
-    }
-}
-
-fn positive_finite(field: &str, x: f64) -> Result<(), ConfigError> {
-    if x.is_finite() && x > 0.0 {
-        Ok(())
-    } else {
-        Err(ConfigError::invalid(
-            field,
-            format!("value {x}"),
-            "a finite number > 0",
-        ))
     }
 }

@@ -39,33 +39,28 @@ pub const KIND_WALL: u8 = 1;
 /// `j` of a wall collision in [`CollisionBatch`].
 pub const NO_DISC: u32 = u32::MAX;
 
-/// One logged collision, as decoded from a [`CollisionBatch`].
+/// One logged collision, as decoded from a [`CollisionBatch`]: its ordinal, its
+/// kind, and the collision in the engine's pair form, which it reads through
+/// (`record.time`, `record.vi_before`, …). A wall collision fills that form as
+/// the log stores it: `j` is [`NO_DISC`], the normal points from the disc to the
+/// wall, the second disc's velocities are zero and `virial` holds |Δp| given to
+/// the wall (momentum).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct CollisionRecord {
     /// 0-based ordinal among all collisions (pair + wall) of the run.
     pub ordinal: u64,
-    /// Time of contact (time).
-    pub time: f64,
     /// [`KIND_PAIR`] or [`KIND_WALL`].
     pub kind: u8,
-    /// First disc.
-    pub i: u32,
-    /// Second disc ([`NO_DISC`] for a wall collision).
-    pub j: u32,
-    /// Unit contact normal: from i towards j, or from i towards the wall.
-    pub normal: DVec2,
-    /// Velocity of i before (length/time).
-    pub vi_before: DVec2,
-    /// Velocity of j before (length/time; zero for a wall).
-    pub vj_before: DVec2,
-    /// Velocity of i after (length/time).
-    pub vi_after: DVec2,
-    /// Velocity of j after (length/time; zero for a wall).
-    pub vj_after: DVec2,
-    /// Kinetic energy dissipated (energy).
-    pub energy_lost: f64,
-    /// Pair: r_ij·Δp_i (length·momentum); wall: |Δp| given to the wall (momentum).
-    pub virial: f64,
+    /// The collision's time, discs, normal, velocities, energy lost and virial.
+    pub collision: PairCollision,
+}
+
+impl std::ops::Deref for CollisionRecord {
+    type Target = PairCollision;
+
+    fn deref(&self) -> &PairCollision {
+        &self.collision
+    }
 }
 
 impl CollisionRecord {
@@ -74,23 +69,13 @@ impl CollisionRecord {
     pub fn from_pair(c: &PairCollision, ordinal: u64) -> Self {
         CollisionRecord {
             ordinal,
-            time: c.time,
             kind: KIND_PAIR,
-            i: c.i,
-            j: c.j,
-            normal: c.normal,
-            vi_before: c.vi_before,
-            vj_before: c.vj_before,
-            vi_after: c.vi_after,
-            vj_after: c.vj_after,
-            energy_lost: c.energy_lost,
-            virial: c.virial,
+            collision: *c,
         }
     }
 
-    /// The record of wall collision `c` with run ordinal `ordinal`; the normal
-    /// points from the disc to the wall, `j` is [`NO_DISC`], `virial` holds the
-    /// impulse given to the wall.
+    /// The record of wall collision `c` with run ordinal `ordinal` (see the type's
+    /// documentation for how a wall fills the pair form).
     #[inline]
     pub fn from_wall(c: &WallCollision, ordinal: u64) -> Self {
         let sign = match c.side {
@@ -103,17 +88,19 @@ impl CollisionRecord {
         };
         CollisionRecord {
             ordinal,
-            time: c.time,
             kind: KIND_WALL,
-            i: c.i,
-            j: NO_DISC,
-            normal,
-            vi_before: c.v_before,
-            vj_before: DVec2::ZERO,
-            vi_after: c.v_after,
-            vj_after: DVec2::ZERO,
-            energy_lost: c.energy_lost,
-            virial: c.impulse,
+            collision: PairCollision {
+                time: c.time,
+                i: c.i,
+                j: NO_DISC,
+                normal,
+                vi_before: c.v_before,
+                vj_before: DVec2::ZERO,
+                vi_after: c.v_after,
+                vj_after: DVec2::ZERO,
+                energy_lost: c.energy_lost,
+                virial: c.impulse,
+            },
         }
     }
 
@@ -124,18 +111,7 @@ impl CollisionRecord {
 
     /// The collision as the engine reported it (pair collisions only).
     pub fn as_pair(&self) -> Option<PairCollision> {
-        (self.kind == KIND_PAIR).then_some(PairCollision {
-            time: self.time,
-            i: self.i,
-            j: self.j,
-            normal: self.normal,
-            vi_before: self.vi_before,
-            vj_before: self.vj_before,
-            vi_after: self.vi_after,
-            vj_after: self.vj_after,
-            energy_lost: self.energy_lost,
-            virial: self.virial,
-        })
+        (self.kind == KIND_PAIR).then_some(self.collision)
     }
 
     /// The collision as the engine reported it (wall collisions only).
@@ -336,17 +312,19 @@ impl CollisionBatch {
             ordinal: self
                 .first_ordinal
                 .wrapping_add((k as u64).wrapping_mul(self.stride)),
-            time: self.time[k],
             kind: self.kind[k],
-            i: self.i[k],
-            j: self.j[k],
-            normal: v(&self.nx, &self.ny),
-            vi_before: v(&self.vix_before, &self.viy_before),
-            vj_before: v(&self.vjx_before, &self.vjy_before),
-            vi_after: v(&self.vix_after, &self.viy_after),
-            vj_after: v(&self.vjx_after, &self.vjy_after),
-            energy_lost: self.energy_lost[k],
-            virial: self.virial[k],
+            collision: PairCollision {
+                time: self.time[k],
+                i: self.i[k],
+                j: self.j[k],
+                normal: v(&self.nx, &self.ny),
+                vi_before: v(&self.vix_before, &self.viy_before),
+                vj_before: v(&self.vjx_before, &self.vjy_before),
+                vi_after: v(&self.vix_after, &self.viy_after),
+                vj_after: v(&self.vjx_after, &self.vjy_after),
+                energy_lost: self.energy_lost[k],
+                virial: self.virial[k],
+            },
         }
     }
 
