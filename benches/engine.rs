@@ -8,10 +8,11 @@
 //! `cargo bench --bench engine -- 'eta=0.50/N=10000$'`.
 //! The setup also prints the engine's heap bytes per disc for each case.
 
+#[macro_use]
 mod common;
 
 use common::{bench_built_once, equilibrated_fluid as engine};
-use criterion::{criterion_group, criterion_main, Criterion, Throughput};
+use criterion::{Criterion, Throughput};
 use std::time::Duration;
 
 fn bench(c: &mut Criterion) {
@@ -36,12 +37,4 @@ fn bench(c: &mut Criterion) {
     }
 }
 
-// Plots off: criterion draws them with plotters, whose PDF backend panics when the
-// machine has no fonts (the 2-core test machine has none), ending the run after the
-// first case. The numbers are printed either way.
-criterion_group! {
-    name = benches;
-    config = Criterion::default().without_plots();
-    targets = bench
-}
-criterion_main!(benches);
+bench_main!(bench);

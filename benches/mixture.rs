@@ -9,10 +9,11 @@
 //! `cargo bench --bench mixture -- 'ratio=5$'`. The setup prints how many grids
 //! each case got.
 
+#[macro_use]
 mod common;
 
 use common::{bench_built_once, equilibrated_mixture};
-use criterion::{criterion_group, criterion_main, Criterion, Throughput};
+use criterion::{Criterion, Throughput};
 use std::time::Duration;
 
 fn bench(c: &mut Criterion) {
@@ -31,12 +32,4 @@ fn bench(c: &mut Criterion) {
     group.finish();
 }
 
-// Plots off: criterion draws them with plotters, whose PDF backend panics when the
-// machine has no fonts (the 2-core test machine has none), ending the run after the
-// first case. The numbers are printed either way.
-criterion_group! {
-    name = benches;
-    config = Criterion::default().without_plots();
-    targets = bench
-}
-criterion_main!(benches);
+bench_main!(bench);

@@ -1,4 +1,21 @@
-//! What the engine benches share: the system they time.
+//! What the engine benches share: the system they time, how they time it, and
+//! their `main`.
+
+/// The bench binary's `main`, running `$bench` with criterion's plots off:
+/// criterion draws them with plotters, whose PDF backend panics when the machine
+/// has no fonts (the 2-core test machine has none), ending the run after the first
+/// case. The numbers are printed either way.
+#[allow(unused_macros)] // the ratio bench has its own main
+macro_rules! bench_main {
+    ($bench:ident) => {
+        criterion::criterion_group! {
+            name = benches;
+            config = criterion::Criterion::default().without_plots();
+            targets = $bench
+        }
+        criterion::criterion_main!(benches);
+    };
+}
 
 use carom::events::{Engine, EngineParams, SystemSpec};
 use criterion::measurement::WallTime;

@@ -19,8 +19,8 @@ pub const THERMO_JSON_SCHEMA: &str = r#"{
     "energy_lost": {"type": "number", "description": "kinetic energy dissipated since the start of the run (energy)"},
     "virial_sum": {"type": "number", "description": "sum over pair collisions of r_ij . dp_i since the start of the run (length*momentum)"},
     "wall_impulse": {"type": "number", "description": "momentum given to all walls since the start of the run (momentum)"},
-    "pressure": {"type": "number", "description": "running pressure estimate P (energy/length^2) over the run so far (t = time - run start); periodic box: P A = N kT + W with W = virial_sum/(2 t); walls: wall impulse per unit time per unit accessible wall length, averaged over the walled axes; absent while t = 0 or kT = 0"},
-    "z": {"type": "number", "description": "running compressibility factor beta P A / N (periodic: 1 + W/(N kT)); with walls A is the area reachable by disc centres, (L_x - 2a)(L_y - 2a) on walled axes with a the largest radius; absent like pressure"},
+    "pressure": {"type": "number", "description": "running pressure estimate P (energy/length^2) over the run so far (t = time - run start); periodic box: P A = N kT + W with W = virial_sum/(2 t); walls: P = z N kT / A with A = N / sum_s (N_s / A_s), A_s the area the centres of species s reach (physics.md (5.8)); absent while t = 0 or kT = 0"},
+    "z": {"type": "number", "description": "running compressibility factor beta P A / N (periodic: 1 + W/(N kT)); with walls J / (2 t kT sum over walled axes k and species s of N_s / (L_k - 2 a_s)), J the impulse on all walls, exact for mixtures (physics.md (5.8)); absent like pressure"},
     "collision_rate": {"type": "number", "description": "pair collisions per disc per unit time over the run so far, 2 N_pair / (N t) (1/time); absent while t = 0"}
   },
   "required": ["time", "kinetic_energy", "temperature", "collisions", "pair_collisions", "wall_collisions", "energy_lost", "virial_sum", "wall_impulse"]
