@@ -4,22 +4,13 @@
 //! r_j − r_i, pointing from i to j; g = v_i − v_j; u = g·n̂ > 0 when the pair
 //! approaches. Masses in the user's mass unit, velocities in length/time.
 //!
-//! `n` need not have unit length: every formula uses u n̂ = (g·n) n/|n|² (the form of
-//! seed 004, which divides by d² instead of normalising). Kinetic energy is then
-//! conserved algebraically whatever the rounding of |n|, whereas normalising first
-//! leaves |n̂|² − 1 biased by rounding, and an elastic collision changes the energy
-//! by exactly u²(|n̂|² − 1) μ-weighted: a systematic drift over 10⁷ collisions.
-//! The engine therefore passes the contact vector r_j − r_i itself.
-//!
-//! The ratio (g·n)/|n|² that sets the size of the impulse is evaluated with
-//! compensated products and sums ([`normal_ratio`]), so that it is rounded about once.
-//! An error ε in it changes the energy of an elastic collision by about μ u² ε: to
-//! first order, so only an unbiased ε keeps a long run from drifting. Plainly
-//! rounded, it is biased when |n|² lies within a few ulp of a power of two — as
-//! at every contact of discs of diameter 1, once contacts are located to ≈ 1e-14
-//! (which the engine's restarted clock achieves): the energy then grew by
-//! 3.5·10⁻¹⁸ per collision at N = 10⁴, η = 0.5 (+3.5·10⁻¹³ relative over 10⁹
-//! collisions, a straight line), against an unbiased random walk of ±10⁻¹⁵.
+//! `n` need not have unit length: every formula uses u n̂ = (g·n) n/|n|² (seed
+//! 004's form, which divides by d² instead of normalising), so kinetic energy is
+//! conserved algebraically whatever the rounding of |n|; the engine passes the
+//! contact vector r_j − r_i itself. The ratio (g·n)/|n|² is evaluated with
+//! compensated products and sums ([`normal_ratio`]) so that it is rounded about
+//! once and without bias: a biased ratio drifts the energy of a long elastic run
+//! linearly. See docs/performance.md, "Resolution".
 
 use glam::DVec2;
 
