@@ -2,7 +2,7 @@
 //! over a run's events, checked against theory with statistics independent of the
 //! engine (physics.md §5–§8).
 //!
-//! [`analyze_log`] reads a log ([`describe`]s its run once, then feeds every
+//! [`analyze_log`] reads a log (`describe`s its run once, then feeds every
 //! message to an [`Analyzer`]); the tests feed an [`Analyzer`] straight from the
 //! engine. [`Analyzer::finish`] makes one report per observable: temperature,
 //! the velocity distribution against Maxwell–Boltzmann, pressure and Z, the

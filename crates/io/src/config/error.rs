@@ -73,7 +73,7 @@ impl ConfigError {
         }
     }
 
-    /// Translate an error of the initial-state builder ([`SystemSpec::build`]) into
+    /// Translate an error of the initial-state builder ([`carom_events::SystemSpec::build`]) into
     /// the configuration's field names: `species[1].radius` becomes
     /// `species.1.radius`, `positions[3].x` becomes `placement.explicit.3`,
     /// overlapping explicit discs are reported on `placement.explicit`.

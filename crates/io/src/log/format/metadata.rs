@@ -39,7 +39,7 @@ pub struct RunMetadata {
     pub n_discs: u64,
     /// `stop`: when the run ends, JSON `{"time": t}` or `{"collisions": n}`.
     pub stop: Stop,
-    /// `log_options`: what is logged, JSON (see [`log_options_to_json`]).
+    /// `log_options`: what is logged, JSON (see `log_options_to_json`).
     pub log: LogOptions,
     /// `resumed_from`: for a resumed log, the file it was resumed from.
     pub resumed_from: Option<String>,

@@ -78,7 +78,7 @@ pub enum ReadError {
         /// The CDR problem.
         source: CdrError,
     },
-    /// A `/thermo` message is not valid JSON for [`Thermo`].
+    /// A `/thermo` message is not valid JSON for [`crate::Thermo`].
     #[error("{file}: /thermo message #{sequence} is not a valid thermo record: {source}")]
     Json {
         /// The file.

@@ -13,15 +13,15 @@ use std::fs::File;
 use std::io::{Read, Seek, SeekFrom};
 use std::path::Path;
 
-/// [`scan`]'s findings for a log that was finished properly, read from its index
+/// [`scan`](crate::scan)'s findings for a log that was finished properly, read from its index
 /// (the MCAP summary section) and the few chunks that hold each channel's first and
 /// last messages, instead of from the whole file: what `carom analyze` needs before
 /// its own pass over every message. Message counts come from the index's
 /// statistics, logged collisions from the `carom.summary` metadata, and times and
-/// thermo counts from the messages themselves, so the result equals [`scan`]'s for
+/// thermo counts from the messages themselves, so the result equals [`scan`](crate::scan)'s for
 /// an intact file. Nothing else in the file is read or checked: damage elsewhere is
 /// found only by a later full read. `Ok(None)` when the file has no usable index (a
-/// run cut short; then use [`scan`]).
+/// run cut short; then use [`scan`](crate::scan)).
 pub fn scan_indexed(path: &Path) -> Result<Option<LogInfo>, ReadError> {
     use mcap::sans_io::indexed_reader::ReadOrder;
     use mcap::sans_io::indexed_reader::{IndexedReadEvent, IndexedReader, IndexedReaderOptions};

@@ -97,7 +97,7 @@ impl LogWriter {
 
     /// An upper estimate (bytes) of how much a file of `file_bytes` bytes on disk
     /// may still grow if a final checkpoint is written and the writer finished now:
-    /// the collisions not yet on disk ([`QUEUE_DEPTH`] full batches waiting for the
+    /// the collisions not yet on disk (`QUEUE_DEPTH` full batches waiting for the
     /// writer thread and the one being gathered, each at most 128 bytes per
     /// collision before compression) and the chunk being filled, the final checkpoint (taken as twice the largest
     /// message so far, which is at least the run's first checkpoint), and the

@@ -42,7 +42,7 @@ pub enum WriteError {
         /// What happened.
         problem: String,
     },
-    /// A call came after [`LogWriter::finish`] or after an earlier error.
+    /// A call came after [`crate::LogWriter::finish`] or after an earlier error.
     #[error("log {0} is already finished or failed")]
     Finished(PathBuf),
 }
@@ -136,7 +136,7 @@ pub struct WriterStats {
     pub next_ordinal: u64,
     /// Collisions sent to `/collisions` over the run (including before a resume).
     pub logged_collisions: u64,
-    /// Messages sent per channel by this writer (see [`TOPICS`]).
+    /// Messages sent per channel by this writer (see [`crate::TOPICS`]).
     pub messages: [u64; 4],
     /// Encoded size of the largest snapshot, thermo or checkpoint message sent so
     /// far (bytes, before compression).
