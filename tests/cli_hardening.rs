@@ -77,3 +77,21 @@ fn a_config_with_a_byte_order_mark_is_read() {
         true
     );
 }
+
+/// A negative or non-finite `--equilibrate` is refused naming the option and what
+/// is allowed, like `--every`.
+#[test]
+fn a_negative_or_infinite_equilibration_time_is_refused() {
+    let dir = scratch("equilibrate");
+    small_log(&dir);
+    for t in ["-1", "NaN", "inf"] {
+        let out = carom(&dir, &["analyze", "small.mcap", "--equilibrate", t, "-q"]);
+        let (code, stderr) = failed(&out);
+        assert_eq!(code, Some(2), "{t}: {stderr}");
+        assert!(
+            stderr.contains(&format!("--equilibrate {}", t.parse::<f64>().unwrap()))
+                && stderr.contains("finite time ≥ 0"),
+            "{t}: {stderr}"
+        );
+    }
+}
