@@ -95,3 +95,37 @@ fn a_negative_or_infinite_equilibration_time_is_refused() {
         );
     }
 }
+
+/// `resume --collisions` takes the forms a configuration takes (`1e3`), and refuses
+/// a count the log has already passed, as `--until` refuses a time in the past.
+#[test]
+fn resume_collisions_take_exponents_and_refuse_a_count_already_passed() {
+    let dir = scratch("resume-collisions");
+    small_log(&dir);
+    let out = carom(
+        &dir,
+        &["resume", "small.mcap", "--collisions", "5", "--out", "back.mcap", "-q"],
+    );
+    let (code, stderr) = failed(&out);
+    assert_eq!(code, Some(2), "{stderr}");
+    assert!(
+        stderr.contains("stop.collisions") && stderr.contains("stop at 5 collisions is below"),
+        "{stderr}"
+    );
+    assert!(!dir.join("back.mcap").exists());
+    let i = json_of(&carom(&dir, &["info", "small.mcap", "--json"]));
+    let done = i["summary"]["pair_collisions"].as_u64().unwrap()
+        + i["summary"]["wall_collisions"].as_u64().unwrap();
+    let target = format!("{:e}", (done + 1000) as f64);
+    let more = ["resume", "small.mcap", "--collisions", &target, "--out", "more.mcap", "-q"];
+    ok(&carom(&dir, &more));
+    let j = json_of(&carom(&dir, &["info", "more.mcap", "--json"]));
+    assert_eq!(j["summary"]["stop_reason"], "collisions");
+    let after = j["summary"]["pair_collisions"].as_u64().unwrap()
+        + j["summary"]["wall_collisions"].as_u64().unwrap();
+    assert_eq!(after, done + 1000);
+    let bad = carom(&dir, &["resume", "small.mcap", "--collisions", "1.5"]);
+    let (code, stderr) = failed(&bad);
+    assert_eq!(code, Some(2), "{stderr}");
+    assert!(stderr.contains("--collisions") && stderr.contains("whole number"), "{stderr}");
+}
