@@ -129,3 +129,26 @@ fn resume_collisions_take_exponents_and_refuse_a_count_already_passed() {
     assert_eq!(code, Some(2), "{stderr}");
     assert!(stderr.contains("--collisions") && stderr.contains("whole number"), "{stderr}");
 }
+
+/// Past a file size limit (`ulimit -f`, without the shell ignoring SIGXFSZ as the
+/// test in cli.rs does) the run stops with the write error naming the file and the
+/// system's reason, exit status 1, instead of being killed by SIGXFSZ (153).
+#[cfg(unix)]
+#[test]
+fn a_file_size_limit_is_reported_not_fatal() {
+    let dir = scratch("ulimit");
+    let script = format!(
+        "ulimit -f 200; exec '{BIN}' run --out big.mcap --quiet \
+         --set species.0.count=2000 --set stop.duration=40"
+    );
+    let out = Command::new("sh")
+        .args(["-c", &script])
+        .current_dir(&dir)
+        .stdin(Stdio::null())
+        .output()
+        .unwrap();
+    let (code, stderr) = failed(&out);
+    assert_eq!(code, Some(1), "{:?}: {stderr}", out.status);
+    assert!(stderr.contains("File too large"), "{stderr}");
+    assert!(stderr.contains("big.mcap"), "{stderr}");
+}

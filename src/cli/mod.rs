@@ -268,9 +268,23 @@ impl std::fmt::Display for Num {
     }
 }
 
+/// Ignore SIGXFSZ: past a file size limit (`ulimit -f`) a write then fails with
+/// EFBIG, which carom reports naming the file and the system's reason, instead of
+/// the signal killing the process without a word (exit status 153).
+fn ignore_file_size_signal() {
+    #[cfg(unix)]
+    // SAFETY: `signal` with SIG_IGN installs no handler code, only the kernel's
+    // disposition "ignore"; it is called first thing in `main`, before any thread
+    // is started, and nothing in carom relies on SIGXFSZ's default action.
+    unsafe {
+        libc::signal(libc::SIGXFSZ, libc::SIG_IGN);
+    }
+}
+
 /// Parse the command line, run the command, report errors; the process's exit
 /// status.
 pub fn main() -> ExitCode {
+    ignore_file_size_signal();
     let cli = Cli::parse();
     let result = match cli.command {
         Command::Run(a) => run::run(a),
