@@ -152,3 +152,28 @@ fn a_file_size_limit_is_reported_not_fatal() {
     assert!(stderr.contains("File too large"), "{stderr}");
     assert!(stderr.contains("big.mcap"), "{stderr}");
 }
+
+/// GNU `timeout` sends SIGTERM to carom and then to its process group, microseconds
+/// apart: the second signal is the same stop, not a second Ctrl-C, and every log
+/// is finished.
+#[cfg(unix)]
+#[test]
+fn timeout_stops_the_run_cleanly_every_time() {
+    let dir = scratch("timeout");
+    for i in 0..6 {
+        let log = format!("t{i}.mcap");
+        let out = Command::new("timeout")
+            .args(["0.4", BIN, "run", "--out", &log, "--quiet"])
+            .args(["--set", "species.0.count=1000", "--set", "stop.duration=1e6"])
+            .current_dir(&dir)
+            .stdin(Stdio::null())
+            .output()
+            .unwrap();
+        let (code, stderr) = failed(&out);
+        assert_eq!(code, Some(124), "{i}: {stderr}");
+        assert!(!stderr.contains("interrupted again"), "{i}: {stderr}");
+        let info = json_of(&carom(&dir, &["info", &log, "--json"]));
+        assert_eq!(info["complete"], true, "{i}: {stderr}");
+        assert_eq!(info["summary"]["stop_reason"], "interrupted", "{i}");
+    }
+}
