@@ -104,7 +104,15 @@ fn resume_collisions_take_exponents_and_refuse_a_count_already_passed() {
     small_log(&dir);
     let out = carom(
         &dir,
-        &["resume", "small.mcap", "--collisions", "5", "--out", "back.mcap", "-q"],
+        &[
+            "resume",
+            "small.mcap",
+            "--collisions",
+            "5",
+            "--out",
+            "back.mcap",
+            "-q",
+        ],
     );
     let (code, stderr) = failed(&out);
     assert_eq!(code, Some(2), "{stderr}");
@@ -117,7 +125,15 @@ fn resume_collisions_take_exponents_and_refuse_a_count_already_passed() {
     let done = i["summary"]["pair_collisions"].as_u64().unwrap()
         + i["summary"]["wall_collisions"].as_u64().unwrap();
     let target = format!("{:e}", (done + 1000) as f64);
-    let more = ["resume", "small.mcap", "--collisions", &target, "--out", "more.mcap", "-q"];
+    let more = [
+        "resume",
+        "small.mcap",
+        "--collisions",
+        &target,
+        "--out",
+        "more.mcap",
+        "-q",
+    ];
     ok(&carom(&dir, &more));
     let j = json_of(&carom(&dir, &["info", "more.mcap", "--json"]));
     assert_eq!(j["summary"]["stop_reason"], "collisions");
@@ -127,7 +143,10 @@ fn resume_collisions_take_exponents_and_refuse_a_count_already_passed() {
     let bad = carom(&dir, &["resume", "small.mcap", "--collisions", "1.5"]);
     let (code, stderr) = failed(&bad);
     assert_eq!(code, Some(2), "{stderr}");
-    assert!(stderr.contains("--collisions") && stderr.contains("whole number"), "{stderr}");
+    assert!(
+        stderr.contains("--collisions") && stderr.contains("whole number"),
+        "{stderr}"
+    );
 }
 
 /// Past a file size limit (`ulimit -f`, without the shell ignoring SIGXFSZ as the
@@ -164,7 +183,12 @@ fn timeout_stops_the_run_cleanly_every_time() {
         let log = format!("t{i}.mcap");
         let out = Command::new("timeout")
             .args(["0.4", BIN, "run", "--out", &log, "--quiet"])
-            .args(["--set", "species.0.count=1000", "--set", "stop.duration=1e6"])
+            .args([
+                "--set",
+                "species.0.count=1000",
+                "--set",
+                "stop.duration=1e6",
+            ])
             .current_dir(&dir)
             .stdin(Stdio::null())
             .output()
@@ -176,4 +200,39 @@ fn timeout_stops_the_run_cleanly_every_time() {
         assert_eq!(info["complete"], true, "{i}: {stderr}");
         assert_eq!(info["summary"]["stop_reason"], "interrupted", "{i}");
     }
+}
+
+/// A run that fails before anything is written (here no room at all: `ulimit -f
+/// 0`) leaves no empty log behind, so the next attempt needs no --force.
+#[cfg(unix)]
+#[test]
+fn a_run_failing_before_writing_leaves_no_empty_log() {
+    let dir = scratch("empty-log");
+    let script = format!(
+        "ulimit -f 0; exec '{BIN}' run --out none.mcap --quiet \
+         --set species.0.count=100 --set stop.duration=1"
+    );
+    let out = Command::new("sh")
+        .args(["-c", &script])
+        .current_dir(&dir)
+        .stdin(Stdio::null())
+        .output()
+        .unwrap();
+    let (code, stderr) = failed(&out);
+    assert_eq!(code, Some(1), "{:?}: {stderr}", out.status);
+    assert!(stderr.contains("none.mcap"), "{stderr}");
+    assert!(!dir.join("none.mcap").exists(), "{stderr}");
+    ok(&carom(
+        &dir,
+        &[
+            "run",
+            "--out",
+            "none.mcap",
+            "-q",
+            "--set",
+            "species.0.count=100",
+            "--set",
+            "stop.duration=1",
+        ],
+    ));
 }

@@ -364,6 +364,13 @@ pub fn run(args: RunArgs) -> Result<ExitCode, CliError> {
     };
     let summary = carom::run::run(&spec, &out, control);
     display.borrow().finish();
+    if summary.is_err() {
+        // A run that failed before its log held a byte leaves no empty file behind
+        // to block the next attempt (which would need --force).
+        if std::fs::metadata(&out).is_ok_and(|m| m.is_file() && m.len() == 0) {
+            let _ = std::fs::remove_file(&out);
+        }
+    }
     Ok(report(
         &summary.map_err(|e| run_error(e, Some(&spec.config_json)))?,
     ))
