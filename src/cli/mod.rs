@@ -162,9 +162,11 @@ fn parse_count(text: &str) -> Result<u64, String> {
     }
     match text.parse::<f64>() {
         Ok(x) if x.fract() == 0.0 && (0.0..=9_007_199_254_740_992.0).contains(&x) => Ok(x as u64),
-        _ => Err("not a whole number ≥ 0 (allowed: an integer such as 5000000, \
+        _ => Err(
+            "not a whole number ≥ 0 (allowed: an integer such as 5000000, \
                   or written with an exponent such as 5e6)"
-            .to_owned()),
+                .to_owned(),
+        ),
     }
 }
 
