@@ -236,3 +236,22 @@ fn a_run_failing_before_writing_leaves_no_empty_log() {
         ],
     ));
 }
+
+/// Resuming a finished log to its own stop simulates nothing: the summary keeps
+/// the run's speed rather than 0 collisions/s.
+#[test]
+fn resuming_a_finished_log_keeps_its_speed() {
+    let dir = scratch("resume-speed");
+    small_log(&dir);
+    let speed = |file: &str| {
+        let i = json_of(&carom(&dir, &["info", file, "--json"]));
+        i["summary"]["collisions_per_second"].as_f64().unwrap()
+    };
+    let before = speed("small.mcap");
+    assert!(before > 0.0);
+    ok(&carom(
+        &dir,
+        &["resume", "small.mcap", "--out", "again.mcap", "-q"],
+    ));
+    assert_eq!(speed("again.mcap"), before);
+}

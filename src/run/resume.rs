@@ -139,6 +139,11 @@ pub fn resume(
     d.run_start_time = driver.run_start_time;
     d.last_checkpoint_at = Some((resumed_at, d.collisions));
     d.last_thermo_at = last_thermo_at;
+    d.earlier_speed = carom_io::scan_indexed(input)
+        .ok()
+        .flatten()
+        .and_then(|i| i.summary)
+        .map(|s| s.collisions_per_second);
     if let Stop::Time(t) = stop {
         if !pending_stops.contains(&t) {
             d.schedule(t, Observation::Stop)?;
