@@ -255,3 +255,34 @@ fn resuming_a_finished_log_keeps_its_speed() {
     ));
     assert_eq!(speed("again.mcap"), before);
 }
+
+/// A figure that cannot be written (no room: `ulimit -f 0`) is named with the
+/// system's reason, not Rust debug text, and leaves no empty file.
+#[cfg(unix)]
+#[test]
+fn a_plot_that_cannot_be_written_says_why_and_leaves_no_empty_file() {
+    let dir = scratch("plot-error");
+    small_log(&dir);
+    let script = format!("ulimit -f 0; exec '{BIN}' analyze small.mcap --plot figs -q");
+    let out = Command::new("sh")
+        .args(["-c", &script])
+        .current_dir(&dir)
+        .stdin(Stdio::null())
+        .output()
+        .unwrap();
+    let (code, stderr) = failed(&out);
+    assert_eq!(code, Some(1), "{:?}: {stderr}", out.status);
+    assert!(stderr.contains("File too large"), "{stderr}");
+    assert!(stderr.contains(".png"), "{stderr}");
+    assert!(
+        !stderr.contains("Os {") && !stderr.contains("IOError"),
+        "{stderr}"
+    );
+    for entry in std::fs::read_dir(dir.join("figs")).unwrap() {
+        let path = entry.unwrap().path();
+        assert!(
+            std::fs::metadata(&path).unwrap().len() > 0,
+            "{path:?} is empty"
+        );
+    }
+}
