@@ -95,7 +95,12 @@ pub fn analyze_log(
     }
     let t_end = run.t_end;
     if let Some(t) = opts.equilibrate {
-        if !t.is_finite() || t >= t_end {
+        if !(t.is_finite() && t >= 0.0) {
+            return Err(AnalysisError::Unusable(format!(
+                "--equilibrate {t}: must be a finite time ≥ 0"
+            )));
+        }
+        if t >= t_end {
             return Err(AnalysisError::Unusable(format!(
                 "--equilibrate {t}: must be before the end of the log at t = {t_end}"
             )));

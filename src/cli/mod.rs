@@ -92,7 +92,7 @@ pub struct ResumeArgs {
     )]
     pub until: Option<f64>,
     /// Run until this many collisions in total instead of the log's own stop.
-    #[arg(long, value_name = "N")]
+    #[arg(long, value_name = "N", value_parser = parse_count)]
     pub collisions: Option<u64>,
     /// Overwrite the --out file if it exists (continuing FILE in place needs no
     /// --force).
@@ -151,6 +151,23 @@ pub struct InfoArgs {
     /// No progress display.
     #[arg(short, long)]
     pub quiet: bool,
+}
+
+/// A count given on the command line, in the forms the configuration accepts: a
+/// non-negative integer, also written as an integral number such as `1e9` (up to
+/// 2⁵³, where such numbers stop being exact).
+fn parse_count(text: &str) -> Result<u64, String> {
+    if let Ok(n) = text.parse::<u64>() {
+        return Ok(n);
+    }
+    match text.parse::<f64>() {
+        Ok(x) if x.fract() == 0.0 && (0.0..=9_007_199_254_740_992.0).contains(&x) => Ok(x as u64),
+        _ => Err(
+            "not a whole number ≥ 0 (allowed: an integer such as 5000000, \
+                  or written with an exponent such as 5e6)"
+                .to_owned(),
+        ),
+    }
 }
 
 /// Interval of the plain progress lines written when standard error is not a
@@ -253,9 +270,23 @@ impl std::fmt::Display for Num {
     }
 }
 
+/// Ignore SIGXFSZ: past a file size limit (`ulimit -f`) a write then fails with
+/// EFBIG, which carom reports naming the file and the system's reason, instead of
+/// the signal killing the process without a word (exit status 153).
+fn ignore_file_size_signal() {
+    #[cfg(unix)]
+    // SAFETY: `signal` with SIG_IGN installs no handler code, only the kernel's
+    // disposition "ignore"; it is called first thing in `main`, before any thread
+    // is started, and nothing in carom relies on SIGXFSZ's default action.
+    unsafe {
+        libc::signal(libc::SIGXFSZ, libc::SIG_IGN);
+    }
+}
+
 /// Parse the command line, run the command, report errors; the process's exit
 /// status.
 pub fn main() -> ExitCode {
+    ignore_file_size_signal();
     let cli = Cli::parse();
     let result = match cli.command {
         Command::Run(a) => run::run(a),
@@ -288,5 +319,17 @@ mod tests {
         assert_eq!(Num::computed(12.3456789012).to_string(), "12.3456789012");
         assert_eq!(Num::computed(0.0).to_string(), "0");
         assert_eq!(Num::computed(1e300).to_string(), "1e300");
+    }
+
+    #[test]
+    fn counts_are_read_as_the_configuration_reads_them() {
+        use super::parse_count;
+        assert_eq!(parse_count("1000"), Ok(1000));
+        assert_eq!(parse_count("1e3"), Ok(1000));
+        assert_eq!(parse_count("2.5E6"), Ok(2_500_000));
+        assert_eq!(parse_count("18446744073709551615"), Ok(u64::MAX));
+        for bad in ["-1", "1.5", "1e300", "NaN", "inf", "ten", ""] {
+            assert!(parse_count(bad).is_err(), "{bad}");
+        }
     }
 }

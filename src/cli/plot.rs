@@ -14,6 +14,7 @@ use carom::analysis::{HistogramReport, Report, SpeciesMb};
 use plotters::coord::types::RangedCoordf64;
 use plotters::coord::Shift;
 use plotters::prelude::*;
+use plotters_backend::DrawingErrorKind;
 
 use super::CliError;
 
@@ -33,28 +34,58 @@ fn register_font() {
 
 type DrawResult<DB> = Result<(), DrawingAreaErrorKind<<DB as DrawingBackend>::ErrorType>>;
 
-fn plot_err<E: std::fmt::Display>(name: &str, e: E) -> CliError {
-    CliError::Plot(format!("{name}: {e}"))
+/// A figure that could not be drawn or written: the error says which file and why (the operating system's reason for a write).
+fn plot_err<E: std::error::Error + Send + Sync + 'static>(
+    path: &Path,
+    e: DrawingAreaErrorKind<E>,
+) -> CliError {
+    let reason = match &e {
+        DrawingAreaErrorKind::BackendError(DrawingErrorKind::DrawingError(b)) => backend_reason(b),
+        other => other.to_string(),
+    };
+    CliError::Plot(format!("cannot write {}: {reason}", path.display()))
 }
 
-/// Draw one figure with `draw` into `dir/name.png` and `dir/name.svg`.
+/// The reason of a backend's error in words: the bitmap backend prints its errors
+/// as Rust debug text, so its I/O and encoding errors are unwrapped.
+fn backend_reason(e: &(dyn std::error::Error + 'static)) -> String {
+    type B = <BitMapBackend<'static> as DrawingBackend>::ErrorType;
+    match e.downcast_ref::<B>() {
+        Some(B::IOError(io)) => io.to_string(),
+        Some(B::ImageError(image)) => image.to_string(),
+        Some(B::InvalidBuffer) => "invalid pixel buffer".to_owned(),
+        _ => e.to_string(),
+    }
+}
+
+/// Draw one figure with `draw` into `dir/name.png` and `dir/name.svg`. A failed
+/// file is removed once its backend is dropped (dropping presents it again).
 macro_rules! both {
     ($dir:expr, $name:expr, $draw:expr) => {{
         let png = $dir.join(format!("{}.png", $name));
-        {
+        let drawn = {
             let root = BitMapBackend::new(&png, SIZE).into_drawing_area();
-            root.fill(&WHITE).map_err(|e| plot_err($name, e))?;
-            $draw(&root).map_err(|e| plot_err($name, e))?;
-            root.present().map_err(|e| plot_err($name, e))?;
-        }
+            root.fill(&WHITE)
+                .and_then(|()| $draw(&root))
+                .and_then(|()| root.present())
+                .map_err(|e| plot_err(&png, e))
+        };
+        drawn.inspect_err(|_| remove(&png))?;
         let svg = $dir.join(format!("{}.svg", $name));
-        {
+        let drawn = {
             let root = SVGBackend::new(&svg, SIZE).into_drawing_area();
-            root.fill(&WHITE).map_err(|e| plot_err($name, e))?;
-            $draw(&root).map_err(|e| plot_err($name, e))?;
-            root.present().map_err(|e| plot_err($name, e))?;
-        }
+            root.fill(&WHITE)
+                .and_then(|()| $draw(&root))
+                .and_then(|()| root.present())
+                .map_err(|e| plot_err(&svg, e))
+        };
+        drawn.inspect_err(|_| remove(&svg))?;
     }};
+}
+
+/// Remove a figure that could not be written.
+fn remove(path: &Path) {
+    let _ = std::fs::remove_file(path);
 }
 
 /// Write every figure of `report` into `dir` (created if needed). Returns the

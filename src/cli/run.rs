@@ -8,7 +8,8 @@ use std::io::IsTerminal;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 use std::sync::atomic::{AtomicBool, Ordering};
-use std::time::Instant;
+use std::sync::OnceLock;
+use std::time::{Duration, Instant};
 
 use carom::events::PlacementProgress;
 use carom::io::{load_config, ConfigError, ReadProgress, Stop, StopReason};
@@ -22,18 +23,51 @@ use super::{CliError, Num, ResumeArgs, RunArgs, PLAIN_EVERY};
 /// finishes the log.
 static STOP: AtomicBool = AtomicBool::new(false);
 
+/// A repeat of the stop signal within this time is the same request: GNU `timeout`
+/// sends SIGTERM to the child and then to its process group microseconds apart.
+const REPEAT_WINDOW: Duration = Duration::from_secs(1);
+
+/// What a stop signal asks for, given when the first one came (`None`: this is it).
+#[derive(Debug, PartialEq)]
+enum OnSignal {
+    /// Stop at the next event and finish the log.
+    Stop,
+    /// The same request again (within [`REPEAT_WINDOW`]): nothing more to do.
+    Repeat,
+    /// A second, deliberate interrupt: exit at once.
+    Abort,
+}
+
+fn on_signal(first: Option<Instant>, now: Instant) -> OnSignal {
+    match first {
+        None => OnSignal::Stop,
+        Some(t) if now.duration_since(t) < REPEAT_WINDOW => OnSignal::Repeat,
+        Some(_) => OnSignal::Abort,
+    }
+}
+
 /// Install the handler of Ctrl-C, SIGTERM and SIGHUP: the first signal asks the
-/// run to stop cleanly, a second one exits at once.
+/// run to stop cleanly, a second one more than [`REPEAT_WINDOW`] later exits at
+/// once.
 fn install_ctrlc() {
+    static FIRST: OnceLock<Instant> = OnceLock::new();
     let r = ctrlc::set_handler(|| {
-        if STOP.swap(true, Ordering::SeqCst) {
-            eprintln!("\ninterrupted again: exiting without finishing the log");
-            std::process::exit(130);
+        let now = Instant::now();
+        match on_signal(FIRST.get().copied(), now) {
+            OnSignal::Repeat => {}
+            OnSignal::Abort => {
+                eprintln!("\ninterrupted again: exiting without finishing the log");
+                std::process::exit(130);
+            }
+            OnSignal::Stop => {
+                let _ = FIRST.set(now);
+                STOP.store(true, Ordering::SeqCst);
+                eprintln!(
+                    "\ninterrupt: stopping at the next event and finishing the log, or at once \
+                     if the discs are still being placed (interrupt again to abort)"
+                );
+            }
         }
-        eprintln!(
-            "\ninterrupt: stopping at the next event and finishing the log, or at once if the \
-             discs are still being placed (interrupt again to abort)"
-        );
     });
     if let Err(e) = r {
         eprintln!(
@@ -330,6 +364,13 @@ pub fn run(args: RunArgs) -> Result<ExitCode, CliError> {
     };
     let summary = carom::run::run(&spec, &out, control);
     display.borrow().finish();
+    if summary.is_err() {
+        // A run that failed before its log held a byte leaves no empty file behind
+        // to block the next attempt (which would need --force).
+        if std::fs::metadata(&out).is_ok_and(|m| m.is_file() && m.len() == 0) {
+            let _ = std::fs::remove_file(&out);
+        }
+    }
     Ok(report(
         &summary.map_err(|e| run_error(e, Some(&spec.config_json)))?,
     ))
@@ -427,6 +468,16 @@ mod tests {
         // Too early: the first snapshot and checkpoint would dominate.
         assert_eq!(progress(0.005, 1 << 20).projected_log_bytes(), None);
         assert_eq!(progress(0.0, big).projected_log_bytes(), None);
+    }
+
+    #[test]
+    fn a_signal_repeated_within_a_second_is_the_same_stop() {
+        let t0 = Instant::now();
+        assert_eq!(on_signal(None, t0), OnSignal::Stop);
+        let soon = t0 + Duration::from_micros(20);
+        assert_eq!(on_signal(Some(t0), soon), OnSignal::Repeat);
+        let later = t0 + Duration::from_millis(1500);
+        assert_eq!(on_signal(Some(t0), later), OnSignal::Abort);
     }
 
     #[test]

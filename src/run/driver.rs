@@ -43,6 +43,9 @@ pub(super) struct Driver<'a> {
     snapshot: Option<State>,
     /// The log's size (bytes) when the room on its disk was last looked at.
     bytes_at_disk_check: u64,
+    /// The speed (collisions/s) of the run this one continues, reported again when
+    /// this one simulates no collision (a finished log resumed to its own stop).
+    pub(super) earlier_speed: Option<f64>,
 }
 
 impl<'a> Driver<'a> {
@@ -70,6 +73,7 @@ impl<'a> Driver<'a> {
             last_progress: Instant::now(),
             snapshot: None,
             bytes_at_disk_check: 0,
+            earlier_speed: None,
         }
     }
 
@@ -316,7 +320,11 @@ impl<'a> Driver<'a> {
         let wall = self.started.elapsed().as_secs_f64();
         let s = *self.engine.stats();
         let this = self.collisions - self.start_collisions;
-        let cps = if wall > 0.0 { this as f64 / wall } else { 0.0 };
+        let cps = match self.earlier_speed {
+            Some(v) if this == 0 => v,
+            _ if wall > 0.0 => this as f64 / wall,
+            _ => 0.0,
+        };
         let kinetic_energy = self.engine.kinetic_energy();
         let logged = self.writer.stats().logged_collisions;
         let sm = SummaryMetadata {

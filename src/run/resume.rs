@@ -43,6 +43,19 @@ pub fn resume(
     let LogCheckpoint { driver, engine } = cp;
     let stop = opts.stop.unwrap_or(meta.stop);
     check_log_options(&meta.log, &stop, engine.now, "stop.time")?;
+    let done = engine.stats.pair_collisions + engine.stats.wall_collisions;
+    if let Stop::Collisions(n) = stop {
+        if n < done {
+            return Err(RunError::Invalid {
+                field: "stop.collisions",
+                problem: format!(
+                    "stop at {n} collisions is below the {done} collisions of the last \
+                     checkpoint"
+                ),
+                allowed: format!("a count ≥ {done}"),
+            });
+        }
+    }
     let pending_stops: Vec<f64> = engine
         .scheduled
         .iter()
@@ -55,7 +68,7 @@ pub fn resume(
             source: EngineError::BadCheckpoint(problem),
         });
     }
-    let next_ordinal = engine.stats.pair_collisions + engine.stats.wall_collisions;
+    let next_ordinal = done;
     let resumed_at = engine.now;
     let engine = Engine::from_checkpoint(engine).map_err(|source| RunError::BadCheckpoint {
         file: input.to_path_buf(),
@@ -126,6 +139,11 @@ pub fn resume(
     d.run_start_time = driver.run_start_time;
     d.last_checkpoint_at = Some((resumed_at, d.collisions));
     d.last_thermo_at = last_thermo_at;
+    d.earlier_speed = carom_io::scan_indexed(input)
+        .ok()
+        .flatten()
+        .and_then(|i| i.summary)
+        .map(|s| s.collisions_per_second);
     if let Stop::Time(t) = stop {
         if !pending_stops.contains(&t) {
             d.schedule(t, Observation::Stop)?;

@@ -22,7 +22,9 @@ pub fn load_config(path: Option<&Path>, sets: &[String]) -> Result<RunSpec, Conf
         ),
         None => ("{}".to_owned(), "built-in default".to_owned()),
     };
-    let config = Config::from_json_with_sets(&text, &origin, sets)?;
+    // A byte-order mark (some Windows editors write one) is not JSON; skip it.
+    let text = text.strip_prefix('\u{feff}').unwrap_or(&text);
+    let config = Config::from_json_with_sets(text, &origin, sets)?;
     config.to_run_spec()
 }
 
