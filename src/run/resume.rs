@@ -20,6 +20,7 @@ use carom_io::{LogWriter, WriterOptions, WriterPosition, CH_THERMO};
 
 use super::disk::free_bytes;
 use super::driver::Driver;
+use super::lock::lock_log;
 use super::observation::Observation;
 use super::{Control, ResumeOptions, ResumePass, RunError, RunSummary};
 
@@ -33,6 +34,13 @@ pub fn resume(
     opts: &ResumeOptions,
     mut control: Control<'_>,
 ) -> Result<RunSummary, RunError> {
+    // The input must not be written meanwhile, nor its result renamed over one
+    // that is.
+    // One that cannot be opened is reported by the reader, with its reason.
+    let _input_lock = match lock_log(input, false) {
+        Err(RunError::Lock { .. }) => None,
+        lock => Some(lock?),
+    };
     let mut reading = |pass: ResumePass, p: ReadProgress| {
         if let Some(show) = control.reading.as_mut() {
             show(pass, p);
@@ -88,6 +96,11 @@ pub fn resume(
             free,
         });
     }
+    let _out_lock = if in_place {
+        None
+    } else {
+        Some(lock_log(out, true)?)
+    };
     let mut writer = LogWriter::create(
         &target,
         WriterOptions::from_log_options(&meta.log),
