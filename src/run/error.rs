@@ -97,6 +97,28 @@ pub enum RunError {
         /// Bytes free on the output's disk.
         free: u64,
     },
+    /// Another process holds the lock on a log this run would write (or resume):
+    /// nothing was written.
+    #[error(
+        "{file} is being written by {}; wait for it to end, or write to another file \
+         with --out",
+        super::lock::holder_text(.holder)
+    )]
+    Locked {
+        /// The log.
+        file: PathBuf,
+        /// The process holding the lock ("process PID (COMMAND LINE)"), where it can
+        /// be told (Linux).
+        holder: Option<String>,
+    },
+    /// The log to lock could not be opened or locked.
+    #[error("cannot open {file} to lock it: {source}")]
+    Lock {
+        /// The log.
+        file: PathBuf,
+        /// The operating system's error.
+        source: std::io::Error,
+    },
     /// Renaming the finished resumed log over the input failed.
     #[error("cannot move the resumed log {from} over {to}: {source}")]
     Rename {

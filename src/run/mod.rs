@@ -21,6 +21,7 @@ mod control;
 mod disk;
 mod driver;
 mod error;
+mod lock;
 mod observation;
 mod resume;
 mod start;

@@ -20,6 +20,7 @@ use carom_io::{LogWriter, WriterOptions, WriterPosition, CH_THERMO};
 
 use super::disk::free_bytes;
 use super::driver::Driver;
+use super::lock::lock_log;
 use super::observation::Observation;
 use super::{Control, ResumeOptions, ResumePass, RunError, RunSummary};
 
@@ -33,6 +34,13 @@ pub fn resume(
     opts: &ResumeOptions,
     mut control: Control<'_>,
 ) -> Result<RunSummary, RunError> {
+    // The input must not be written meanwhile, nor its result renamed over one
+    // that is.
+    // One that cannot be opened is reported by the reader, with its reason.
+    let _input_lock = match lock_log(input, false) {
+        Err(RunError::Lock { .. }) => None,
+        lock => Some(lock?),
+    };
     let mut reading = |pass: ResumePass, p: ReadProgress| {
         if let Some(show) = control.reading.as_mut() {
             show(pass, p);
@@ -101,6 +109,14 @@ pub fn resume(
             free,
         });
     }
+    let _out_lock = if in_place {
+        None
+    } else {
+        Some(lock_log(out, true)?)
+    };
+    // A failed resume in place leaves no temporary file to fill the disk: the
+    // input is intact and is what to resume again.
+    let mut temp = TempFile(in_place.then(|| target.clone()));
     let mut writer = LogWriter::create(
         &target,
         WriterOptions::from_log_options(&meta.log),
@@ -149,8 +165,17 @@ pub fn resume(
             d.schedule(t, Observation::Stop)?;
         }
     }
-    let summary = d.run_loop(&target)?;
+    let summary = d.run_loop(&target).map_err(|e| match e {
+        RunError::LogCut { source, time, .. } if in_place => RunError::LogCut {
+            source,
+            time,
+            log: out.to_path_buf(),
+        },
+        e => e,
+    })?;
     if in_place {
+        // Finished: kept even if the rename fails (the error names it).
+        temp.0 = None;
         std::fs::rename(&target, out).map_err(|source| RunError::Rename {
             from: target.clone(),
             to: out.to_path_buf(),
@@ -197,5 +222,17 @@ pub fn same_file(a: &Path, b: &Path) -> bool {
     match (a.canonicalize(), b.canonicalize()) {
         (Ok(x), Ok(y)) => x == y,
         _ => a == b,
+    }
+}
+
+/// The temporary file of a resume in place, removed when dropped unless it was
+/// renamed over the input (then `None`).
+struct TempFile(Option<std::path::PathBuf>);
+
+impl Drop for TempFile {
+    fn drop(&mut self) {
+        if let Some(path) = &self.0 {
+            let _ = std::fs::remove_file(path);
+        }
     }
 }

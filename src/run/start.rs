@@ -14,6 +14,7 @@ use carom_io::{
 };
 
 use super::driver::Driver;
+use super::lock::lock_log;
 use super::{Control, RunError, RunSummary};
 
 /// Start a fresh run of `spec`, logging to `out` (created or truncated). Blocks
@@ -22,7 +23,16 @@ use super::{Control, RunError, RunSummary};
 pub fn run(spec: &RunSpec, out: &Path, mut control: Control<'_>) -> Result<RunSummary, RunError> {
     // Before placement, which can take a minute: a fresh state starts at time 0.
     check_log_options(&spec.log, &spec.stop, 0.0, "stop.time")?;
-    let state = place(&spec.system, &mut control)?;
+    // Locked before placement, so that a second writer is refused at once; the
+    // file is truncated only once the lock is held, by the writer.
+    let existed = out.exists();
+    let _lock = lock_log(out, true)?;
+    let state = place(&spec.system, &mut control).inspect_err(|_| {
+        if !existed {
+            // Nothing was written: leave no empty log behind.
+            let _ = std::fs::remove_file(out);
+        }
+    })?;
     debug_assert_eq!(state.time, 0.0);
     let n = state.len();
     let facts = RunFacts::new(&state.species, &state.sim_box, &spec.params, &spec.log);

@@ -278,7 +278,8 @@ pub struct StopConfig {
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub duration: Option<f64>,
     /// Number of collisions (pair + wall) to run for, instead of `duration`.
-    /// Integer ≥ 1 (`1e9` is accepted).
+    /// Integer ≥ 1 (`1e9` is accepted); refused when no disc can ever collide
+    /// (one disc in a periodic box, every explicit velocity [0, 0]).
     #[serde(
         default,
         skip_serializing_if = "Option::is_none",

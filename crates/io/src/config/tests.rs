@@ -308,6 +308,35 @@ fn out_of_range_values_are_named() {
     }
 }
 
+/// Discs that all start at rest never collide: a collision stop is refused
+/// (it would run forever, writing snapshots), a time stop is not.
+#[test]
+fn a_collision_stop_without_kinetic_energy_is_refused() {
+    let at_rest = r#"{"species": [{"count": 2}], "box": {"size": [10, 10]},
+        "placement": {"explicit": [[2, 2], [6, 6]]},
+        "velocities": {"explicit": [[0, 0], [0, 0]]}"#;
+    let e = err_of(
+        &format!(r#"{at_rest}, "stop": {{"collisions": 10}}}}"#),
+        &[],
+    );
+    assert_eq!(e.field(), Some("stop.collisions"), "{e}");
+    assert!(e.to_string().contains("no disc ever moves"), "{e}");
+    assert!(e.to_string().contains("allowed: stop.duration"), "{e}");
+    let timed = format!(r#"{at_rest}, "stop": {{"duration": 10}}}}"#);
+    assert!(Config::from_json_with_sets(&timed, "test", &[])
+        .and_then(|c| c.to_run_spec())
+        .is_ok());
+    // One moving disc is enough to collide with a wall or another disc.
+    let moving = at_rest.replace("[[0, 0], [0, 0]]", "[[0, 0], [0.5, 0]]");
+    assert!(Config::from_json_with_sets(
+        &format!(r#"{moving}, "stop": {{"collisions": 10}}}}"#),
+        "test",
+        &[]
+    )
+    .and_then(|c| c.to_run_spec())
+    .is_ok());
+}
+
 #[test]
 fn log_intervals_give_at_most_a_billion_records_per_run() {
     let ok = |text: &str| Config::from_json_str(text).unwrap().to_run_spec().unwrap();

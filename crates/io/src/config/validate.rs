@@ -228,6 +228,17 @@ impl Config {
                     "stop.duration, or walls, or more than one disc",
                 ));
             }
+            (None, Some(_))
+                if matches!(&self.velocities, VelocitiesConfig::Explicit(v)
+                    if v.iter().all(|&[x, y]| x == 0.0 && y == 0.0)) =>
+            {
+                // No kinetic energy: nothing ever moves, so nothing collides.
+                return Err(ConfigError::invalid(
+                    "stop.collisions",
+                    "every explicit velocity is [0, 0], so no disc ever moves or collides",
+                    "stop.duration, or a non-zero velocity in velocities.explicit",
+                ));
+            }
             _ => {}
         }
         Ok(())
