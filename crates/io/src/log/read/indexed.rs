@@ -92,7 +92,7 @@ pub fn scan_indexed(path: &Path) -> Result<Option<LogInfo>, ReadError> {
     file.seek(SeekFrom::Start(index.offset)).map_err(io)?;
     file.read_exact(&mut record).map_err(io)?;
     // A record is its opcode, its length (u64) and its body.
-    let Ok(Record::Metadata(m)) = mcap::parse_record(record[0], &record[9..]) else {
+    let Ok(Record::Metadata(m)) = super::parse_record(record[0], &record[9..]) else {
         return Ok(None);
     };
     let Ok(carom_summary) = SummaryMetadata::from_map(&m.metadata) else {

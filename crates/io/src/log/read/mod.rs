@@ -41,6 +41,7 @@ use mcap::sans_io::{LinearReadEvent, LinearReader, LinearReaderOptions};
 use std::collections::{BTreeMap, HashMap};
 use std::fs::File;
 use std::io::{BufReader, Read, Seek, SeekFrom};
+use std::panic::AssertUnwindSafe;
 use std::path::Path;
 
 /// Reading options.
@@ -156,6 +157,19 @@ impl LogReader<BufReader<File>> {
     }
 }
 
+/// `mcap::parse_record`, with its panics as errors. The mcap crate (0.26) trusts
+/// some lengths inside records and chunks (an attachment's data length, a record
+/// longer than what is left of its chunk) and panics on a damaged one; carom's
+/// promise is an error for any damaged log. Found by `fuzz/log_reader`; the inputs
+/// are kept in `crates/io/tests/fuzz_regressions/`.
+pub(crate) fn parse_record(opcode: u8, data: &[u8]) -> Result<Record<'_>, String> {
+    match std::panic::catch_unwind(move || mcap::parse_record(opcode, data)) {
+        Ok(Ok(record)) => Ok(record),
+        Ok(Err(e)) => Err(e.to_string()),
+        Err(_) => Err("malformed record: a length beyond the end of its record".into()),
+    }
+}
+
 impl<R: Read + Seek> LogReader<R> {
     /// Read a log from any seekable source; `label` names it in errors.
     pub fn new(mut source: R, label: String, opts: ReadOptions) -> Result<Self, ReadError> {
@@ -237,7 +251,7 @@ impl<R: Read + Seek> LogReader<R> {
                     return Err(self.not_carom(format!("not a readable MCAP file ({detail})")))
                 }
             }
-            match mcap::parse_record(self.opcode, &self.record) {
+            match parse_record(self.opcode, &self.record) {
                 Ok(Record::Header(_)) => continue,
                 Ok(Record::Metadata(m)) if m.name == METADATA_RUN => {
                     self.run = RunMetadata::from_map(&m.metadata).map_err(|source| {
@@ -261,7 +275,14 @@ impl<R: Read + Seek> LogReader<R> {
     }
 
     /// Pull the next raw record into `self.record`. Ok(false) at a clean end.
+    /// A panic of the mcap crate's reader is an error (see [`parse_record`]).
     fn next_record(&mut self) -> Result<bool, String> {
+        std::panic::catch_unwind(AssertUnwindSafe(|| self.next_record_unguarded())).unwrap_or_else(
+            |_| Err("malformed record: a length beyond the end of its chunk or record".into()),
+        )
+    }
+
+    fn next_record_unguarded(&mut self) -> Result<bool, String> {
         loop {
             let event = match self.linear.next_event() {
                 None => return Ok(false),
@@ -329,12 +350,12 @@ impl<R: Read + Seek> LogReader<R> {
             }
             if self.in_summary_section {
                 // Summary records repeat what the data section said; only check them.
-                if let Err(e) = mcap::parse_record(self.opcode, &self.record) {
+                if let Err(e) = parse_record(self.opcode, &self.record) {
                     return self.fail(format!("malformed summary record: {e}"));
                 }
                 continue;
             }
-            let rec = match mcap::parse_record(self.opcode, &self.record) {
+            let rec = match parse_record(self.opcode, &self.record) {
                 Ok(r) => r,
                 Err(e) => return self.fail(format!("malformed record: {e}")),
             };
