@@ -22,6 +22,7 @@ mod disk;
 mod driver;
 mod error;
 mod observation;
+mod repair;
 mod resume;
 mod start;
 mod thermo;
@@ -34,6 +35,7 @@ use carom_io::StopReason;
 pub use control::{Control, Progress, ResumePass};
 pub use disk::{disk_low, free_space_for, FreeSpace};
 pub use error::RunError;
+pub use repair::{repair, Repaired};
 pub use resume::{resume, same_file};
 pub use start::run;
 
