@@ -1,4 +1,4 @@
-//! The `carom` command line: `run`, `resume`, `analyze` and `info`.
+//! The `carom` command line: `run`, `resume`, `analyze`, `info` and `repair`.
 //!
 //! Exit status: 0 on success; 1 when a run or a read fails; 2 for a bad command
 //! line or configuration (the message names the field); 130 when a run was
@@ -8,6 +8,7 @@ mod analyze;
 mod info;
 mod plot;
 mod reading;
+mod repair;
 mod run;
 
 use std::path::PathBuf;
@@ -43,6 +44,10 @@ enum Command {
     /// whether it is complete (from a finished log's index; --verify reads every
     /// message).
     Info(InfoArgs),
+    /// Write a complete, indexed log from one cut short (a killed run) holding
+    /// every message up to the cut, without simulating again; the input is left
+    /// as it is.
+    Repair(RepairArgs),
 }
 
 /// Arguments of `carom run`.
@@ -170,6 +175,20 @@ fn parse_count(text: &str) -> Result<u64, String> {
     }
 }
 
+/// Arguments of `carom repair`.
+#[derive(Debug, Args)]
+pub struct RepairArgs {
+    /// The log to repair (it is only read).
+    pub file: PathBuf,
+    /// Where to write the repaired log; default: FILE.repaired.mcap beside FILE
+    /// (for FILE.mcap). Must not be FILE.
+    #[arg(short, long, value_name = "FILE")]
+    pub out: Option<PathBuf>,
+    /// Overwrite the --out file if it exists.
+    #[arg(short, long)]
+    pub force: bool,
+}
+
 /// Interval of the plain progress lines written when standard error is not a
 /// terminal.
 pub(crate) const PLAIN_EVERY: Duration = Duration::from_secs(5);
@@ -293,6 +312,7 @@ pub fn main() -> ExitCode {
         Command::Resume(a) => run::resume(a),
         Command::Analyze(a) => analyze::analyze(a),
         Command::Info(a) => info::info(a),
+        Command::Repair(a) => repair::repair(a),
     };
     match result {
         Ok(code) => code,

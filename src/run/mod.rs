@@ -23,6 +23,7 @@ mod driver;
 mod error;
 mod lock;
 mod observation;
+mod repair;
 mod resume;
 mod start;
 mod thermo;
@@ -35,6 +36,7 @@ use carom_io::StopReason;
 pub use control::{Control, Progress, ResumePass};
 pub use disk::{disk_low, free_space_for, FreeSpace};
 pub use error::RunError;
+pub use repair::{repair, Repaired};
 pub use resume::{resume, same_file};
 pub use start::run;
 

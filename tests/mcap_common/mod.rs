@@ -137,3 +137,30 @@ pub fn read_with_python(py: &str, path: &Path, streaming: bool) -> Value {
     );
     serde_json::from_slice(&out.stdout).expect("python prints JSON")
 }
+
+/// `@mcap/core`'s stream reader on `path`, or `None` (after saying why) to skip.
+pub fn node_read(path: &Path) -> Option<Value> {
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/node");
+    let skip = |why: &str| {
+        eprintln!("skipped: the @mcap/core check ({why})");
+        None
+    };
+    if Command::new("node").arg("--version").output().is_err() {
+        return skip("node is not installed");
+    }
+    if !dir.join("node_modules/@mcap/core").exists() {
+        return skip("run `npm install --prefix tests/node` first; .ci/run does");
+    }
+    let out = Command::new("node")
+        .arg(dir.join("read.mjs"))
+        .arg(path)
+        .output()
+        .expect("node runs");
+    assert!(
+        out.status.success(),
+        "@mcap/core rejects {}:\n{}",
+        path.display(),
+        String::from_utf8_lossy(&out.stderr)
+    );
+    Some(serde_json::from_slice(&out.stdout).expect("read.mjs prints JSON"))
+}

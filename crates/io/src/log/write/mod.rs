@@ -341,6 +341,14 @@ impl LogWriter {
     /// Returns the file size in bytes.
     pub fn finish(&mut self, summary: &BTreeMap<String, String>) -> Result<u64, WriteError> {
         self.write_metadata(METADATA_SUMMARY, summary)?;
+        self.close()
+    }
+
+    /// Send the pending collisions, write the MCAP summary section, close the file
+    /// and wait for the writer thread, without a `carom.summary` record (as for a
+    /// run that did not end: `carom repair` of a cut log). Returns the file size.
+    pub fn close(&mut self) -> Result<u64, WriteError> {
+        self.write_batch()?;
         match std::mem::replace(&mut self.backend, Backend::Done) {
             Backend::Inline(sink) => sink.finish(),
             Backend::Thread { tx, handle, .. } => {

@@ -88,6 +88,12 @@ impl Sink {
             .compression_level(opts.compression_level as u32)
             .compression_threads(0)
             .chunk_size(Some(opts.chunk_size))
+            // Build each chunk in memory and write it whole when it closes: with
+            // seeking, the crate writes a placeholder chunk header (length 2⁶⁴−1)
+            // into the file and fixes it up at the end of the chunk, so a killed
+            // run's file ended in a record strict readers (`@mcap/core`) refuse.
+            // The finished file's bytes are the same either way.
+            .disable_seeking(true)
             .library(format!("carom-io {}", env!("CARGO_PKG_VERSION")))
             .create(BufWriter::with_capacity(1 << 20, file))
             .map_err(mcap_err)?;
