@@ -21,6 +21,7 @@ mod control;
 mod disk;
 mod driver;
 mod error;
+mod memory;
 mod observation;
 mod resume;
 mod start;
@@ -34,6 +35,7 @@ use carom_io::StopReason;
 pub use control::{Control, Progress, ResumePass};
 pub use disk::{disk_low, free_space_for, FreeSpace};
 pub use error::RunError;
+pub use memory::{check_memory, memory_available, memory_needed, IGNORE_MEMORY_CHECK};
 pub use resume::{resume, same_file};
 pub use start::run;
 
