@@ -7,7 +7,7 @@
 //! disc: the engine (about 140 B per disc, `Engine::heap_bytes`; docs/performance.md,
 //! "memory"), the initial state and the lattice sites while the engine is built,
 //! and the log writer's snapshot and checkpoint buffers. `CAROM_IGNORE_MEMORY_CHECK=1`
-//! skips the check (README, "Running").
+//! skips the check (README, "Two commands").
 
 use carom_io::{ConfigError, RunSpec};
 
