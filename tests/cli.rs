@@ -1079,3 +1079,53 @@ fn negative_times_are_refused_naming_the_option() {
         assert!(!stderr.contains("unexpected argument"), "{stderr}");
     }
 }
+
+/// Issue 33, item 1: a run far larger than the machine's memory (4·10⁹ discs need
+/// about 2 TB) is refused at once with the numbers and the field, with exit status
+/// 2, before anything of the size of N is allocated; `--dry-run` checks it too,
+/// and `CAROM_IGNORE_MEMORY_CHECK=1` skips the check.
+#[test]
+fn a_run_larger_than_the_memory_is_refused_before_placing() {
+    let dir = scratch("memory-check");
+    let mut child = Command::new(BIN)
+        .args(["run", "--set", "species.0.count=4e9", "--out", "huge.mcap"])
+        .current_dir(&dir)
+        .stdin(Stdio::null())
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    // Before the check this placed discs for minutes with memory climbing: give
+    // it a generous 30 s, then stop it and fail.
+    let start = std::time::Instant::now();
+    while child.try_wait().unwrap().is_none() {
+        if start.elapsed().as_secs() >= 30 {
+            child.kill().unwrap();
+            child.wait().unwrap();
+            panic!("a run of 4e9 discs was still going after 30 s");
+        }
+        std::thread::sleep(std::time::Duration::from_millis(20));
+    }
+    let out = child.wait_with_output().unwrap();
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(2), "{stderr}");
+    for needed in [
+        "species.0.count",
+        "4000000000 discs need about 2240.0 GB",
+        "available",
+    ] {
+        assert!(stderr.contains(needed), "{needed:?} not in: {stderr}");
+    }
+    assert!(stderr.contains("CAROM_IGNORE_MEMORY_CHECK=1"), "{stderr}");
+    assert!(!dir.join("huge.mcap").exists());
+    let dry = carom(&dir, &["run", "--set", "species.0.count=4e9", "--dry-run"]);
+    assert_eq!(dry.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&dry.stderr).contains("species.0.count"));
+    let ignored = Command::new(BIN)
+        .args(["run", "--set", "species.0.count=4e9", "--dry-run"])
+        .env("CAROM_IGNORE_MEMORY_CHECK", "1")
+        .current_dir(&dir)
+        .output()
+        .unwrap();
+    assert!(ok(&ignored).contains("4000000000"));
+}

@@ -11,7 +11,7 @@ use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::OnceLock;
 use std::time::{Duration, Instant};
 
-use carom::events::PlacementProgress;
+use carom::events::{Placement, PlacementProgress};
 use carom::io::{load_config, ConfigError, ReadProgress, Stop, StopReason};
 use carom::run::{Control, Progress, ResumeOptions, ResumePass, RunError, RunSummary};
 use indicatif::{DecimalBytes, ProgressBar, ProgressStyle};
@@ -45,6 +45,9 @@ fn on_signal(first: Option<Instant>, now: Instant) -> OnSignal {
         Some(_) => OnSignal::Abort,
     }
 }
+
+/// From this many discs a run says that it is placing them (it takes seconds).
+const LARGE_PLACEMENT: usize = 1_000_000;
 
 /// Install the handler of Ctrl-C, SIGTERM and SIGHUP: the first signal asks the
 /// run to stop cleanly, a second one more than [`REPEAT_WINDOW`] later exits at
@@ -341,6 +344,8 @@ pub fn run(args: RunArgs) -> Result<ExitCode, CliError> {
         });
     }
     let spec = load_config(args.config.as_deref(), &args.set)?;
+    // Before placement allocates anything of the size of N.
+    carom::run::check_memory(&spec)?;
     if args.dry_run {
         super::emit(&format!("{}\n", spec.config_json))?;
         return Ok(ExitCode::SUCCESS);
@@ -356,6 +361,14 @@ pub fn run(args: RunArgs) -> Result<ExitCode, CliError> {
     }
     install_ctrlc();
     let display = RefCell::new(Display::new(args.quiet, &out));
+    let n: usize = spec.system.species.iter().map(|s| s.count).sum();
+    if n >= LARGE_PLACEMENT
+        && spec.system.placement != Placement::Relaxed
+        && !display.borrow().quiet()
+    {
+        // Relaxed placement shows its own progress; the others take seconds here.
+        display.borrow().say(&format!("placing {n} discs…"));
+    }
     let mut progress = |p: &Progress| display.borrow_mut().update(p);
     let mut placing = |p: &PlacementProgress| display.borrow_mut().placing(p);
     let control = Control {

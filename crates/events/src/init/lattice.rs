@@ -16,6 +16,9 @@ use crate::error::InitError;
 use carom_core::observables::packing_fraction;
 use carom_core::{DVec2, SimBox};
 use rand_pcg::Pcg64;
+use rows::Axes;
+
+mod rows;
 
 /// Sites along one axis: `count` coordinates and their spacing (∞ for one site on a
 /// walled axis, which has no neighbour along it).
@@ -50,21 +53,10 @@ struct Lattice {
 
 impl Lattice {
     /// (capacity, closest distance between two sites, including periodic images).
-    fn quality(&self, lu: f64, lv: f64, pu: bool, pv: bool, a: f64) -> (usize, f64) {
-        let su = if pu {
-            lu / self.cols as f64
-        } else if self.cols == 1 {
-            f64::INFINITY
-        } else {
-            (lu - 2.0 * a) / (self.cols - 1) as f64
-        };
-        let sv = if pv {
-            lv / self.rows as f64
-        } else if self.rows == 1 {
-            f64::INFINITY
-        } else {
-            (lv - 2.0 * a) / (self.rows - 1) as f64
-        };
+    fn quality(&self, axes: &Axes) -> (usize, f64) {
+        let (pu, pv) = (axes.pu, axes.pv);
+        let su = axes.su(self.cols);
+        let sv = axes.sv(self.rows);
         if !self.shifted {
             return (self.rows * self.cols, su.min(sv));
         }
@@ -94,7 +86,7 @@ impl Lattice {
         );
         let (us, su) = axis_sites(lu, pu, a, self.cols);
         let (vs, _) = axis_sites(lv, pv, a, self.rows);
-        let mut out = Vec::new();
+        let mut out = Vec::with_capacity(self.rows * self.cols);
         for (r, &v) in vs.iter().enumerate() {
             let shift = self.shifted && r % 2 == 1;
             let cols = if shift && !pu {
@@ -226,6 +218,20 @@ fn closest_pair_distance(sim_box: &SimBox, pts: &[DVec2]) -> f64 {
 /// whose closest pair of sites is farthest apart (fewer spare sites on ties).
 /// Returns it with that distance.
 fn best_lattice(sim_box: &SimBox, n: usize, a: f64) -> (Arrangement, f64) {
+    best_lattice_searching(sim_box, n, a, Axes::rows_to_search)
+}
+
+/// The row counts a rows lattice search tries for `n` discs (in increasing order),
+/// given the frame, the row shape and the best closest distance seen so far.
+type RowSearch = fn(&Axes, usize, bool, bool, Option<f64>) -> std::ops::RangeInclusive<usize>;
+
+/// [`best_lattice`] trying the row counts `search` gives.
+fn best_lattice_searching(
+    sim_box: &SimBox,
+    n: usize,
+    a: f64,
+    search: RowSearch,
+) -> (Arrangement, f64) {
     let mut best: Option<(Arrangement, f64, usize)> = None;
     fn consider(
         best: &mut Option<(Arrangement, f64, usize)>,
@@ -285,19 +291,11 @@ fn best_lattice(sim_box: &SimBox, n: usize, a: f64) -> (Arrangement, f64) {
             sim_box.boundary[ku].is_periodic(),
             sim_box.boundary[kv].is_periodic(),
         );
+        let axes = Axes { lu, lv, pu, pv, a };
         for shifted in [false, true] {
-            for rows in 1..=n {
-                // Fewest columns whose capacity holds n discs.
-                let mut lat = Lattice {
-                    rows,
-                    cols: n.div_ceil(rows),
-                    shifted,
-                    transposed,
-                };
-                while lat.quality(lu, lv, pu, pv, a).0 < n {
-                    lat.cols += 1;
-                }
-                let (cap, d) = lat.quality(lu, lv, pu, pv, a);
+            let known = best.map(|(_, bd, _)| bd);
+            for rows in search(&axes, n, shifted, transposed, known) {
+                let (lat, cap, d) = axes.fewest_columns(n, rows, shifted, transposed);
                 consider(&mut best, Arrangement::Rows(lat, Selection::Spread), d, cap);
                 if cap > n && n <= 64 && !fully_periodic {
                     // In small walled boxes the occupied subset can be much better
