@@ -3,40 +3,11 @@
 //! negative or exponent-written options, a resume stop already passed, failed runs
 //! and plots that leave no empty files behind).
 
-use std::path::{Path, PathBuf};
+mod cli_common;
+use cli_common::*;
+
+use std::path::Path;
 use std::process::{Command, Output, Stdio};
-
-use serde_json::Value;
-
-const BIN: &str = env!("CARGO_BIN_EXE_carom");
-
-/// A fresh directory for one test.
-fn scratch(name: &str) -> PathBuf {
-    let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join(format!("hardening-{name}"));
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).unwrap();
-    dir
-}
-
-fn carom(dir: &Path, args: &[&str]) -> Output {
-    Command::new(BIN)
-        .args(args)
-        .current_dir(dir)
-        .stdin(Stdio::null())
-        .output()
-        .unwrap()
-}
-
-fn ok(out: &Output) -> String {
-    let stderr = String::from_utf8_lossy(&out.stderr);
-    assert!(out.status.success(), "exit {:?}: {stderr}", out.status);
-    assert!(!stderr.contains("panicked"), "{stderr}");
-    String::from_utf8(out.stdout.clone()).unwrap()
-}
-
-fn json_of(out: &Output) -> Value {
-    serde_json::from_str(&ok(out)).unwrap()
-}
 
 /// The exit code and standard error of a command expected to fail.
 fn failed(out: &Output) -> (Option<i32>, String) {

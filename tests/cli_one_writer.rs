@@ -2,27 +2,11 @@
 //! log, `carom run --force` and `carom resume` of it are refused at once, name
 //! the holder, and leave the log as it was.
 
+mod cli_common;
+use cli_common::*;
+
 use std::fs::File;
-use std::path::{Path, PathBuf};
-use std::process::{Command, Output, Stdio};
-
-const BIN: &str = env!("CARGO_BIN_EXE_carom");
-
-fn scratch(name: &str) -> PathBuf {
-    let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join(format!("one-writer-{name}"));
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).unwrap();
-    dir
-}
-
-fn carom(dir: &Path, args: &[&str]) -> Output {
-    Command::new(BIN)
-        .args(args)
-        .current_dir(dir)
-        .stdin(Stdio::null())
-        .output()
-        .unwrap()
-}
+use std::process::Output;
 
 const SMALL: [&str; 4] = ["--set", "species.0.count=64", "--set", "stop.duration=2"];
 

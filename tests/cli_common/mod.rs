@@ -1,0 +1,43 @@
+//! What the end-to-end tests of the `carom` binary share: the binary, a scratch
+//! directory per test, running it, and reading its output.
+#![allow(dead_code)] // each test binary uses only some of these
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output, Stdio};
+
+use serde_json::Value;
+
+/// The `carom` binary under test.
+pub const BIN: &str = env!("CARGO_BIN_EXE_carom");
+
+/// A fresh directory for one test, named after the test binary and `name`.
+pub fn scratch(name: &str) -> PathBuf {
+    let binary = env!("CARGO_CRATE_NAME").replace('_', "-");
+    let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join(format!("{binary}-{name}"));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    dir
+}
+
+/// Run `carom ARGS` in `dir` with no standard input.
+pub fn carom(dir: &Path, args: &[&str]) -> Output {
+    Command::new(BIN)
+        .args(args)
+        .current_dir(dir)
+        .stdin(Stdio::null())
+        .output()
+        .unwrap()
+}
+
+/// The standard output of a run that must have succeeded without a panic.
+pub fn ok(out: &Output) -> String {
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(out.status.success(), "exit {:?}: {stderr}", out.status);
+    assert!(!stderr.contains("panicked"), "{stderr}");
+    String::from_utf8(out.stdout.clone()).unwrap()
+}
+
+/// The standard output of a successful run, as JSON.
+pub fn json_of(out: &Output) -> Value {
+    serde_json::from_str(&ok(out)).unwrap()
+}
