@@ -927,12 +927,7 @@ fn a_log_cut_by_a_write_error_names_the_cause_and_resumes() {
         "trap '' XFSZ; ulimit -f 20000; exec '{BIN}' run --out cut.mcap --quiet \
          --set species.0.count=4000 --set stop.duration=40"
     );
-    let out = Command::new("sh")
-        .args(["-c", &script])
-        .current_dir(&dir)
-        .stdin(Stdio::null())
-        .output()
-        .unwrap();
+    let out = sh(&dir, &script);
     let stderr = String::from_utf8_lossy(&out.stderr);
     assert_eq!(out.status.code(), Some(1), "{stderr}");
     assert!(stderr.contains("File too large"), "{stderr}");

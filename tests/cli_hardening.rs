@@ -131,12 +131,7 @@ fn a_file_size_limit_is_reported_not_fatal() {
         "ulimit -f 200; exec '{BIN}' run --out big.mcap --quiet \
          --set species.0.count=2000 --set stop.duration=40"
     );
-    let out = Command::new("sh")
-        .args(["-c", &script])
-        .current_dir(&dir)
-        .stdin(Stdio::null())
-        .output()
-        .unwrap();
+    let out = sh(&dir, &script);
     let (code, stderr) = failed(&out);
     assert_eq!(code, Some(1), "{:?}: {stderr}", out.status);
     assert!(stderr.contains("File too large"), "{stderr}");
@@ -183,12 +178,7 @@ fn a_run_failing_before_writing_leaves_no_empty_log() {
         "ulimit -f 0; exec '{BIN}' run --out none.mcap --quiet \
          --set species.0.count=100 --set stop.duration=1"
     );
-    let out = Command::new("sh")
-        .args(["-c", &script])
-        .current_dir(&dir)
-        .stdin(Stdio::null())
-        .output()
-        .unwrap();
+    let out = sh(&dir, &script);
     let (code, stderr) = failed(&out);
     assert_eq!(code, Some(1), "{:?}: {stderr}", out.status);
     assert!(stderr.contains("none.mcap"), "{stderr}");
@@ -235,12 +225,7 @@ fn a_plot_that_cannot_be_written_says_why_and_leaves_no_empty_file() {
     let dir = scratch("plot-error");
     small_log(&dir);
     let script = format!("ulimit -f 0; exec '{BIN}' analyze small.mcap --plot figs -q");
-    let out = Command::new("sh")
-        .args(["-c", &script])
-        .current_dir(&dir)
-        .stdin(Stdio::null())
-        .output()
-        .unwrap();
+    let out = sh(&dir, &script);
     let (code, stderr) = failed(&out);
     assert_eq!(code, Some(1), "{:?}: {stderr}", out.status);
     assert!(stderr.contains("File too large"), "{stderr}");

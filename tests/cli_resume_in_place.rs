@@ -1,6 +1,9 @@
 //! A resume in place that fails part way (issue 33, item 5) removes its
 //! `.resume-tmp`, leaves the input intact, and advises resuming the input.
 
+mod cli_common;
+use cli_common::sh;
+
 use std::path::Path;
 use std::process::{Command, Stdio};
 
@@ -32,12 +35,7 @@ fn a_failed_resume_in_place_removes_its_temp_file_and_advises_the_input() {
     let script = format!(
         "trap '' XFSZ; ulimit -f {blocks}; exec '{BIN}' resume live.mcap --until 60 --quiet"
     );
-    let out = Command::new("sh")
-        .args(["-c", &script])
-        .current_dir(&dir)
-        .stdin(Stdio::null())
-        .output()
-        .unwrap();
+    let out = sh(&dir, &script);
     let stderr = String::from_utf8_lossy(&out.stderr);
     assert_eq!(out.status.code(), Some(1), "{stderr}");
     assert!(stderr.contains("File too large"), "{stderr}");

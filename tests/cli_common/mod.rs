@@ -41,3 +41,14 @@ pub fn ok(out: &Output) -> String {
 pub fn json_of(out: &Output) -> Value {
     serde_json::from_str(&ok(out)).unwrap()
 }
+
+/// Run the shell script `script` in `dir` with no standard input (for `ulimit`
+/// and `trap` in front of `exec carom …`).
+pub fn sh(dir: &Path, script: &str) -> Output {
+    Command::new("sh")
+        .args(["-c", script])
+        .current_dir(dir)
+        .stdin(Stdio::null())
+        .output()
+        .unwrap()
+}
