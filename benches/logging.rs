@@ -162,6 +162,7 @@ fn bench(c: &mut Criterion) {
             system: system(),
             params: EngineParams::default(),
             stop: Stop::Collisions(RUN),
+            max_time_without_collision: None,
             log,
             config_json: "{}".into(),
         };

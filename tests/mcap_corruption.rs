@@ -251,6 +251,7 @@ fn run_metadata() -> BTreeMap<String, String> {
         start_time: "2024-01-01T00:00:00.000Z".into(),
         n_discs: 1,
         stop: Stop::Time(1.0),
+        max_time_without_collision: None,
         log: LogOptions::default(),
         resumed_from: None,
         resumed_at: None,

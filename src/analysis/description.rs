@@ -211,6 +211,7 @@ mod tests {
                 start_time: String::new(),
                 n_discs: 7,
                 stop: Stop::Time(5.0),
+                max_time_without_collision: None,
                 log: LogOptions::default(),
                 resumed_from: None,
                 resumed_at: None,

@@ -326,6 +326,16 @@ fn report(summary: &RunSummary) -> ExitCode {
             );
             ExitCode::FAILURE
         }
+        StopReason::NoCollision => {
+            eprintln!(
+                "stopped early: {}; the log is finished",
+                summary
+                    .detail
+                    .as_deref()
+                    .unwrap_or("no collision within the bound")
+            );
+            ExitCode::FAILURE
+        }
         StopReason::Error => ExitCode::FAILURE,
         _ => ExitCode::SUCCESS,
     }

@@ -21,6 +21,7 @@ use carom_io::{LogOptions, Stop};
 use super::disk::{disk_low, free_bytes};
 use super::observation::Observation;
 use super::thermo::thermo;
+use super::watchdog;
 use super::{Control, Progress, RunError, RunSummary};
 
 /// The state of a run between events.
@@ -46,6 +47,12 @@ pub(super) struct Driver<'a> {
     /// The speed (collisions/s) of the run this one continues, reported again when
     /// this one simulates no collision (a finished log resumed to its own stop).
     pub(super) earlier_speed: Option<f64>,
+    /// `stop.max_time_without_collision` as the user set it (`watchdog.rs`).
+    pub(super) max_quiet: Option<f64>,
+    /// The time of the last collision, or of the start of this process's part.
+    last_collision: f64,
+    /// Why the watchdog stopped the run, when it did.
+    quiet_detail: Option<String>,
 }
 
 impl<'a> Driver<'a> {
@@ -58,6 +65,7 @@ impl<'a> Driver<'a> {
     ) -> Self {
         let s = engine.stats();
         let collisions = s.pair_collisions + s.wall_collisions;
+        let engine_now = engine.now();
         Driver {
             engine,
             writer,
@@ -74,6 +82,9 @@ impl<'a> Driver<'a> {
             snapshot: None,
             bytes_at_disk_check: 0,
             earlier_speed: None,
+            max_quiet: None,
+            last_collision: engine_now,
+            quiet_detail: None,
         }
     }
 
@@ -102,7 +113,37 @@ impl<'a> Driver<'a> {
         if let Stop::Time(t) = self.stop {
             self.schedule(t, Observation::Stop)?;
         }
+        self.schedule_watchdog()
+    }
+
+    /// Schedule the watchdog's check one bound after the last collision, if the
+    /// run has a bound (`watchdog.rs`).
+    pub(super) fn schedule_watchdog(&mut self) -> Result<(), RunError> {
+        if let Some(b) = watchdog::bound(&self.engine, self.max_quiet, self.stop) {
+            let t = (self.last_collision + b).max(self.engine.now());
+            self.schedule(t, Observation::Watchdog)?;
+        }
         Ok(())
+    }
+
+    /// The watchdog's check at `now`: `true` when no collision has happened within
+    /// the bound (the run must stop); otherwise the next check is scheduled.
+    fn quiet_too_long(&mut self, now: f64) -> Result<bool, RunError> {
+        let Some(b) = watchdog::bound(&self.engine, self.max_quiet, self.stop) else {
+            return Ok(false);
+        };
+        let next = self.last_collision + b;
+        if now - self.last_collision >= b || next <= now {
+            self.quiet_detail = Some(watchdog::explain(
+                self.last_collision,
+                now,
+                b,
+                self.max_quiet,
+            ));
+            return Ok(true);
+        }
+        self.schedule(next, Observation::Watchdog)?;
+        Ok(false)
     }
 
     /// Schedule `what` at time `t`.
@@ -257,10 +298,12 @@ impl<'a> Driver<'a> {
             match ev {
                 Event::Pair(c) => {
                     self.collisions += 1;
+                    self.last_collision = c.time;
                     self.writer.observe_pair(&c)?;
                 }
                 Event::Wall(c) => {
                     self.collisions += 1;
+                    self.last_collision = c.time;
                     self.writer.observe_wall(&c)?;
                 }
                 Event::Scheduled { time, tag } => match Observation::decode(tag) {
@@ -285,6 +328,9 @@ impl<'a> Driver<'a> {
                     }
                     Some(Observation::FinalStop) if time >= stop_time => {
                         reason = Some(StopReason::Time);
+                    }
+                    Some(Observation::Watchdog) if self.quiet_too_long(time)? => {
+                        reason = Some(StopReason::NoCollision);
                     }
                     _ => {}
                 },
@@ -330,7 +376,10 @@ impl<'a> Driver<'a> {
         let sm = SummaryMetadata {
             end_time: now_rfc3339(),
             stop_reason: reason,
-            error: failure.as_ref().map(|e| e.to_string()),
+            error: failure
+                .as_ref()
+                .map(|e| e.to_string())
+                .or(self.quiet_detail.clone()),
             sim_time: self.engine.now(),
             pair_collisions: s.pair_collisions,
             wall_collisions: s.wall_collisions,
@@ -362,6 +411,7 @@ impl<'a> Driver<'a> {
             kinetic_energy,
             energy_lost: s.energy_lost,
             file_bytes,
+            detail: self.quiet_detail.take(),
         })
     }
 }

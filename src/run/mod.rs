@@ -28,6 +28,7 @@ mod repair;
 mod resume;
 mod start;
 mod thermo;
+mod watchdog;
 
 use std::path::PathBuf;
 
@@ -41,6 +42,7 @@ pub use memory::{check_memory, memory_available, memory_needed, IGNORE_MEMORY_CH
 pub use repair::{repair, Repaired};
 pub use resume::{resume, same_file};
 pub use start::run;
+pub use watchdog::MEAN_FREE_TIMES;
 
 /// What a finished run did.
 #[derive(Debug, Clone, PartialEq)]
@@ -69,6 +71,9 @@ pub struct RunSummary {
     pub energy_lost: f64,
     /// Size of the log file (bytes).
     pub file_bytes: u64,
+    /// Why the run stopped early, in words, when the reason alone does not say it
+    /// (`no_collision`: since when, and the bound).
+    pub detail: Option<String>,
 }
 
 /// Options of [`resume`].

@@ -1,6 +1,6 @@
 //! The observations a run schedules at exact times: the k-th snapshot, thermo
-//! record and checkpoint (due at start + k·interval), and the two phases of a
-//! stop. The engine carries a scheduled observation as an opaque `u64` tag
+//! record and checkpoint (due at start + k·interval), the two phases of a
+//! stop, and the watchdog's check for a run without collisions (`watchdog.rs`). The engine carries a scheduled observation as an opaque `u64` tag
 //! (`Engine::schedule`), and checkpoints store those tags, so the encoding below
 //! is part of the log format: the kind in the top byte, the index k below. It is
 //! written and read here only.
@@ -12,6 +12,7 @@ const SNAPSHOT: u64 = 1;
 const THERMO: u64 = 2;
 const CHECKPOINT: u64 = 3;
 const STOP: u64 = 4;
+const WATCHDOG: u64 = 5;
 /// The index of a stop's second phase.
 const STOP_FINAL: u64 = 1;
 
@@ -29,6 +30,8 @@ pub(super) enum Observation {
     Stop,
     /// The run stops.
     FinalStop,
+    /// Check that a collision happened within the bound (`watchdog.rs`).
+    Watchdog,
 }
 
 impl Observation {
@@ -40,6 +43,7 @@ impl Observation {
             Observation::Checkpoint(k) => (CHECKPOINT, k),
             Observation::Stop => (STOP, 0),
             Observation::FinalStop => (STOP, STOP_FINAL),
+            Observation::Watchdog => (WATCHDOG, 0),
         };
         kind << SHIFT | (k & INDEX)
     }
@@ -53,6 +57,7 @@ impl Observation {
             CHECKPOINT => Observation::Checkpoint(k),
             STOP if k == STOP_FINAL => Observation::FinalStop,
             STOP => Observation::Stop,
+            WATCHDOG => Observation::Watchdog,
             _ => return None,
         })
     }
@@ -75,13 +80,14 @@ mod tests {
             (Checkpoint(3), 3 << 56 | 3),
             (Stop, 4 << 56),
             (FinalStop, 4 << 56 | 1),
+            (Watchdog, 5 << 56),
         ];
         for (o, tag) in cases {
             assert_eq!(o.encode(), tag, "{o:?}");
             assert_eq!(Observation::decode(tag), Some(o));
         }
         assert_eq!(Observation::decode(0), None);
-        assert_eq!(Observation::decode(5 << 56), None);
+        assert_eq!(Observation::decode(6 << 56), None);
         // Any other index of a stop is its first phase, as before.
         assert_eq!(Observation::decode(4 << 56 | 9), Some(Stop));
         assert!(Stop.is_stop() && FinalStop.is_stop() && !Thermo(0).is_stop());

@@ -64,6 +64,10 @@ pub fn resume(
             });
         }
     }
+    let watchdog_pending = engine
+        .scheduled
+        .iter()
+        .any(|s| Observation::decode(s.2) == Some(Observation::Watchdog));
     let pending_stops: Vec<f64> = engine
         .scheduled
         .iter()
@@ -164,6 +168,11 @@ pub fn resume(
         if !pending_stops.contains(&t) {
             d.schedule(t, Observation::Stop)?;
         }
+    }
+    d.max_quiet = meta.max_time_without_collision;
+    if !watchdog_pending {
+        // A checkpoint of a time-stopped run, or of a carom without the watchdog.
+        d.schedule_watchdog()?;
     }
     let summary = d.run_loop(&target).map_err(|e| match e {
         RunError::LogCut { source, time, .. } if in_place => RunError::LogCut {

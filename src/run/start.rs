@@ -15,6 +15,7 @@ use carom_io::{
 
 use super::driver::Driver;
 use super::lock::lock_log;
+use super::watchdog::check_reachable;
 use super::{Control, RunError, RunSummary};
 
 /// Start a fresh run of `spec`, logging to `out` (created or truncated). Blocks
@@ -27,20 +28,24 @@ pub fn run(spec: &RunSpec, out: &Path, mut control: Control<'_>) -> Result<RunSu
     // file is truncated only once the lock is held, by the writer.
     let existed = out.exists();
     let _lock = lock_log(out, true)?;
-    let state = place(&spec.system, &mut control).inspect_err(|_| {
+    // Nothing is written before the writer starts: on an error, leave no empty log.
+    let cleanup = |_: &RunError| {
         if !existed {
-            // Nothing was written: leave no empty log behind.
             let _ = std::fs::remove_file(out);
         }
-    })?;
+    };
+    let state = place(&spec.system, &mut control).inspect_err(cleanup)?;
     debug_assert_eq!(state.time, 0.0);
     let n = state.len();
     let facts = RunFacts::new(&state.species, &state.sim_box, &spec.params, &spec.log);
-    let engine = Engine::new(state, spec.params).map_err(|source| RunError::Engine {
-        source,
-        time: 0.0,
-        log: out.to_path_buf(),
-    })?;
+    let engine = Engine::new(state, spec.params)
+        .map_err(|source| RunError::Engine {
+            source,
+            time: 0.0,
+            log: out.to_path_buf(),
+        })
+        .inspect_err(cleanup)?;
+    check_reachable(&engine, spec.stop, &spec.log).inspect_err(cleanup)?;
     let meta = RunMetadata {
         log_format: LOG_FORMAT_VERSION.into(),
         carom_version: env!("CARGO_PKG_VERSION").into(),
@@ -49,6 +54,7 @@ pub fn run(spec: &RunSpec, out: &Path, mut control: Control<'_>) -> Result<RunSu
         start_time: now_rfc3339(),
         n_discs: n as u64,
         stop: spec.stop,
+        max_time_without_collision: spec.max_time_without_collision,
         log: spec.log.clone(),
         resumed_from: None,
         resumed_at: None,
@@ -62,6 +68,7 @@ pub fn run(spec: &RunSpec, out: &Path, mut control: Control<'_>) -> Result<RunSu
     )?;
     let mut d = Driver::new(engine, writer, spec.log.clone(), spec.stop, control);
     d.run_start_time = d.engine.now();
+    d.max_quiet = spec.max_time_without_collision;
     d.schedule_initial()?;
     d.run_loop(out)
 }

@@ -44,6 +44,7 @@ pub fn spec(system: SystemSpec, stop: Stop, log: LogOptions) -> RunSpec {
         system,
         params: EngineParams::default(),
         stop,
+        max_time_without_collision: None,
         log,
     }
 }
@@ -58,6 +59,7 @@ pub fn test_run_metadata(n_discs: u64) -> carom::io::RunMetadata {
         start_time: "2024-01-01T00:00:00.000Z".into(),
         n_discs,
         stop: Stop::Time(1.0),
+        max_time_without_collision: None,
         log: LogOptions::default(),
         resumed_from: None,
         resumed_at: None,

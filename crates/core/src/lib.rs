@@ -9,7 +9,8 @@
 //! * [`boundary`] — rectangular boxes, periodic or walled per axis, and wall collisions;
 //! * [`species`] — what a disc is made of (radius, mass);
 //! * [`observables`] — degrees of freedom, kT, packing fraction, the area centres
-//!   reach, and the pressure estimators (physics.md §5): their only definitions.
+//!   reach, and the pressure estimators (physics.md §5): their only definitions;
+//! * [`rates`] — the collision rates expected from density and temperature (§7).
 //!
 //! Units are the caller's: lengths, times and masses in any consistent system. The
 //! reference values in physics.md use disc diameter σ = 1, m = 1, kT = 1.
@@ -19,6 +20,7 @@ pub mod boundary;
 pub mod collision;
 pub mod kinematics;
 pub mod observables;
+pub mod rates;
 pub mod species;
 
 pub use boundary::{Axis, Boundary, SimBox, WallSide};

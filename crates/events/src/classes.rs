@@ -17,6 +17,7 @@
 
 use crate::cells::{CellGrid, Member};
 use crate::NO_DISC;
+use carom_core::rates::henderson_contact_value;
 use carom_core::{SimBox, Species};
 
 /// Relative margin on a scan's reach into another grid, so that rounding of
@@ -285,9 +286,8 @@ fn work(
     let rho: Vec<f64> = count.iter().map(|&n| n as f64 / area).collect();
     let eta: f64 = (0..species.len())
         .map(|s| rho[s] * species[s].disc_area())
-        .sum::<f64>()
-        .min(0.8);
-    let g = (1.0 - 7.0 * eta / 16.0) / ((1.0 - eta) * (1.0 - eta));
+        .sum::<f64>();
+    let g = henderson_contact_value(eta);
     struct Class {
         radius: f64,
         width: [f64; 2],

@@ -83,6 +83,9 @@ pub struct RunSpec {
     pub params: EngineParams,
     /// When to stop.
     pub stop: Stop,
+    /// The longest simulated time without a collision before the run stops with an
+    /// error (time); `None`: the default of `stop.max_time_without_collision`.
+    pub max_time_without_collision: Option<f64>,
     /// What to log.
     pub log: LogOptions,
     /// The user's configuration as JSON text, stored verbatim in the log's metadata.

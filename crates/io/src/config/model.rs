@@ -269,7 +269,8 @@ impl Default for CollisionConfig {
     }
 }
 
-/// When the run ends: exactly one of `duration` and `collisions`.
+/// When the run ends: exactly one of `duration` and `collisions`, and the watchdog
+/// `max_time_without_collision`.
 #[derive(Debug, Clone, Copy, PartialEq, Default, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct StopConfig {
@@ -286,6 +287,12 @@ pub struct StopConfig {
         deserialize_with = "de_opt_count"
     )]
     pub collisions: Option<u64>,
+    /// The longest stretch of simulated time without any collision before the run
+    /// stops with an error (time), for either stop. Absent: with a collision stop,
+    /// 100 mean free times expected from the density and the current temperature
+    /// (physics.md (7.10)); with a time stop, no bound. Allowed: finite, > 0.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub max_time_without_collision: Option<f64>,
 }
 
 /// MCAP chunk compression.

@@ -92,6 +92,7 @@ impl Config {
             system,
             params,
             stop: c.stop.stop(),
+            max_time_without_collision: c.stop.max_time_without_collision,
             log: c.log.options(),
             config_json: self.canonical_json(),
         })

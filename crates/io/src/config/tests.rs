@@ -274,6 +274,14 @@ fn out_of_range_values_are_named() {
         (r#"{"stop": {"duration": -1}}"#, "stop.duration"),
         (r#"{"stop": {"collisions": 0}}"#, "stop.collisions"),
         (
+            r#"{"stop": {"collisions": 9, "max_time_without_collision": 0}}"#,
+            "stop.max_time_without_collision",
+        ),
+        (
+            r#"{"stop": {"max_time_without_collision": -3}}"#,
+            "stop.max_time_without_collision",
+        ),
+        (
             r#"{"species": [{"count": 1}], "stop": {"collisions": 10}}"#,
             "stop.collisions",
         ),
@@ -351,6 +359,10 @@ fn log_intervals_give_at_most_a_billion_records_per_run() {
     // The default duration (50) counts too.
     let e = err_of(r#"{"log": {"thermo_interval": 1e-8}}"#, &[]);
     assert_eq!(e.field(), Some("log.thermo_interval"), "{e}");
+    // The watchdog's bound goes with either stop, and alone (default duration).
+    ok(r#"{"stop": {"collisions": 10, "max_time_without_collision": 5}}"#);
+    ok(r#"{"stop": {"duration": 10, "max_time_without_collision": 5}}"#);
+    ok(r#"{"stop": {"max_time_without_collision": 5}}"#);
     // A run stopped by its collision count has no known length: not checked.
     ok(r#"{"stop": {"collisions": 10}, "log": {"thermo_interval": 1e-17}}"#);
 }
@@ -568,6 +580,7 @@ fn maximal_values() -> Vec<Value> {
         stop: StopConfig {
             duration: Some(1.0),
             collisions: Some(1),
+            max_time_without_collision: Some(1.0),
         },
         ..Config::default()
     };

@@ -241,6 +241,14 @@ impl Config {
             }
             _ => {}
         }
-        Ok(())
+        match self.stop.max_time_without_collision {
+            Some(t) if !(t.is_finite() && t > 0.0) => Err(ConfigError::invalid(
+                "stop.max_time_without_collision",
+                format!("value {t}"),
+                "finite simulated time > 0 (absent: 100 expected mean free times with a \
+                 collision stop, no bound with a time stop)",
+            )),
+            _ => Ok(()),
+        }
     }
 }

@@ -39,6 +39,10 @@ pub struct RunMetadata {
     pub n_discs: u64,
     /// `stop`: when the run ends, JSON `{"time": t}` or `{"collisions": n}`.
     pub stop: Stop,
+    /// `max_time_without_collision`: the user's bound on simulated time without a
+    /// collision (time); absent: the default (see `stop.max_time_without_collision`
+    /// in the configuration).
+    pub max_time_without_collision: Option<f64>,
     /// `log_options`: what is logged, JSON (see `log_options_to_json`).
     pub log: LogOptions,
     /// `resumed_from`: for a resumed log, the file it was resumed from.
@@ -159,6 +163,9 @@ impl RunMetadata {
         m.insert("start_time".into(), self.start_time.clone());
         m.insert("n_discs".into(), self.n_discs.to_string());
         m.insert("stop".into(), stop_to_json(&self.stop).to_string());
+        if let Some(t) = self.max_time_without_collision {
+            m.insert("max_time_without_collision".into(), json!(t).to_string());
+        }
         m.insert(
             "log_options".into(),
             log_options_to_json(&self.log).to_string(),
@@ -213,6 +220,10 @@ impl RunMetadata {
             start_time: get(m, R, "start_time")?.to_string(),
             n_discs: parse(m, R, "n_discs")?,
             stop,
+            max_time_without_collision: match m.get("max_time_without_collision") {
+                Some(_) => Some(parse(m, R, "max_time_without_collision")?),
+                None => None,
+            },
             log,
             resumed_from: m.get("resumed_from").cloned(),
             resumed_at: match m.get("resumed_at") {
@@ -250,6 +261,9 @@ pub enum StopReason {
     /// there was still room for a final checkpoint and the summary, so the log is
     /// finished and a resume loses nothing.
     DiskFull,
+    /// No collision happened within `max_time_without_collision`
+    /// (`no_collision`): the run could never reach its stop; its log is finished.
+    NoCollision,
 }
 
 impl StopReason {
@@ -262,6 +276,7 @@ impl StopReason {
             StopReason::Exhausted => "exhausted",
             StopReason::Error => "error",
             StopReason::DiskFull => "disk_full",
+            StopReason::NoCollision => "no_collision",
         }
     }
 
@@ -273,6 +288,7 @@ impl StopReason {
             "exhausted" => StopReason::Exhausted,
             "error" => StopReason::Error,
             "disk_full" => StopReason::DiskFull,
+            "no_collision" => StopReason::NoCollision,
             _ => return None,
         })
     }
@@ -286,7 +302,8 @@ pub struct SummaryMetadata {
     pub end_time: String,
     /// `stop_reason`.
     pub stop_reason: StopReason,
-    /// `error`: the engine's error message when `stop_reason` is `error`.
+    /// `error`: the engine's error message when `stop_reason` is `error`; why no
+    /// collision came when it is `no_collision`.
     pub error: Option<String>,
     /// `sim_time`: simulated time at the end (time).
     pub sim_time: f64,
@@ -412,6 +429,7 @@ mod tests {
             StopReason::Exhausted,
             StopReason::Error,
             StopReason::DiskFull,
+            StopReason::NoCollision,
         ];
         for r in all {
             assert_eq!(StopReason::parse(r.as_str()), Some(r));
@@ -431,6 +449,7 @@ mod tests {
             start_time: now_rfc3339(),
             n_discs: 100,
             stop: Stop::Time(12.5),
+            max_time_without_collision: Some(0.25),
             log: LogOptions {
                 snapshot_interval: None,
                 compression: Compression::Lz4,

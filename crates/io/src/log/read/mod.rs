@@ -214,6 +214,7 @@ impl<R: Read + Seek> LogReader<R> {
                 start_time: String::new(),
                 n_discs: 0,
                 stop: crate::options::Stop::Collisions(0),
+                max_time_without_collision: None,
                 log: Default::default(),
                 resumed_from: None,
                 resumed_at: None,
