@@ -12,7 +12,7 @@ const SNAPSHOT: u64 = 1;
 const THERMO: u64 = 2;
 const CHECKPOINT: u64 = 3;
 const STOP: u64 = 4;
-const WATCHDOG: u64 = 5;
+const WATCHDOG: u64 = 6;
 /// The index of a stop's second phase.
 const STOP_FINAL: u64 = 1;
 
@@ -80,14 +80,14 @@ mod tests {
             (Checkpoint(3), 3 << 56 | 3),
             (Stop, 4 << 56),
             (FinalStop, 4 << 56 | 1),
-            (Watchdog, 5 << 56),
+            (Watchdog, 6 << 56),
         ];
         for (o, tag) in cases {
             assert_eq!(o.encode(), tag, "{o:?}");
             assert_eq!(Observation::decode(tag), Some(o));
         }
         assert_eq!(Observation::decode(0), None);
-        assert_eq!(Observation::decode(6 << 56), None);
+        assert_eq!(Observation::decode(7 << 56), None);
         // Any other index of a stop is its first phase, as before.
         assert_eq!(Observation::decode(4 << 56 | 9), Some(Stop));
         assert!(Stop.is_stop() && FinalStop.is_stop() && !Thermo(0).is_stop());
