@@ -23,6 +23,7 @@ fn log_opts(compression: Compression) -> LogOptions {
         snapshot_interval: Some(1.0),
         thermo_interval: Some(0.5),
         checkpoint_interval: Some(2.0),
+        scene_interval: None,
         compression,
         flush_seconds: 1.0,
     }

@@ -1,5 +1,5 @@
 //! The observations a run schedules at exact times: the k-th snapshot, thermo
-//! record and checkpoint (due at start + k·interval), and the two phases of a
+//! record, checkpoint and scene frame (due at start + k·interval), and the two phases of a
 //! stop. The engine carries a scheduled observation as an opaque `u64` tag
 //! (`Engine::schedule`), and checkpoints store those tags, so the encoding below
 //! is part of the log format: the kind in the top byte, the index k below. It is
@@ -12,6 +12,7 @@ const SNAPSHOT: u64 = 1;
 const THERMO: u64 = 2;
 const CHECKPOINT: u64 = 3;
 const STOP: u64 = 4;
+const SCENE: u64 = 5;
 /// The index of a stop's second phase.
 const STOP_FINAL: u64 = 1;
 
@@ -24,6 +25,8 @@ pub(super) enum Observation {
     Thermo(u64),
     /// The k-th `/checkpoint`.
     Checkpoint(u64),
+    /// The k-th `/scene` frame.
+    Scene(u64),
     /// The stop time is reached: the stop is scheduled again at the same time as
     /// [`Observation::FinalStop`], so that every observation due then comes first.
     Stop,
@@ -38,6 +41,7 @@ impl Observation {
             Observation::Snapshot(k) => (SNAPSHOT, k),
             Observation::Thermo(k) => (THERMO, k),
             Observation::Checkpoint(k) => (CHECKPOINT, k),
+            Observation::Scene(k) => (SCENE, k),
             Observation::Stop => (STOP, 0),
             Observation::FinalStop => (STOP, STOP_FINAL),
         };
@@ -51,6 +55,7 @@ impl Observation {
             SNAPSHOT => Observation::Snapshot(k),
             THERMO => Observation::Thermo(k),
             CHECKPOINT => Observation::Checkpoint(k),
+            SCENE => Observation::Scene(k),
             STOP if k == STOP_FINAL => Observation::FinalStop,
             STOP => Observation::Stop,
             _ => return None,
@@ -73,6 +78,7 @@ mod tests {
             (Snapshot(0), 1 << 56),
             (Thermo(7), 2 << 56 | 7),
             (Checkpoint(3), 3 << 56 | 3),
+            (Scene(2), 5 << 56 | 2),
             (Stop, 4 << 56),
             (FinalStop, 4 << 56 | 1),
         ];
@@ -81,7 +87,7 @@ mod tests {
             assert_eq!(Observation::decode(tag), Some(o));
         }
         assert_eq!(Observation::decode(0), None);
-        assert_eq!(Observation::decode(5 << 56), None);
+        assert_eq!(Observation::decode(6 << 56), None);
         // Any other index of a stop is its first phase, as before.
         assert_eq!(Observation::decode(4 << 56 | 9), Some(Stop));
         assert!(Stop.is_stop() && FinalStop.is_stop() && !Thermo(0).is_stop());
