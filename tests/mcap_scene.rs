@@ -8,7 +8,7 @@
 
 mod mcap_common;
 
-use carom::io::{scan, LogOptions, LogReader, Stop, CH_SCENE, CH_SNAPSHOT};
+use carom::io::{scan, LogOptions, LogReader, Stop, CH_SCENE, CH_SNAPSHOT, THERMO_JSON_SCHEMA};
 use carom::run::{resume, run, Control, ResumeOptions};
 use mcap_common::*;
 use serde_json::Value;
@@ -155,4 +155,51 @@ fn a_resumed_run_continues_the_frames_of_the_uninterrupted_one() {
     // Frames at 0, 0.3, …, 2.4: the same bytes, times and sequence numbers.
     assert_eq!(b.len(), 9);
     assert!(a == b, "the resumed log's frames differ");
+}
+
+/// The panel ids in a Foxglove layout tree (a panel id, or a split of two trees).
+fn panels(tree: &Value, out: &mut Vec<String>) {
+    match tree {
+        Value::String(id) => out.push(id.clone()),
+        _ => {
+            panels(&tree["first"], out);
+            panels(&tree["second"], out);
+        }
+    }
+}
+
+#[test]
+fn the_foxglove_layout_shows_the_scene_from_above_beside_thermo_plots() {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("data/foxglove-layout.json");
+    let layout: Value = serde_json::from_slice(&std::fs::read(path).unwrap()).unwrap();
+    let configs = layout["configById"].as_object().unwrap();
+    let mut ids = vec![];
+    panels(&layout["layout"], &mut ids);
+    ids.sort();
+    let mut configured: Vec<String> = configs.keys().cloned().collect();
+    configured.sort();
+    assert_eq!(ids, configured, "every panel in the tree has its config");
+    let thermo: Value = serde_json::from_str(THERMO_JSON_SCHEMA).unwrap();
+    let (mut views, mut plotted) = (0, 0);
+    for (id, c) in configs {
+        if id.starts_with("3D!") {
+            views += 1;
+            assert_eq!(c["followTf"], "box", "{id} follows the scene's frame");
+            assert_eq!(c["topics"]["/scene"]["visible"], true, "{id}");
+            assert_eq!(c["cameraState"]["phi"], 0.0, "{id} looks straight down");
+        } else {
+            assert!(id.starts_with("Plot!"), "{id}");
+            for p in c["paths"].as_array().unwrap() {
+                let path = p["value"].as_str().unwrap();
+                let field = path.strip_prefix("/thermo.").expect("plots of /thermo");
+                assert!(
+                    thermo["properties"].get(field).is_some(),
+                    "{path}: /thermo has no field {field}"
+                );
+                plotted += 1;
+            }
+        }
+    }
+    assert_eq!(views, 1);
+    assert!(plotted >= 2);
 }
