@@ -2,9 +2,10 @@
 //! default), skipped by carom's readers, continued frame for frame by a resume,
 //! and decoded by Foxglove's own decoders (`tests/node/scene.mjs`: `@mcap/core`,
 //! `@foxglove/rosmsg`, `@foxglove/rosmsg2-serialization`) to discs at the
-//! positions and sizes of `/snapshot`. The node part runs when node and
-//! `npm install --prefix tests/node` are there, and is skipped with a message
-//! otherwise.
+//! positions and sizes of `/snapshot`, and by Python's `mcap-ros2-support`. The
+//! node part runs when node and `npm install --prefix tests/node` are there, the
+//! Python part with `CAROM_PYTHON` (see `mcap_python.rs`); each is skipped with a
+//! message otherwise.
 
 mod mcap_common;
 
@@ -99,6 +100,36 @@ fn foxglove_decodes_scene_frames_that_match_the_snapshots() {
     assert_eq!(messages, counted, "next_message skips /scene");
     let mut r = LogReader::open(&out).unwrap();
     assert_eq!(r.snapshots().count(), 5);
+
+    // mcap-ros2-support, the Python decoder of ROS 2 messages, reads the frames too.
+    if let Some(py) = python() {
+        let script = "import sys; from mcap.reader import make_reader\n\
+            from mcap_ros2.decoder import DecoderFactory\n\
+            d = DecoderFactory(); out = []\n\
+            for s, c, m in make_reader(open(sys.argv[1], 'rb')).iter_messages(topics=['/scene']):\n\
+            \x20   e = d.decoder_for(c.message_encoding, s)(m.data).entities[0]\n\
+            \x20   p = e.cylinders[-1].pose.position\n\
+            \x20   out.append(f'{e.id} {len(e.cylinders)} {p.x!r} {e.lines[0].points[2].y!r}')\n\
+            print('\\n'.join(out))";
+        let o = Command::new(&py)
+            .args(["-c", script, out.to_str().unwrap()])
+            .output()
+            .unwrap();
+        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+        let text = String::from_utf8(o.stdout).unwrap();
+        let mut r = LogReader::open(&out).unwrap();
+        let snap = match r.snapshots().next().unwrap().unwrap() {
+            carom::io::LogMessage::Snapshot(s) => s,
+            m => panic!("{m:?}"),
+        };
+        let first = text.lines().next().unwrap();
+        let want = format!(
+            "discs 300 {:?} {:?}",
+            snap.positions[299].x, snap.box_size.y
+        );
+        assert_eq!(first, want);
+        assert_eq!(text.lines().count(), 9);
+    }
 
     if let Some(v) = node_scene(&out) {
         assert_eq!(
