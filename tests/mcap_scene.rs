@@ -201,7 +201,7 @@ fn panels(tree: &Value, out: &mut Vec<String>) {
 
 #[test]
 fn the_foxglove_layout_shows_the_scene_from_above_beside_thermo_plots() {
-    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("data/foxglove-layout.json");
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("data/foxglove/layout.json");
     let layout: Value = serde_json::from_slice(&std::fs::read(path).unwrap()).unwrap();
     let configs = layout["configById"].as_object().unwrap();
     let mut ids = vec![];
