@@ -58,6 +58,7 @@ fn valid_log(compression: Compression) -> Vec<u8> {
         snapshot_interval: Some(0.5),
         thermo_interval: Some(0.25),
         checkpoint_interval: Some(1.0),
+        scene_interval: None,
         compression,
         flush_seconds: 1.0,
     };

@@ -30,6 +30,7 @@ fn log_opts() -> LogOptions {
         snapshot_interval: Some(10.0),
         thermo_interval: Some(2.0),
         checkpoint_interval: Some(20.0),
+        scene_interval: None,
         compression: Compression::Zstd,
         flush_seconds: 0.05,
     }

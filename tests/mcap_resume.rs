@@ -40,6 +40,7 @@ fn log_opts() -> LogOptions {
         snapshot_interval: Some(1.0),
         thermo_interval: Some(0.5),
         checkpoint_interval: Some(2.0),
+        scene_interval: None,
         compression: Compression::Zstd,
         flush_seconds: 1.0,
     }

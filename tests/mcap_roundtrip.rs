@@ -23,6 +23,7 @@ fn log_opts(compression: Compression) -> LogOptions {
         snapshot_interval: Some(1.0),
         thermo_interval: Some(0.5),
         checkpoint_interval: Some(2.0),
+        scene_interval: None,
         compression,
         flush_seconds: 1.0,
     }
@@ -168,10 +169,10 @@ fn log_holds_exactly_what_the_engine_did() {
     // scan(): counts and span without decoding.
     let info = scan(&out).unwrap();
     assert_eq!(info.end, LogEnd::Complete);
-    assert_eq!(info.messages[1..], [6, 11, 4]);
+    assert_eq!(info.messages[1..], [6, 11, 4, 0]);
     assert_eq!(info.logged_collisions, events.len() as u64);
     assert_eq!(info.last_checkpoint_time, Some(5.0));
-    assert_eq!(info.channels, [true; 4]);
+    assert_eq!(info.channels, [true, true, true, true, false], "no /scene");
     assert!(info.summary.is_some());
 
     // The index of a finished log gives the same, reading only a few chunks.

@@ -4,6 +4,7 @@
 
 use std::process::ExitCode;
 
+use carom::io::CH_SCENE;
 use carom::io::{scan_indexed, scan_observed, LogEnd, LogInfo, Stop, TOPICS};
 use std::fmt::Write;
 
@@ -145,6 +146,9 @@ pub fn info(args: InfoArgs) -> Result<ExitCode, CliError> {
     }
     let _ = writeln!(s, "  channels:");
     for (k, t) in TOPICS.iter().enumerate() {
+        if k == CH_SCENE && !i.channels[k] {
+            continue; // optional, and off unless asked for
+        }
         let span = match i.time_span[k] {
             Some((a, b)) => format!("t ∈ [{}, {}]", Num(a), Num(b)),
             None => "no messages".into(),

@@ -4,9 +4,9 @@
 //! ends the log cleanly whatever stops the run.
 //!
 //! What a run writes, in order: the `carom.run` metadata; at the start time a
-//! `/snapshot`, a `/thermo` record and a `/checkpoint` (each when enabled, the
-//! checkpoint always), then the same at start + k·interval; `/collisions` batches
-//! in between; at the end a final `/thermo` record and `/checkpoint`, and
+//! `/snapshot`, a `/thermo` record, a `/checkpoint` and a `/scene` frame (each
+//! when enabled, the checkpoint always), then the same at start + k·interval;
+//! `/collisions` batches in between; at the end a final `/thermo` record and `/checkpoint`, and
 //! `carom.summary`. A stop at `t_end` comes after every observation due at `t_end`.
 
 use std::path::Path;
@@ -24,6 +24,17 @@ use super::thermo::thermo;
 use super::watchdog;
 use super::{Control, Progress, RunError, RunSummary};
 
+/// The engine's state now, in the arrays of `kept` (the last one written).
+fn state_now<'s>(engine: &Engine, kept: &'s mut Option<State>) -> &'s State {
+    match kept {
+        Some(s) => {
+            engine.state_into(s);
+            s
+        }
+        none => none.insert(engine.state()),
+    }
+}
+
 /// The state of a run between events.
 pub(super) struct Driver<'a> {
     pub(super) engine: Engine,
@@ -40,7 +51,7 @@ pub(super) struct Driver<'a> {
     start_collisions: u64,
     started: Instant,
     last_progress: Instant,
-    /// The state written by the last snapshot, kept to reuse its arrays.
+    /// The state written by the last snapshot or scene, kept to reuse its arrays.
     snapshot: Option<State>,
     /// The log's size (bytes) when the room on its disk was last looked at.
     bytes_at_disk_check: u64,
@@ -105,6 +116,9 @@ impl<'a> Driver<'a> {
         }
         if self.log.thermo_interval.is_some() {
             due.push(Observation::Thermo(0));
+        }
+        if self.log.scene_interval.is_some() {
+            due.push(Observation::Scene(0));
         }
         due.push(Observation::Checkpoint(0));
         for o in due {
@@ -171,14 +185,14 @@ impl<'a> Driver<'a> {
     }
 
     fn write_snapshot(&mut self) -> Result<(), RunError> {
-        let state = match &mut self.snapshot {
-            Some(s) => {
-                self.engine.state_into(s);
-                s
-            }
-            none => none.insert(self.engine.state()),
-        };
+        let state = state_now(&self.engine, &mut self.snapshot);
         self.writer.write_snapshot(state)?;
+        Ok(())
+    }
+
+    fn write_scene(&mut self, frame: u64) -> Result<(), RunError> {
+        let state = state_now(&self.engine, &mut self.snapshot);
+        self.writer.write_scene(frame, state)?;
         Ok(())
     }
 
@@ -321,6 +335,11 @@ impl<'a> Driver<'a> {
                         let interval = self.log.checkpoint_interval;
                         self.schedule_next(Observation::Checkpoint, k, interval)?;
                         self.write_checkpoint()?;
+                    }
+                    Some(Observation::Scene(k)) => {
+                        let interval = self.log.scene_interval;
+                        self.schedule_next(Observation::Scene, k, interval)?;
+                        self.write_scene(k)?;
                     }
                     // Let every observation due at this very time come first.
                     Some(Observation::Stop) if time >= stop_time => {

@@ -6,8 +6,8 @@
 //! discs for minutes while the machine runs out of memory. The estimate is per
 //! disc: the engine (about 140 B per disc, `Engine::heap_bytes`; docs/performance.md,
 //! "memory"), the initial state and the lattice sites while the engine is built,
-//! and the log writer's snapshot and checkpoint buffers. `CAROM_IGNORE_MEMORY_CHECK=1`
-//! skips the check (README, "Two commands").
+//! and the log writer's snapshot, checkpoint and (when logged) scene buffers.
+//! `CAROM_IGNORE_MEMORY_CHECK=1` skips the check (README, "Two commands").
 
 use carom_io::{ConfigError, RunSpec};
 
@@ -23,6 +23,11 @@ const SNAPSHOT: u64 = 3 * 34;
 /// Bytes per disc of the writer at a checkpoint (about 106 B per disc: the engine's
 /// arrays copied out, their encoded message and the compressed chunk).
 const CHECKPOINT: u64 = 3 * 106;
+
+/// Bytes per disc of the writer at a `/scene` frame, when scenes are logged (128 B
+/// per disc: the encoded message, the buffer recycled for the next one, and the
+/// chunk it goes into); the state it encodes is the snapshot's.
+const SCENE: u64 = 3 * 128;
 
 /// The environment variable that, set to 1, skips the check.
 pub const IGNORE_MEMORY_CHECK: &str = "CAROM_IGNORE_MEMORY_CHECK";
@@ -106,20 +111,25 @@ fn check_against(spec: &RunSpec, available: u64, source: &str) -> Result<(), Con
     let species = &spec.system.species;
     let n: u64 = species.iter().map(|s| s.count as u64).sum();
     let snapshots = spec.log.snapshot_interval.is_some();
-    let needed = memory_needed(n, snapshots);
+    let scene = if spec.log.scene_interval.is_some() {
+        SCENE
+    } else {
+        0
+    };
+    let needed = memory_needed(n, snapshots).saturating_add(n.saturating_mul(scene));
     if needed <= available {
         return Ok(());
     }
     let largest = (0..species.len())
         .max_by_key(|&k| species[k].count)
         .unwrap_or(0);
-    let per_disc = memory_needed(1, snapshots);
+    let per_disc = memory_needed(1, snapshots) + scene;
     let gb = |b: u64| b as f64 / 1e9;
     Err(ConfigError::Invalid {
         field: format!("species.{largest}.count"),
         problem: format!(
             "{n} discs need about {:.1} GB of memory ({per_disc} bytes per disc: the engine, \
-             placement and the log's snapshot and checkpoint buffers), but {:.1} GB are \
+             placement and the log's snapshot, checkpoint and scene buffers), but {:.1} GB are \
              available ({source})",
             gb(needed),
             gb(available),
@@ -173,5 +183,16 @@ mod tests {
         assert!(e.contains("5600.0 GB") && e.contains("8.0 GB"), "{e}");
         spec.system.species[0].count = 1000;
         assert!(check_against(&spec, 8_000_000_000, "test").is_ok());
+        // /scene frames add 384 B per disc: 10⁷ discs need 5.6 GB, 9.44 GB with them.
+        spec.system.species[0].count = 10_000_000;
+        assert!(check_against(&spec, 8_000_000_000, "test").is_ok());
+        spec.log.scene_interval = Some(1.0);
+        let e = check_against(&spec, 8_000_000_000, "test")
+            .unwrap_err()
+            .to_string();
+        assert!(
+            e.contains("9.4 GB") && e.contains("944 bytes per disc"),
+            "{e}"
+        );
     }
 }

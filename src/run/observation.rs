@@ -1,6 +1,7 @@
 //! The observations a run schedules at exact times: the k-th snapshot, thermo
-//! record and checkpoint (due at start + k·interval), the two phases of a
-//! stop, and the watchdog's check for a run without collisions (`watchdog.rs`). The engine carries a scheduled observation as an opaque `u64` tag
+//! record, checkpoint and scene frame (due at start + k·interval), the two phases
+//! of a stop, and the watchdog's check for a run without collisions
+//! (`watchdog.rs`). The engine carries a scheduled observation as an opaque `u64` tag
 //! (`Engine::schedule`), and checkpoints store those tags, so the encoding below
 //! is part of the log format: the kind in the top byte, the index k below. It is
 //! written and read here only.
@@ -12,6 +13,7 @@ const SNAPSHOT: u64 = 1;
 const THERMO: u64 = 2;
 const CHECKPOINT: u64 = 3;
 const STOP: u64 = 4;
+const SCENE: u64 = 5;
 const WATCHDOG: u64 = 6;
 /// The index of a stop's second phase.
 const STOP_FINAL: u64 = 1;
@@ -25,6 +27,8 @@ pub(super) enum Observation {
     Thermo(u64),
     /// The k-th `/checkpoint`.
     Checkpoint(u64),
+    /// The k-th `/scene` frame.
+    Scene(u64),
     /// The stop time is reached: the stop is scheduled again at the same time as
     /// [`Observation::FinalStop`], so that every observation due then comes first.
     Stop,
@@ -41,6 +45,7 @@ impl Observation {
             Observation::Snapshot(k) => (SNAPSHOT, k),
             Observation::Thermo(k) => (THERMO, k),
             Observation::Checkpoint(k) => (CHECKPOINT, k),
+            Observation::Scene(k) => (SCENE, k),
             Observation::Stop => (STOP, 0),
             Observation::FinalStop => (STOP, STOP_FINAL),
             Observation::Watchdog => (WATCHDOG, 0),
@@ -55,6 +60,7 @@ impl Observation {
             SNAPSHOT => Observation::Snapshot(k),
             THERMO => Observation::Thermo(k),
             CHECKPOINT => Observation::Checkpoint(k),
+            SCENE => Observation::Scene(k),
             STOP if k == STOP_FINAL => Observation::FinalStop,
             STOP => Observation::Stop,
             WATCHDOG => Observation::Watchdog,
@@ -78,6 +84,7 @@ mod tests {
             (Snapshot(0), 1 << 56),
             (Thermo(7), 2 << 56 | 7),
             (Checkpoint(3), 3 << 56 | 3),
+            (Scene(2), 5 << 56 | 2),
             (Stop, 4 << 56),
             (FinalStop, 4 << 56 | 1),
             (Watchdog, 6 << 56),

@@ -24,6 +24,7 @@ pub use config::{
     DEFAULT_PACKING_FRACTION,
 };
 
+pub use log::format::{encode_scene, CH_SCENE, N_CHANNELS, SCENE_UPDATE_MSG, SPECIES_COLORS};
 pub use log::format::{
     log_time_ns, now_rfc3339, CdrError, Channel, CollisionBatch, CollisionRecord, DriverState,
     LogCheckpoint, MetadataError, RunFacts, RunMetadata, Snapshot, StopReason, SummaryMetadata,

@@ -33,6 +33,9 @@ pub struct LogOptions {
     /// Simulated time between `/checkpoint` messages (time); `None` = only at the start
     /// and the end (a checkpoint is always written at both, so any flushed log resumes).
     pub checkpoint_interval: Option<f64>,
+    /// Simulated time between `/scene` frames for Foxglove (time); `None` (the
+    /// default) = no scene.
+    pub scene_interval: Option<f64>,
     /// Chunk compression.
     pub compression: Compression,
     /// Wall-clock seconds between forced flushes of completed chunks to disk.
@@ -47,6 +50,7 @@ impl Default for LogOptions {
             snapshot_interval: Some(1.0),
             thermo_interval: Some(0.1),
             checkpoint_interval: Some(10.0),
+            scene_interval: None,
             compression: Compression::Zstd,
             flush_seconds: 1.0,
         }
@@ -54,13 +58,14 @@ impl Default for LogOptions {
 }
 
 impl LogOptions {
-    /// The three record intervals with their configuration names: snapshot,
-    /// thermo and checkpoint (time; `None` for none).
-    pub fn intervals(&self) -> [(&'static str, Option<f64>); 3] {
+    /// The record intervals with their configuration names: snapshot, thermo,
+    /// checkpoint and scene (time; `None` for none).
+    pub fn intervals(&self) -> [(&'static str, Option<f64>); 4] {
         [
             ("log.snapshot_interval", self.snapshot_interval),
             ("log.thermo_interval", self.thermo_interval),
             ("log.checkpoint_interval", self.checkpoint_interval),
+            ("log.scene_interval", self.scene_interval),
         ]
     }
 }
@@ -92,7 +97,7 @@ pub struct RunSpec {
     pub config_json: String,
 }
 
-/// The most records of one kind (snapshots, thermo or checkpoints) a run may ask
+/// The most records of one kind (snapshots, thermo, checkpoints or scenes) a run may ask
 /// for through its log interval: far more than any analysis reads (10⁹ thermo
 /// records are about 100 GB), so only a mistyped interval or stop time meets it.
 pub const MAX_RECORDS: f64 = 1e9;

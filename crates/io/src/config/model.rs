@@ -333,6 +333,11 @@ pub struct LogConfig {
     /// `stop.duration` / [`MAX_RECORDS`](crate::MAX_RECORDS).
     #[serde(default = "default_checkpoint")]
     pub checkpoint_interval: Option<f64>,
+    /// Simulated time between `/scene` frames for Foxglove's 3D panel (time).
+    /// Default `null` (none); otherwise finite, > 0, and at least `stop.duration`
+    /// / [`MAX_RECORDS`](crate::MAX_RECORDS).
+    #[serde(default)]
+    pub scene_interval: Option<f64>,
     /// Chunk compression: `"zstd"` (default), `"lz4"` or `"none"`.
     #[serde(default)]
     pub compression: CompressionConfig,
@@ -351,6 +356,7 @@ impl Default for LogConfig {
             snapshot_interval: d.snapshot_interval,
             thermo_interval: d.thermo_interval,
             checkpoint_interval: d.checkpoint_interval,
+            scene_interval: d.scene_interval,
             compression: match d.compression {
                 Compression::Zstd => CompressionConfig::Zstd,
                 Compression::Lz4 => CompressionConfig::Lz4,

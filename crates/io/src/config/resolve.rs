@@ -162,6 +162,7 @@ impl LogConfig {
             snapshot_interval: self.snapshot_interval,
             thermo_interval: self.thermo_interval,
             checkpoint_interval: self.checkpoint_interval,
+            scene_interval: self.scene_interval,
             compression: match self.compression {
                 CompressionConfig::Zstd => Compression::Zstd,
                 CompressionConfig::Lz4 => Compression::Lz4,

@@ -291,6 +291,11 @@ fn out_of_range_values_are_named() {
             "log.snapshot_interval",
         ),
         (r#"{"log": {"flush_seconds": 0}}"#, "log.flush_seconds"),
+        (r#"{"log": {"scene_interval": -1}}"#, "log.scene_interval"),
+        (
+            r#"{"stop": {"duration": 1e3}, "log": {"scene_interval": 1e-7}}"#,
+            "log.scene_interval",
+        ),
         (
             r#"{"log": {"thermo_interval": 1e-17}}"#,
             "log.thermo_interval",
@@ -683,4 +688,22 @@ fn schema_enums_match_rust_spellings() {
         let r = with(&format!("{s}-not"));
         assert!(r.is_err(), "{path} = {s}-not accepted");
     }
+}
+
+#[test]
+fn the_scene_is_off_by_default_and_on_with_its_interval() {
+    let spec = |text: &str| Config::from_json_str(text).unwrap().to_run_spec().unwrap();
+    assert_eq!(spec("{}").log.scene_interval, None);
+    assert_eq!(
+        spec(r#"{"log": {"scene_interval": 0.25}}"#)
+            .log
+            .scene_interval,
+        Some(0.25)
+    );
+    assert_eq!(
+        spec(r#"{"log": {"scene_interval": null}}"#)
+            .log
+            .scene_interval,
+        None
+    );
 }

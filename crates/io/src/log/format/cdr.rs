@@ -1,7 +1,7 @@
 //! A minimal encoder and decoder for little-endian OMG CDR (XCDR1, "CDR_LE"), the
 //! `cdr` message encoding of MCAP and ROS 2.
 //!
-//! Only what carom's messages use: unsigned integers, `float64`, and sequences
+//! Only what carom's messages use: integers, `float64`, strings, and sequences
 //! (`T[]`, a `uint32` length followed by the elements) and fixed arrays (`T[n]`) of
 //! them. Every buffer starts with the 4-byte encapsulation header `00 01 00 00`;
 //! every primitive is aligned to its own size, counted from the end of that header.
@@ -84,6 +84,7 @@ macro_rules! primitive {
 primitive!(u8, 1);
 primitive!(u16, 2);
 primitive!(u32, 4);
+primitive!(i32, 4);
 primitive!(u64, 8);
 primitive!(f64, 8);
 
@@ -162,6 +163,15 @@ impl CdrWriter {
         for &v in values {
             v.put(&mut self.buf);
         }
+    }
+
+    /// Append a `string`: aligned `uint32` length counting a terminating NUL, the
+    /// UTF-8 bytes, then the NUL.
+    pub fn string(&mut self, s: &str) {
+        let n = u32::try_from(s.len() + 1).expect("CDR strings hold at most 2^32 - 2 bytes");
+        self.put(n);
+        self.buf.extend_from_slice(s.as_bytes());
+        self.buf.push(0);
     }
 
     /// Append a sequence whose elements come from an iterator of known length.
@@ -246,6 +256,24 @@ impl<'a> CdrReader<'a> {
     ) -> Result<(), CdrError> {
         let n = self.get::<u32>(field)? as usize;
         self.array_into(field, n, out)
+    }
+
+    /// Read a `string` (length with its terminating NUL, bytes, NUL). Only the
+    /// tests read strings: carom's readers skip `/scene`, the one channel with any.
+    #[cfg(test)]
+    pub fn string(&mut self, field: &'static str) -> Result<String, CdrError> {
+        let n = self.get::<u32>(field)? as usize;
+        let raw = self.take(field, n)?;
+        match raw.split_last() {
+            Some((0, text)) => String::from_utf8(text.to_vec()).map_err(|e| CdrError::Invalid {
+                field,
+                problem: format!("not UTF-8: {e}"),
+            }),
+            _ => Err(CdrError::Invalid {
+                field,
+                problem: "string without its terminating NUL".into(),
+            }),
+        }
     }
 
     /// Read a sequence `T[]`.
@@ -343,5 +371,30 @@ mod tests {
             Err(CdrError::BadHeader(_))
         ));
         assert!(matches!(CdrReader::new(&[0]), Err(CdrError::BadHeader(_))));
+    }
+
+    #[test]
+    fn strings_carry_their_nul_and_align_their_length() {
+        let mut w = CdrWriter::new();
+        w.put(1u8);
+        w.string("box");
+        w.put(-2i32);
+        let b = w.bytes();
+        // u8 at 4, length aligned to relative 4 (absolute 8): 4 = "box" + NUL.
+        assert_eq!(&b[8..12], &4u32.to_le_bytes());
+        assert_eq!(&b[12..16], b"box\0");
+        assert_eq!(&b[16..20], &(-2i32).to_le_bytes());
+        let mut r = CdrReader::new(b).unwrap();
+        assert_eq!(r.get::<u8>("a").unwrap(), 1);
+        assert_eq!(r.string("s").unwrap(), "box");
+        assert_eq!(r.get::<i32>("i").unwrap(), -2);
+        let mut bad = b.to_vec();
+        bad[15] = b'x';
+        let mut r = CdrReader::new(&bad).unwrap();
+        r.get::<u8>("a").unwrap();
+        assert!(matches!(
+            r.string("s"),
+            Err(CdrError::Invalid { field: "s", .. })
+        ));
     }
 }

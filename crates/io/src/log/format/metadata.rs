@@ -107,7 +107,8 @@ fn compression_name(c: Compression) -> &'static str {
 }
 
 /// Log options as JSON: `{"collisions", "collision_every", "snapshot_interval",
-/// "thermo_interval", "checkpoint_interval", "compression", "flush_seconds"}`
+/// "thermo_interval", "checkpoint_interval", "scene_interval", "compression",
+/// "flush_seconds"}`
 /// (intervals `null` when off).
 pub fn log_options_to_json(o: &LogOptions) -> Value {
     json!({
@@ -116,6 +117,7 @@ pub fn log_options_to_json(o: &LogOptions) -> Value {
         "snapshot_interval": o.snapshot_interval,
         "thermo_interval": o.thermo_interval,
         "checkpoint_interval": o.checkpoint_interval,
+        "scene_interval": o.scene_interval,
         "compression": compression_name(o.compression),
         "flush_seconds": o.flush_seconds,
     })
@@ -139,6 +141,7 @@ pub fn log_options_from_json(v: &Value) -> Option<LogOptions> {
         snapshot_interval: interval("snapshot_interval", d.snapshot_interval)?,
         thermo_interval: interval("thermo_interval", d.thermo_interval)?,
         checkpoint_interval: interval("checkpoint_interval", d.checkpoint_interval)?,
+        scene_interval: interval("scene_interval", d.scene_interval)?,
         compression: match v.get("compression").and_then(Value::as_str) {
             None => d.compression,
             Some("zstd") => Compression::Zstd,

@@ -1,4 +1,4 @@
-//! The format of a carom log, shared by the writer and the reader: the four
+//! The format of a carom log, shared by the writer and the reader: the
 //! channels ([`CHANNELS`]: topic, schema, encodings), the version constants, the
 //! metadata records, and each message's Rust form with its encoder and decoder.
 //!
@@ -8,6 +8,7 @@
 //! | `/snapshot` | `carom_msgs/msg/Snapshot` (`ros2msg`) | `cdr` | [`Snapshot`] |
 //! | `/thermo` | `carom.Thermo` (`jsonschema`) | `json` | [`Thermo`] |
 //! | `/checkpoint` | `carom_msgs/msg/Checkpoint` (`ros2msg`) | `cdr` | [`LogCheckpoint`] |
+//! | `/scene` (optional) | `foxglove_msgs/msg/SceneUpdate` (`ros2msg`) | `cdr` | [`encode_scene`] |
 //!
 //! Message log times are simulated times in nanoseconds, taking one simulated time
 //! unit as one second ([`log_time_ns`]). `docs/log-format.md` documents every field.
@@ -17,6 +18,7 @@ mod checkpoint;
 mod collisions;
 mod facts;
 mod metadata;
+mod scene;
 mod snapshot;
 mod thermo;
 
@@ -28,6 +30,7 @@ pub use collisions::{
 };
 pub use facts::RunFacts;
 pub use metadata::{now_rfc3339, MetadataError, RunMetadata, StopReason, SummaryMetadata};
+pub use scene::{encode_scene, SCENE_UPDATE_MSG, SPECIES_COLORS};
 pub use snapshot::{Snapshot, SNAPSHOT_MSG};
 pub use thermo::{Thermo, THERMO_JSON_SCHEMA};
 
@@ -39,6 +42,8 @@ pub const TOPIC_SNAPSHOT: &str = "/snapshot";
 pub const TOPIC_THERMO: &str = "/thermo";
 /// Topic of the checkpoints.
 pub const TOPIC_CHECKPOINT: &str = "/checkpoint";
+/// Topic of the optional Foxglove scene frames.
+pub const TOPIC_SCENE: &str = "/scene";
 
 /// Name of the metadata record written at the start of a run.
 pub const METADATA_RUN: &str = "carom.run";
@@ -85,9 +90,14 @@ pub const CH_SNAPSHOT: usize = 1;
 pub const CH_THERMO: usize = 2;
 /// Index of `/checkpoint` in [`CHANNELS`] and in per-channel arrays.
 pub const CH_CHECKPOINT: usize = 3;
+/// Index of `/scene` in [`CHANNELS`] and in per-channel arrays. The writer
+/// defines it only when a run writes scene frames; carom's readers skip it.
+pub const CH_SCENE: usize = 4;
+/// Number of channels: the length of [`CHANNELS`] and of per-channel arrays.
+pub const N_CHANNELS: usize = 5;
 
-/// The four channels, in per-channel-array order ([`CH_COLLISIONS`] …).
-pub const CHANNELS: [Channel; 4] = [
+/// The channels, in per-channel-array order ([`CH_COLLISIONS`] …).
+pub const CHANNELS: [Channel; N_CHANNELS] = [
     Channel {
         topic: TOPIC_COLLISIONS,
         schema_name: "carom_msgs/msg/CollisionBatch",
@@ -116,14 +126,22 @@ pub const CHANNELS: [Channel; 4] = [
         schema_text: CHECKPOINT_MSG,
         message_encoding: MESSAGE_ENCODING_CDR,
     },
+    Channel {
+        topic: TOPIC_SCENE,
+        schema_name: "foxglove_msgs/msg/SceneUpdate",
+        schema_encoding: SCHEMA_ENCODING_ROS2MSG,
+        schema_text: SCENE_UPDATE_MSG,
+        message_encoding: MESSAGE_ENCODING_CDR,
+    },
 ];
 
 /// Topics in per-channel-array order.
-pub const TOPICS: [&str; 4] = [
+pub const TOPICS: [&str; N_CHANNELS] = [
     CHANNELS[0].topic,
     CHANNELS[1].topic,
     CHANNELS[2].topic,
     CHANNELS[3].topic,
+    CHANNELS[4].topic,
 ];
 
 /// MCAP log time of simulated time `t`: nanoseconds, one simulated time unit taken

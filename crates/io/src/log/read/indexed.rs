@@ -4,6 +4,7 @@
 
 use super::scan::simulated_times;
 use super::{record_length_limit, LogEnd, LogInfo, LogReader, RawMessage, ReadError};
+use crate::log::format::N_CHANNELS;
 use crate::log::format::{
     SummaryMetadata, Thermo, CH_CHECKPOINT, CH_THERMO, METADATA_SUMMARY, TOPICS,
 };
@@ -69,8 +70,8 @@ pub fn scan_indexed(path: &Path) -> Result<Option<LogInfo>, ReadError> {
         .iter()
         .filter_map(|(&id, c)| TOPICS.iter().position(|&t| t == c.topic).map(|k| (id, k)))
         .collect();
-    let mut channels = [false; 4];
-    let mut messages = [0u64; 4];
+    let mut channels = [false; N_CHANNELS];
+    let mut messages = [0u64; N_CHANNELS];
     for (&id, &k) in &ours {
         channels[k] = true;
         messages[k] += stats.channel_message_counts.get(&id).copied().unwrap_or(0);
@@ -112,7 +113,7 @@ pub fn scan_indexed(path: &Path) -> Result<Option<LogInfo>, ReadError> {
                 .any(|id| ours.get(id) == Some(&k))
         }
     };
-    let mut ends: [Option<(RawOwned, RawOwned)>; 4] = Default::default();
+    let mut ends: [Option<(RawOwned, RawOwned)>; N_CHANNELS] = Default::default();
     for (k, end) in ends.iter_mut().enumerate() {
         let (Some(first), Some(last)) = (
             chunks.iter().find(holding(k)),
@@ -175,7 +176,7 @@ pub fn scan_indexed(path: &Path) -> Result<Option<LogInfo>, ReadError> {
         };
         *end = Some((a, b));
     }
-    let mut time_span: [Option<(f64, f64)>; 4] = [None; 4];
+    let mut time_span: [Option<(f64, f64)>; N_CHANNELS] = [None; N_CHANNELS];
     for (span, end) in time_span.iter_mut().zip(&ends) {
         if let Some((a, b)) = end {
             let (t0, _) = simulated_times(&a.raw());

@@ -5,6 +5,7 @@
 //! one record at a time; other messages are decoded whole.
 
 use super::{Found, LogEnd, LogReader, ReadError, MESSAGE_HEADER_LEN};
+use crate::log::format::CH_SCENE;
 use crate::log::format::{
     CdrError, CollisionBatch, CollisionRecord, LogCheckpoint, Snapshot, Thermo, CH_CHECKPOINT,
     CH_COLLISIONS, CH_SNAPSHOT, CH_THERMO, TOPICS,
@@ -66,18 +67,23 @@ impl<R: Read + Seek> LogReader<R> {
         }
     }
 
-    /// The next message, decoded.
+    /// The next message, decoded (`/scene` frames, which are for viewers, are
+    /// skipped).
     pub fn next_message(&mut self) -> Result<Option<LogMessage>, ReadError> {
-        let Found::Message {
-            channel,
-            sequence,
-            log_time,
-            ..
-        } = self.advance()?
-        else {
-            return Ok(None);
-        };
-        decode_current(self, channel, sequence, log_time).map(Some)
+        loop {
+            let Found::Message {
+                channel,
+                sequence,
+                log_time,
+                ..
+            } = self.advance()?
+            else {
+                return Ok(None);
+            };
+            if channel != CH_SCENE {
+                return decode_current(self, channel, sequence, log_time).map(Some);
+            }
+        }
     }
 
     /// Decode the current record as a collision batch into the reader's own batch.
@@ -174,7 +180,7 @@ impl Wanted {
         match self {
             Wanted::Collisions => channel == CH_COLLISIONS,
             Wanted::Channel(k) => channel == k,
-            Wanted::Events => true,
+            Wanted::Events => channel != CH_SCENE,
         }
     }
 

@@ -33,6 +33,7 @@ pub use indexed::scan_indexed;
 pub use iter::{Collisions, Events, Filtered, LogEvent, LogMessage};
 pub use scan::{last_checkpoint, last_checkpoint_observed, scan, scan_observed, LogInfo};
 
+use crate::log::format::N_CHANNELS;
 use crate::log::format::{
     CollisionBatch, RunMetadata, SummaryMetadata, CHANNELS, METADATA_RUN, METADATA_SUMMARY, TOPICS,
 };
@@ -104,7 +105,7 @@ pub struct LogReader<R: Read + Seek = BufReader<File>> {
     channels: HashMap<u16, Option<usize>>,
     /// schema id → (name, encoding).
     schemas: HashMap<u16, (String, String)>,
-    seen: [bool; 4],
+    seen: [bool; N_CHANNELS],
     run: RunMetadata,
     run_map: BTreeMap<String, String>,
     summary: Option<BTreeMap<String, String>>,
@@ -205,7 +206,7 @@ impl<R: Read + Seek> LogReader<R> {
             opcode: 0,
             channels: HashMap::new(),
             schemas: HashMap::new(),
-            seen: [false; 4],
+            seen: [false; N_CHANNELS],
             run: RunMetadata {
                 log_format: String::new(),
                 carom_version: String::new(),
@@ -499,7 +500,7 @@ impl<R: Read + Seek> LogReader<R> {
     }
 
     /// Whether each channel (see [`TOPICS`]) has been defined so far.
-    pub fn channels_seen(&self) -> [bool; 4] {
+    pub fn channels_seen(&self) -> [bool; N_CHANNELS] {
         self.seen
     }
 

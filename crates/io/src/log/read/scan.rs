@@ -7,6 +7,7 @@ use crate::log::format::{
     CdrReader, LogCheckpoint, RunMetadata, SummaryMetadata, Thermo, CH_CHECKPOINT, CH_COLLISIONS,
     CH_SNAPSHOT, CH_THERMO,
 };
+use crate::log::format::{CH_SCENE, N_CHANNELS};
 use std::path::Path;
 
 /// What a scan of a whole log found (for `carom info`).
@@ -19,13 +20,13 @@ pub struct LogInfo {
     /// How the file ends.
     pub end: LogEnd,
     /// Whether each channel is defined (see [`crate::TOPICS`]).
-    pub channels: [bool; 4],
+    pub channels: [bool; N_CHANNELS],
     /// Messages per channel.
-    pub messages: [u64; 4],
+    pub messages: [u64; N_CHANNELS],
     /// Collisions in `/collisions`.
     pub logged_collisions: u64,
     /// Simulated time of the first and last message per channel (time); `None` if no message.
-    pub time_span: [Option<(f64, f64)>; 4],
+    pub time_span: [Option<(f64, f64)>; N_CHANNELS],
     /// Simulated time of the last checkpoint (time).
     pub last_checkpoint_time: Option<f64>,
     /// (time, pair collisions, wall collisions) of the first and the last `/thermo`
@@ -55,8 +56,8 @@ pub fn scan_observed(
         })?
         .len();
     let mut r = LogReader::open(path)?;
-    let mut messages = [0u64; 4];
-    let mut span: [Option<(f64, f64)>; 4] = [None; 4];
+    let mut messages = [0u64; N_CHANNELS];
+    let mut span: [Option<(f64, f64)>; N_CHANNELS] = [None; N_CHANNELS];
     let mut logged = 0u64;
     let mut last_cp = None;
     let mut thermo: Option<[(f64, u64, u64); 2]> = None;
@@ -114,6 +115,8 @@ pub(super) fn simulated_times(m: &RawMessage) -> (f64, f64) {
             .ok()
             .map(|t| (t, t)),
         CH_THERMO => Thermo::decode(m.data).ok().map(|t| (t.time, t.time)),
+        // `/scene`: its log time (whole nanoseconds) is close enough for a span.
+        CH_SCENE => None,
         _ => LogCheckpoint::decode(m.data)
             .ok()
             .map(|c| (c.engine.now, c.engine.now)),

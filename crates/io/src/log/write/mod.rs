@@ -17,6 +17,7 @@ mod sink;
 
 pub use options::{WriteError, WriterOptions, WriterPosition, WriterStats};
 
+use crate::log::format::{encode_scene, CH_SCENE};
 use crate::log::format::{
     log_time_ns, CdrWriter, CollisionRecord, DriverState, LogCheckpoint, Snapshot, Thermo,
     CH_CHECKPOINT, CH_COLLISIONS, CH_SNAPSHOT, CH_THERMO, METADATA_SUMMARY,
@@ -244,6 +245,26 @@ impl LogWriter {
         Snapshot::encode_state(state, &mut self.cdr);
         let data = self.cdr.take_bytes();
         self.send_message(CH_SNAPSHOT, state.time, data)
+    }
+
+    /// Write `/scene` frame number `frame` of `state` (after the pending
+    /// collisions). Its MCAP sequence number is `frame` (mod 2³²), so a resumed
+    /// run, whose checkpoint carries the next frame's number, continues it.
+    pub fn write_scene(&mut self, frame: u64, state: &State) -> Result<(), WriteError> {
+        self.write_batch()?;
+        self.reclaim_bytes();
+        encode_scene(state, &mut self.cdr);
+        let data = self.cdr.take_bytes();
+        self.stats.largest_message = self.stats.largest_message.max(data.len() as u64);
+        self.stats.messages[CH_SCENE] += 1;
+        let t = log_time_ns(state.time);
+        self.send(Cmd::Message {
+            ch: CH_SCENE,
+            sequence: frame as u32,
+            log_time: t,
+            publish_time: t,
+            data,
+        })
     }
 
     /// Write a `/thermo` record (after the pending collisions).

@@ -2,6 +2,7 @@
 //! ([`WriterPosition`]), what it has sent ([`WriterStats`]) and how writing fails
 //! ([`WriteError`]).
 
+use crate::log::format::N_CHANNELS;
 use crate::options::{Compression, LogOptions};
 use std::path::{Path, PathBuf};
 use std::time::Duration;
@@ -137,7 +138,7 @@ pub struct WriterStats {
     /// Collisions sent to `/collisions` over the run (including before a resume).
     pub logged_collisions: u64,
     /// Messages sent per channel by this writer (see [`crate::TOPICS`]).
-    pub messages: [u64; 4],
+    pub messages: [u64; N_CHANNELS],
     /// Encoded size of the largest snapshot, thermo or checkpoint message sent so
     /// far (bytes, before compression).
     pub largest_message: u64,

@@ -6,6 +6,7 @@ use super::options::{WriteError, WriterOptions};
 use crate::log::format::{
     log_time_ns, CdrWriter, CollisionBatch, CollisionRecord, CHANNELS, CH_COLLISIONS, METADATA_RUN,
 };
+use crate::log::format::{CH_SCENE, N_CHANNELS};
 use crate::options::Compression;
 use mcap::records::{MessageHeader, Metadata};
 use std::collections::BTreeMap;
@@ -55,7 +56,8 @@ pub(super) enum Cmd {
 pub(super) struct Sink {
     path: PathBuf,
     mcap: mcap::Writer<BufWriter<File>>,
-    channel_ids: [u16; 4],
+    /// MCAP channel id of each channel, once defined.
+    channel_ids: [Option<u16>; N_CHANNELS],
     cdr: CdrWriter,
     pub(super) flush_every: Duration,
     pub(super) last_flush: Instant,
@@ -64,7 +66,8 @@ pub(super) struct Sink {
 
 impl Sink {
     /// Create `path` (truncating it), write the `carom.run` metadata record and
-    /// register the four channels of [`CHANNELS`].
+    /// register the channels of [`CHANNELS`] but `/scene`, which is defined
+    /// before its first message (runs without scene frames do not show it).
     pub(super) fn create(
         path: &Path,
         opts: &WriterOptions,
@@ -102,24 +105,38 @@ impl Sink {
             metadata: run_metadata.clone(),
         })
         .map_err(mcap_err)?;
-        let mut channel_ids = [0u16; 4];
-        for (id, c) in channel_ids.iter_mut().zip(&CHANNELS) {
-            let sid = mcap
-                .add_schema(c.schema_name, c.schema_encoding, c.schema_text.as_bytes())
-                .map_err(mcap_err)?;
-            *id = mcap
-                .add_channel(sid, c.topic, c.message_encoding, &BTreeMap::new())
-                .map_err(mcap_err)?;
-        }
-        Ok(Sink {
+        let mut sink = Sink {
             path: path.to_path_buf(),
             mcap,
-            channel_ids,
+            channel_ids: [None; N_CHANNELS],
             cdr: CdrWriter::new(),
             flush_every: opts.flush_every,
             last_flush: Instant::now(),
             dirty: true,
-        })
+        };
+        for ch in (0..N_CHANNELS).filter(|&ch| ch != CH_SCENE) {
+            sink.channel_id(ch)?;
+        }
+        Ok(sink)
+    }
+
+    /// The MCAP channel id of channel `ch`, defining it (schema and channel
+    /// records) first if it is not yet.
+    fn channel_id(&mut self, ch: usize) -> Result<u16, WriteError> {
+        if let Some(id) = self.channel_ids[ch] {
+            return Ok(id);
+        }
+        let c = &CHANNELS[ch];
+        let sid = self
+            .mcap
+            .add_schema(c.schema_name, c.schema_encoding, c.schema_text.as_bytes())
+            .map_err(|e| self.err(e))?;
+        let id = self
+            .mcap
+            .add_channel(sid, c.topic, c.message_encoding, &BTreeMap::new())
+            .map_err(|e| self.err(e))?;
+        self.channel_ids[ch] = Some(id);
+        Ok(id)
     }
 
     fn err(&self, source: mcap::McapError) -> WriteError {
@@ -143,7 +160,7 @@ impl Sink {
                 if !records.is_empty() {
                     CollisionBatch::encode_records(&records, first_ordinal, stride, &mut self.cdr);
                     let header = MessageHeader {
-                        channel_id: self.channel_ids[CH_COLLISIONS],
+                        channel_id: self.channel_id(CH_COLLISIONS)?,
                         sequence,
                         log_time: log_time_ns(records[0].time),
                         publish_time: log_time_ns(records[records.len() - 1].time),
@@ -163,7 +180,7 @@ impl Sink {
                 data,
             } => {
                 let header = MessageHeader {
-                    channel_id: self.channel_ids[ch],
+                    channel_id: self.channel_id(ch)?,
                     sequence,
                     log_time,
                     publish_time,
