@@ -1,5 +1,6 @@
 //! Drawing one snapshot: every disc as a filled circle of its own radius (to
-//! scale: radius a is a·s pixels, rounded to whole pixels by the backends), its
+//! scale: radius a is a·s pixels; anti-aliased at sub-pixel precision in bitmaps,
+//! see `raster`, whole pixels in SVG) with a darker rim, its
 //! periodic images where it crosses a periodic edge (the box is then masked so
 //! that each disc shows cut at one edge and completed at the other), the box's
 //! edges — solid for hard walls, dashed for periodic boundaries — and a title with
@@ -13,6 +14,7 @@ use plotters::prelude::*;
 
 use super::colours::{species_colour, speed_colour, BACKGROUND};
 use super::layout::{Layout, MARGIN, TITLE};
+use super::raster::Raster;
 
 /// How discs are coloured.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -24,6 +26,15 @@ pub enum Colouring {
         /// The speed at the top of the scale (length/time).
         max: f64,
     },
+}
+
+/// How discs are drawn.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum DiscStyle {
+    /// Anti-aliased at their exact sizes into a bitmap ([`Raster`]), for PNG and GIF.
+    Raster,
+    /// As circles (whole-pixel centres and radii), for SVG.
+    Vector,
 }
 
 /// Drawing result of a backend `DB`.
@@ -49,10 +60,12 @@ pub fn draw_snapshot<DB: DrawingBackend>(
     s: &Snapshot,
     layout: &Layout,
     colouring: Colouring,
+    style: DiscStyle,
 ) -> DrawResult<DB> {
     area.fill(&BACKGROUND)?;
     let l = s.box_size;
     let periodic = [s.boundary[0] == 0, s.boundary[1] == 0];
+    let mut raster = (style == DiscStyle::Raster).then(|| Raster::new(layout, BACKGROUND));
     for (i, p) in s.positions.iter().enumerate() {
         let k = s.species[i];
         let r = s.species_radius.get(usize::from(k)).copied().unwrap_or(0.0);
@@ -60,13 +73,26 @@ pub fn draw_snapshot<DB: DrawingBackend>(
             Colouring::Species => species_colour(k),
             Colouring::Speed { max } => speed_colour(s.velocities[i].length(), max),
         };
-        let radius = (r * layout.scale).round().max(1.0) as i32;
+        let radius = r * layout.scale;
         for dx in images(p.x, r, l.x, periodic[0]) {
             for dy in images(p.y, r, l.y, periodic[1]) {
                 let (px, py) = layout.pixel(p.x + dx, p.y + dy);
-                let centre = (px.round() as i32, py.round() as i32);
-                area.draw(&Circle::new(centre, radius, colour.filled()))?;
+                match &mut raster {
+                    Some(raster) => raster.disc(px, py, radius, colour),
+                    None => {
+                        let centre = (px.round() as i32, py.round() as i32);
+                        let rounded = radius.round().max(1.0) as i32;
+                        area.draw(&Circle::new(centre, rounded, colour.filled()))?;
+                        let rim = RGBColor(colour.0 / 2, colour.1 / 2, colour.2 / 2);
+                        area.draw(&Circle::new(centre, rounded, rim.stroke_width(1)))?;
+                    }
+                }
             }
+        }
+    }
+    if let Some(raster) = &raster {
+        if let Some(image) = BitMapElement::with_ref((0, 0), raster.size, &raster.rgb) {
+            area.draw(&image)?;
         }
     }
     // Mask what spills over the box (periodic images) with the background.
@@ -127,33 +153,42 @@ fn draw_title<DB: DrawingBackend>(
         crate::frames::time_text(s.time),
         s.positions.len()
     );
-    area.draw(&Text::new(title, (MARGIN as i32, 12), font(20)))
+    area.draw(&Text::new(title, (MARGIN as i32, 6), font(20)))
 }
 
-/// Species legend at the right of the title band: a dot and "A  a = 0.5".
+/// Species legend on the title band's second line: a dot and "A  a = 0.5".
 fn draw_legend<DB: DrawingBackend>(
     area: &DrawingArea<DB, Shift>,
     s: &Snapshot,
-    layout: &Layout,
+    _layout: &Layout,
 ) -> DrawResult<DB> {
     let n = s.species_radius.len();
     if n < 2 {
         return Ok(());
     }
-    let shown = n.min(4);
-    let mut x = layout.size.0 as i32 - (MARGIN as i32) - 110 * shown as i32;
+    let shown = n.min(6);
+    let mut x = MARGIN as i32 + 7;
+    let y = TITLE as i32 - 14;
     for k in 0..shown {
-        let y = (TITLE / 2) as i32 + 2;
-        area.draw(&Circle::new((x, y), 7, species_colour(k as u16).filled()))?;
+        area.draw(&Circle::new((x, y), 6, species_colour(k as u16).filled()))?;
         let label = format!(
             "{}  a = {}",
             crate::export::type_name(k),
             s.species_radius[k]
         );
-        area.draw(&Text::new(label, (x + 12, y - 8), font(15)))?;
-        x += 110;
+        area.draw(&Text::new(label, (x + 11, y - 8), font(15)))?;
+        x += 120;
+    }
+    if n > shown {
+        area.draw(&Text::new(format!("… {n} species"), (x, y - 8), font(15)))?;
     }
     Ok(())
+}
+
+/// A colour bar label: three significant digits of the scale's top `max`.
+fn tick(v: f64, max: f64) -> String {
+    let decimals = (2.0 - max.log10().floor()).clamp(0.0, 8.0) as usize;
+    format!("{v:.decimals$}")
 }
 
 /// The speed colour bar: the map from 0 (bottom) to `max` (top), with labels.
@@ -180,14 +215,21 @@ fn draw_bar<DB: DrawingBackend>(
         let v = max * f64::from(j) / 4.0;
         let py = y + h - 1 - ((h - 1) * j) / 4;
         area.draw(&PathElement::new([(x + w, py), (x + w + 5, py)], BLACK))?;
-        area.draw(&Text::new(format!("{v:.2}"), (x + w + 8, py - 7), font(14)))?;
+        area.draw(&Text::new(tick(v, max), (x + w + 8, py - 7), font(14)))?;
     }
     area.draw(&Text::new("speed |v|", (x - 16, y - 22), font(15)))
 }
 
 #[cfg(test)]
 mod tests {
-    use super::images;
+    use super::{images, tick};
+
+    #[test]
+    fn colour_bar_labels_keep_three_digits_of_the_scale() {
+        assert_eq!(tick(0.001, 0.00213), "0.00100");
+        assert_eq!(tick(1.5, 2.5), "1.50");
+        assert_eq!(tick(250.0, 400.0), "250");
+    }
 
     #[test]
     fn a_disc_across_a_periodic_edge_is_drawn_twice_and_once_by_a_wall() {

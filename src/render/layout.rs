@@ -10,7 +10,7 @@
 use carom_core::DVec2;
 
 /// Height of the title band (pixels).
-pub const TITLE: u32 = 44;
+pub const TITLE: u32 = 58;
 /// Margin around the box (pixels).
 pub const MARGIN: u32 = 16;
 /// Width taken by the colour bar and its labels (pixels).

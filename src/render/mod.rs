@@ -11,10 +11,12 @@
 mod colours;
 mod draw;
 mod layout;
+mod raster;
 
 pub use colours::{species_colour, speed_colour, speed_scale, BACKGROUND, SPECIES};
-pub use draw::{draw_snapshot, Colouring, DrawResult};
+pub use draw::{draw_snapshot, Colouring, DiscStyle, DrawResult};
 pub use layout::Layout;
+pub use raster::Raster;
 
 use std::path::Path;
 use std::sync::Once;
@@ -114,13 +116,13 @@ pub fn render_snapshot(
     let result = match format {
         ImageFormat::Png => {
             let area = BitMapBackend::new(out, layout.size).into_drawing_area();
-            draw_snapshot(&area, s, &layout, colouring)
+            draw_snapshot(&area, s, &layout, colouring, DiscStyle::Raster)
                 .and_then(|()| area.present())
                 .map_err(|e| write_error(out, e))
         }
         ImageFormat::Svg => {
             let area = SVGBackend::new(out, layout.size).into_drawing_area();
-            draw_snapshot(&area, s, &layout, colouring)
+            draw_snapshot(&area, s, &layout, colouring, DiscStyle::Vector)
                 .and_then(|()| area.present())
                 .map_err(|e| write_error(out, e))
         }
@@ -171,9 +173,15 @@ impl Movie {
 
     /// Draw `s` as the next frame.
     pub fn push(&mut self, s: &Snapshot) -> Result<(), FrameError> {
-        draw_snapshot(&self.area, s, &self.layout, self.colouring)
-            .and_then(|()| self.area.present())
-            .map_err(|e| write_error(&self.path, e))?;
+        draw_snapshot(
+            &self.area,
+            s,
+            &self.layout,
+            self.colouring,
+            DiscStyle::Raster,
+        )
+        .and_then(|()| self.area.present())
+        .map_err(|e| write_error(&self.path, e))?;
         self.frames += 1;
         Ok(())
     }
