@@ -108,7 +108,9 @@ fn next_snapshot(reader: &mut LogReader) -> Result<Option<Snapshot>, ReadError> 
         None => Ok(None),
         Some(Ok(LogMessage::Snapshot(s))) => Ok(Some(s)),
         Some(Ok(_)) => unreachable!("the /snapshot iterator yields snapshots only"),
-        Some(Err(ReadError::MissingChannel { topic, .. })) if topic == "/snapshot" => Ok(None),
+        Some(Err(ReadError::MissingChannel {
+            topic: "/snapshot", ..
+        })) => Ok(None),
         Some(Err(e)) => Err(e),
     }
 }

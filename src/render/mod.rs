@@ -115,10 +115,15 @@ pub fn render_snapshot(
     let layout = Layout::new(width, s.box_size, by == ColourBy::Speed);
     let result = match format {
         ImageFormat::Png => {
-            let area = BitMapBackend::new(out, layout.size).into_drawing_area();
-            draw_snapshot(&area, s, &layout, colouring, DiscStyle::Raster)
-                .and_then(|()| area.present())
-                .map_err(|e| write_error(out, e))
+            let (w, h) = layout.size;
+            let mut rgb = vec![0u8; 3 * w as usize * h as usize];
+            {
+                let area = BitMapBackend::with_buffer(&mut rgb, layout.size).into_drawing_area();
+                draw_snapshot(&area, s, &layout, colouring, DiscStyle::Raster)
+                    .and_then(|()| area.present())
+                    .map_err(|e| write_error(out, e))?;
+            }
+            write_png(out, &rgb, layout.size)
         }
         ImageFormat::Svg => {
             let area = SVGBackend::new(out, layout.size).into_drawing_area();
@@ -131,6 +136,24 @@ pub fn render_snapshot(
         crate::frames::remove_output(out);
     }
     result.map(|()| layout)
+}
+
+/// Write `rgb` as a PNG at the best compression (an anti-aliased picture of
+/// 10⁴ discs: about half the size of the default compression).
+fn write_png(out: &Path, rgb: &[u8], (w, h): (u32, u32)) -> Result<(), FrameError> {
+    use image::codecs::png::{CompressionType, FilterType, PngEncoder};
+    use image::ImageEncoder;
+    let error = |reason: String| FrameError::Write {
+        file: out.display().to_string(),
+        reason,
+    };
+    let file = std::fs::File::create(out).map_err(|e| error(e.to_string()))?;
+    let mut writer = std::io::BufWriter::new(file);
+    PngEncoder::new_with_quality(&mut writer, CompressionType::Best, FilterType::Adaptive)
+        .write_image(rgb, w, h, image::ColorType::Rgb8)
+        .map_err(|e| error(e.to_string()))?;
+    use std::io::Write;
+    writer.flush().map_err(|e| error(e.to_string()))
 }
 
 /// An animated GIF being written frame by frame.
