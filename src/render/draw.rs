@@ -120,7 +120,7 @@ pub fn draw_snapshot<DB: DrawingBackend>(
             area.draw(&PathElement::new([a, b], BLACK.stroke_width(2)))?;
         }
     }
-    draw_title(area, s, periodic)?;
+    draw_title(area, s, periodic, layout.size.0)?;
     match colouring {
         Colouring::Species => draw_legend(area, s, layout)?,
         Colouring::Speed { max } => draw_bar(area, layout, max)?,
@@ -132,6 +132,7 @@ fn draw_title<DB: DrawingBackend>(
     area: &DrawingArea<DB, Shift>,
     s: &Snapshot,
     periodic: [bool; 2],
+    width: u32,
 ) -> DrawResult<DB> {
     let covered: f64 = s
         .species
@@ -153,7 +154,12 @@ fn draw_title<DB: DrawingBackend>(
         crate::frames::time_text(s.time),
         s.positions.len()
     );
-    area.draw(&Text::new(title, (MARGIN as i32, 6), font(20)))
+    // About 45 characters: smaller type in narrow pictures.
+    area.draw(&Text::new(
+        title,
+        (MARGIN as i32, 6),
+        font((width / 26).clamp(10, 20)),
+    ))
 }
 
 /// Species legend on the title band's second line: a dot and "A  a = 0.5".

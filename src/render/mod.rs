@@ -139,7 +139,7 @@ pub fn render_snapshot(
 }
 
 /// Write `rgb` as a PNG at the best compression (an anti-aliased picture of
-/// 10⁴ discs: about half the size of the default compression).
+/// 10⁴ discs, 800 pixels wide: 1.2 MB against 1.6 MB by default).
 fn write_png(out: &Path, rgb: &[u8], (w, h): (u32, u32)) -> Result<(), FrameError> {
     use image::codecs::png::{CompressionType, FilterType, PngEncoder};
     use image::ImageEncoder;
