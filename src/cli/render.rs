@@ -40,10 +40,11 @@ pub struct RenderArgs {
     /// Colour discs by species or by speed.
     #[arg(long, visible_alias = "colour", value_enum, default_value_t = ColourArg::Species)]
     pub color: ColourArg,
-    /// Width of the image in pixels (its height follows from the box).
-    #[arg(long, value_name = "PIXELS", default_value_t = 800,
+    /// Width of the image in pixels (its height follows from the box); default
+    /// 800, for a --movie 480.
+    #[arg(long, value_name = "PIXELS",
           value_parser = clap::value_parser!(u32).range(64..=16384))]
-    pub size: u32,
+    pub size: Option<u32>,
     /// Write an animated GIF of the snapshots from --from to --to, --every apart.
     #[arg(long)]
     pub movie: bool,
@@ -155,7 +156,7 @@ pub fn render(args: RenderArgs) -> Result<ExitCode, CliError> {
     let snapshot = nearest_snapshot(&args.file, args.time, &mut |p| display.update(p));
     display.finish();
     let s = snapshot?;
-    let layout = render_snapshot(&s, &out, format, args.size, by)?;
+    let layout = render_snapshot(&s, &out, format, args.size.unwrap_or(800), by)?;
     emit(&format!(
         "wrote {} ({}×{} px): t = {}, N = {}\n",
         out.display(),
@@ -183,7 +184,13 @@ fn movie(
     let mut span: Option<(f64, f64)> = None;
     let result = for_each_frame(&args.file, range, &mut |p| display.update(p), &mut |s| {
         if movie.is_none() {
-            movie = Some(Movie::create(out, s, args.size, by, delay_ms)?);
+            movie = Some(Movie::create(
+                out,
+                s,
+                args.size.unwrap_or(480),
+                by,
+                delay_ms,
+            )?);
         }
         span = Some(span.map_or((s.time, s.time), |(a, _)| (a, s.time)));
         movie.as_mut().map_or(Ok(()), |m| m.push(s))
