@@ -77,13 +77,18 @@ impl FrameRange {
         Ok(())
     }
 
+    /// The range as given on the command line ("--from 2 --to 5").
     fn describe(&self) -> String {
-        let f = |v: Option<f64>, d: &str| v.map_or(d.to_owned(), |t| t.to_string());
-        format!(
-            "--from {} --to {}",
-            f(self.from, "(start)"),
-            f(self.to, "(end)")
-        )
+        let flags = [
+            ("--from", self.from),
+            ("--to", self.to),
+            ("--every", self.every),
+        ];
+        let given: Vec<String> = flags
+            .iter()
+            .filter_map(|(f, v)| v.map(|t| format!("{f} {t}")))
+            .collect();
+        given.join(" ")
     }
 }
 
