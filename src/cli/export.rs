@@ -17,7 +17,7 @@ use super::{emit, CliError};
 pub enum FormatArg {
     /// HOOMD's GSD (HOOMD-blue, freud, OVITO, the gsd Python package).
     Gsd,
-    /// Extended XYZ (OVITO, ASE).
+    /// Extended XYZ (OVITO).
     Xyz,
 }
 

@@ -55,7 +55,7 @@ enum Command {
     /// or speed, the box drawn), or a range of snapshots as an animated GIF.
     Render(render::RenderArgs),
     /// Export a log's snapshots to HOOMD's GSD or extended XYZ (OVITO, freud,
-    /// HOOMD-blue, ASE), one frame per snapshot.
+    /// HOOMD-blue), one frame per snapshot.
     Export(export::ExportArgs),
 }
 

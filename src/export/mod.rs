@@ -1,6 +1,6 @@
 //! Export of a log's snapshots to the formats of other tools (`carom export`):
 //! HOOMD's GSD (`gsd`: HOOMD-blue, freud, OVITO, the `gsd` Python package) and
-//! extended XYZ (`xyz`: OVITO, ASE). One frame per kept `/snapshot` (see
+//! extended XYZ (`xyz`: OVITO). One frame per kept `/snapshot` (see
 //! [`crate::frames`]), written as it is read, so memory stays one snapshot.
 //!
 //! Species k is the particle type named by [`type_name`] ("A", "B", …): carom's

@@ -1,5 +1,6 @@
-//! Extended XYZ frames (the format of OVITO and ASE): per frame a line with N, a
-//! comment line of key=value pairs, then one line per disc:
+//! Extended XYZ frames (the format OVITO reads; ASE parses the header but wants
+//! chemical symbols as species): per frame a line with N, a comment line of
+//! key=value pairs, then one line per disc:
 //!
 //! ```text
 //! 3
