@@ -6,8 +6,14 @@
 //! * [`core`] (`carom-core`) — discs, boxes, exact kinematics and collision rules;
 //! * [`events`] (`carom-events`) — the event queue, neighbour search and the event loop;
 //! * [`io`] (`carom-io`) — configuration, MCAP logging and reading.
+//!
+//! Its own modules: `run` (runs and resumes), `analysis` (reports from logs),
+//! `frames` (choosing snapshots), `render` (pictures) and `export` (GSD, XYZ).
 
 pub mod analysis;
+pub mod export;
+pub mod frames;
+pub mod render;
 pub mod run;
 
 pub use carom_core as core;

@@ -1,13 +1,16 @@
-//! The `carom` command line: `run`, `resume`, `analyze`, `info` and `repair`.
+//! The `carom` command line: `run`, `resume`, `analyze`, `info`, `repair`,
+//! `render` and `export`.
 //!
 //! Exit status: 0 on success; 1 when a run or a read fails; 2 for a bad command
 //! line or configuration (the message names the field); 130 when a run was
 //! interrupted with Ctrl-C, SIGTERM or SIGHUP (its log is finished and readable).
 
 mod analyze;
+mod export;
 mod info;
 mod plot;
 mod reading;
+mod render;
 mod repair;
 mod run;
 
@@ -48,6 +51,12 @@ enum Command {
     /// every message up to the cut, without simulating again; the input is left
     /// as it is.
     Repair(RepairArgs),
+    /// Draw a snapshot of a log as PNG or SVG (discs to scale, coloured by species
+    /// or speed, the box drawn), or a range of snapshots as an animated GIF.
+    Render(render::RenderArgs),
+    /// Export a log's snapshots to HOOMD's GSD or extended XYZ (OVITO, freud,
+    /// HOOMD-blue), one frame per snapshot.
+    Export(export::ExportArgs),
 }
 
 /// Arguments of `carom run`.
@@ -222,6 +231,20 @@ pub enum CliError {
     /// Drawing a figure failed.
     #[error("plot: {0}")]
     Plot(String),
+    /// Pictures or exported frames could not be made (no snapshots, a write).
+    #[error("{0}")]
+    Frames(String),
+}
+
+impl From<carom::frames::FrameError> for CliError {
+    fn from(e: carom::frames::FrameError) -> Self {
+        use carom::frames::FrameError;
+        match e {
+            FrameError::Read(e) => CliError::Read(e),
+            FrameError::Unusable(why) => CliError::Usage(why),
+            e => CliError::Frames(e.to_string()),
+        }
+    }
 }
 
 impl From<carom::analysis::AnalysisError> for CliError {
@@ -313,6 +336,8 @@ pub fn main() -> ExitCode {
         Command::Analyze(a) => analyze::analyze(a),
         Command::Info(a) => info::info(a),
         Command::Repair(a) => repair::repair(a),
+        Command::Render(a) => render::render(a),
+        Command::Export(a) => export::export(a),
     };
     match result {
         Ok(code) => code,

@@ -52,3 +52,32 @@ pub fn sh(dir: &Path, script: &str) -> Output {
         .output()
         .unwrap()
 }
+
+/// The Python interpreter that can import `modules` — `$CAROM_PYTHON` if set (then
+/// it must have them), else `python3` — or `None`, after saying so, to skip.
+pub fn python_with(modules: &[&str]) -> Option<String> {
+    let (py, explicit) = match std::env::var("CAROM_PYTHON") {
+        Ok(p) if !p.is_empty() => (p, true),
+        _ => ("python3".to_string(), false),
+    };
+    let ok = Command::new(&py)
+        .args(["-c", &format!("import {}", modules.join(", "))])
+        .output()
+        .map(|o| o.status.success())
+        .unwrap_or(false);
+    if ok {
+        return Some(py);
+    }
+    assert!(
+        !explicit,
+        "CAROM_PYTHON={py} is set but cannot import {modules:?} \
+         (pip install -r tests/python-requirements.txt)"
+    );
+    use std::io::Write;
+    let _ = writeln!(
+        std::io::stderr(),
+        "SKIPPED: the Python packages {modules:?} are not available to {py}; \
+         set CAROM_PYTHON to an interpreter that has them (.ci/run does)"
+    );
+    None
+}
