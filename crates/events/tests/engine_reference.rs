@@ -443,7 +443,12 @@ fn oracle(state0: State, params: EngineParams, name: &str, events: usize) -> Ora
                 // cancels: relative to e v_k the error is ~ε (1 + e)/e); the other
                 // component is kept.
                 let dp = w.impulse_vector();
-                assert_eq!(w.v_after, w.v_before + dp / masses[i], "{}: wall impulse", name);
+                assert_eq!(
+                    w.v_after,
+                    w.v_before + dp / masses[i],
+                    "{}: wall impulse",
+                    name
+                );
                 assert_eq!(dp[1 - k], 0.0, "{}: wall impulse off its axis", name);
                 let want = -e * w.v_before[k];
                 assert!(

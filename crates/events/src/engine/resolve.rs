@@ -210,8 +210,10 @@ impl Engine {
         let before = self.bodies[i].v;
         let mut after = before;
         // The wall gives Δp = −(1 + e) m v_k, applied as v_k + Δp/m (the
-        // arithmetic a reader of the log repeats, [`apply_wall_impulse`]).
-        let dp = -(1.0 + e) * m * before[k];
+        // arithmetic a reader of the log repeats, [`apply_wall_impulse`]). The
+        // product is taken as ((−(1 + e) v_k) m) so that Δp/m gives back −(1 + e) v_k
+        // exactly in nearly every case, and an elastic wall then v_k' = −v_k.
+        let dp = -(1.0 + e) * before[k] * m;
         after[k] = apply_wall_impulse(before[k], m, dp);
         self.bodies[i].set_velocity(after, now);
         self.keep_origin_near([i]);

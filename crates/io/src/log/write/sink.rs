@@ -4,8 +4,10 @@
 
 use super::options::{WriteError, WriterOptions};
 use crate::log::format::{
-    log_time_ns, CdrWriter, CollisionBatch, CollisionRecord, CHANNELS, CH_COLLISIONS, METADATA_RUN,
+    log_time_ns, CdrWriter, CollisionBatch, CollisionRecord, CompactBatch, CHANNELS, CH_COLLISIONS,
+    COMPACT_COLLISIONS_CHANNEL, METADATA_RUN,
 };
+use crate::options::CollisionDetail;
 use crate::options::Compression;
 use mcap::records::{MessageHeader, Metadata};
 use std::collections::BTreeMap;
@@ -56,6 +58,8 @@ pub(super) struct Sink {
     path: PathBuf,
     mcap: mcap::Writer<BufWriter<File>>,
     channel_ids: [u16; 4],
+    /// `Some(normals)` when `/collisions` holds compact records.
+    compact: Option<bool>,
     cdr: CdrWriter,
     pub(super) flush_every: Duration,
     pub(super) last_flush: Instant,
@@ -64,7 +68,8 @@ pub(super) struct Sink {
 
 impl Sink {
     /// Create `path` (truncating it), write the `carom.run` metadata record and
-    /// register the four channels of [`CHANNELS`].
+    /// register the four channels of [`CHANNELS`] (`/collisions` with the compact
+    /// schema unless the options ask for the full record).
     pub(super) fn create(
         path: &Path,
         opts: &WriterOptions,
@@ -102,8 +107,15 @@ impl Sink {
             metadata: run_metadata.clone(),
         })
         .map_err(mcap_err)?;
+        let compact = (opts.collision_detail == CollisionDetail::Compact
+            && opts.collision_every == 1)
+            .then_some(opts.collision_normals);
+        let mut channels = CHANNELS;
+        if compact.is_some() {
+            channels[CH_COLLISIONS] = COMPACT_COLLISIONS_CHANNEL;
+        }
         let mut channel_ids = [0u16; 4];
-        for (id, c) in channel_ids.iter_mut().zip(&CHANNELS) {
+        for (id, c) in channel_ids.iter_mut().zip(&channels) {
             let sid = mcap
                 .add_schema(c.schema_name, c.schema_encoding, c.schema_text.as_bytes())
                 .map_err(mcap_err)?;
@@ -115,6 +127,7 @@ impl Sink {
             path: path.to_path_buf(),
             mcap,
             channel_ids,
+            compact,
             cdr: CdrWriter::new(),
             flush_every: opts.flush_every,
             last_flush: Instant::now(),
@@ -141,7 +154,20 @@ impl Sink {
                 mut records,
             } => {
                 if !records.is_empty() {
-                    CollisionBatch::encode_records(&records, first_ordinal, stride, &mut self.cdr);
+                    match self.compact {
+                        Some(normals) => CompactBatch::encode_records(
+                            &records,
+                            first_ordinal,
+                            normals,
+                            &mut self.cdr,
+                        ),
+                        None => CollisionBatch::encode_records(
+                            &records,
+                            first_ordinal,
+                            stride,
+                            &mut self.cdr,
+                        ),
+                    }
                     let header = MessageHeader {
                         channel_id: self.channel_ids[CH_COLLISIONS],
                         sequence,
