@@ -27,6 +27,7 @@ fn log_opts() -> LogOptions {
     LogOptions {
         collisions: true,
         collision_every: 1,
+        collision_detail: Default::default(),
         snapshot_interval: Some(10.0),
         thermo_interval: Some(2.0),
         checkpoint_interval: Some(20.0),

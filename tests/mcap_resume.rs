@@ -37,6 +37,7 @@ fn log_opts() -> LogOptions {
     LogOptions {
         collisions: true,
         collision_every: 1,
+        collision_detail: Default::default(),
         snapshot_interval: Some(1.0),
         thermo_interval: Some(0.5),
         checkpoint_interval: Some(2.0),

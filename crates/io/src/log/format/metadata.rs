@@ -465,9 +465,18 @@ mod tests {
         let mut bad = m.to_map();
         bad.insert("run_facts".into(), "{\"n_discs\": 1}".into());
         assert_eq!(RunMetadata::from_map(&bad).unwrap_err().key, "run_facts");
+        // Format 1.x logs hold the full collision record (no `collision_detail`).
+        let mut log = serde_json::from_str::<Value>(&old["log_options"]).unwrap();
+        log.as_object_mut().unwrap().remove("collision_detail");
+        old.insert("log_options".into(), log.to_string());
+        let read = RunMetadata::from_map(&old).unwrap();
+        assert_eq!(read.log.collision_detail, CollisionDetail::Full);
+        assert_eq!(m.log.collision_record(), CollisionDetail::Compact);
         let mut bad = m.to_map();
-        bad.insert("log_format".into(), "2".into());
-        assert_eq!(RunMetadata::from_map(&bad).unwrap_err().key, "log_format");
+        bad.insert("log_format".into(), "3.0".into());
+        let err = RunMetadata::from_map(&bad).unwrap_err();
+        assert_eq!(err.key, "log_format");
+        assert!(err.problem.contains("1.x and 2.x"), "{}", err.problem);
         bad.remove("log_format");
         assert_eq!(RunMetadata::from_map(&bad).unwrap_err().problem, "missing");
     }
