@@ -37,11 +37,7 @@ fn read_collisions(path: &std::path::Path) -> Vec<CollisionRecord> {
 }
 
 fn matches_event(rec: &CollisionRecord, ev: &Event) -> bool {
-    match ev {
-        Event::Pair(p) => rec.as_pair() == Some(*p) && rec.time.to_bits() == p.time.to_bits(),
-        Event::Wall(w) => rec.as_wall() == Some(*w) && rec.time.to_bits() == w.time.to_bits(),
-        Event::Scheduled { .. } => false,
-    }
+    same_as_engine(rec, ev)
 }
 
 #[test]

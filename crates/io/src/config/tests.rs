@@ -282,7 +282,10 @@ fn out_of_range_values_are_named() {
             r#"{"log": {"collision_every": 2, "collision_detail": "compact"}}"#,
             "log.collision_detail",
         ),
-        (r#"{"log": {"collision_detail": "short"}}"#, "log.collision_detail"),
+        (
+            r#"{"log": {"collision_detail": "short"}}"#,
+            "log.collision_detail",
+        ),
         (
             r#"{"log": {"snapshot_interval": 0}}"#,
             "log.snapshot_interval",

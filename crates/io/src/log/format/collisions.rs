@@ -45,8 +45,8 @@ pub const NO_DISC: u32 = u32::MAX;
 /// the log stores it: `j` is [`NO_DISC`], the normal points from the disc to the
 /// wall, the second disc's velocities are zero, `virial` holds |Δp| given to
 /// the wall (momentum) and `impulse` the Δp the disc received. The full record
-/// does not store a pair's impulse: decoded from it, `impulse` is NaN (a compact
-/// record's replay fills it).
+/// does not store a pair's impulse: decoded from it, a pair's `impulse` is zero
+/// (which no real collision gives; a compact record's replay fills it).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct CollisionRecord {
     /// 0-based ordinal among all collisions (pair + wall) of the run.
@@ -342,7 +342,7 @@ impl CollisionBatch {
                     // Away from the wall the normal points to.
                     v(&self.nx, &self.ny) * -self.virial[k]
                 } else {
-                    DVec2::NAN
+                    DVec2::ZERO
                 },
             },
         }
@@ -505,7 +505,7 @@ mod tests {
             vj_after: DVec2::new(0.3, 0.4),
             energy_lost: 0.0,
             virial: -0.7,
-            impulse: DVec2::NAN,
+            impulse: DVec2::ZERO,
         });
         b.push_wall(&WallCollision {
             time: 1.5,
@@ -531,7 +531,7 @@ mod tests {
         assert_eq!(d, b);
         let wall = d.get(1);
         assert_eq!(wall.impulse, DVec2::new(0.0, 1.9));
-        assert!(d.get(0).impulse.is_nan());
+        assert_eq!(d.get(0).impulse, DVec2::ZERO);
         let recs: Vec<_> = b.iter().collect();
         let mut w2 = CdrWriter::new();
         CollisionBatch::encode_records(&recs, b.first_ordinal, b.stride, &mut w2);
