@@ -44,8 +44,8 @@ fn engine() -> Engine {
 /// An equilibrated fluid of `n` discs at η = [`ETA`] (10 collisions per disc).
 fn engine_of(n: usize) -> Engine {
     let spec = SystemSpec::periodic_fluid(n, ETA, 42);
-    let mut e = Engine::new(spec.build().expect("valid"), EngineParams::default())
-        .expect("engine starts");
+    let mut e =
+        Engine::new(spec.build().expect("valid"), EngineParams::default()).expect("engine starts");
     e.run_collisions(10 * n as u64).expect("equilibrates");
     e
 }
@@ -252,7 +252,13 @@ fn main() {
     interleaved("zstd level -1 (default), inline", -1, false, 10);
     interleaved("zstd level 1, writer thread", 1, true, 10);
     interleaved("zstd level 3 (zstd's default), writer thread", 3, true, 10);
-    interleaved_at(1_000_000, "zstd level -1 (default), writer thread", -1, true, 10);
+    interleaved_at(
+        1_000_000,
+        "zstd level -1 (default), writer thread",
+        -1,
+        true,
+        10,
+    );
     // CAROM_BENCH_INTERLEAVED_ONLY=1: the interleaved ratios only, no criterion cases.
     if std::env::var_os("CAROM_BENCH_INTERLEAVED_ONLY").is_some() {
         return;

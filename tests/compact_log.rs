@@ -267,3 +267,67 @@ fn a_strided_log_keeps_the_full_record() {
     );
     let _ = std::fs::remove_file(&out);
 }
+
+/// A log of format 1.2 (full records, no `collision_detail` in its options):
+/// made here by copying a full log's messages under 1.2 metadata, as `carom
+/// repair` copies. It reads (info, analyze) and resumes, continuing with full
+/// records and its own format version.
+#[test]
+fn a_format_1_log_reads_and_resumes() {
+    use carom::io::{scan, LogWriter, WriterOptions, WriterPosition};
+    let (_, sys, params) = cases().swap_remove(1);
+    let mut s = spec(
+        sys.clone(),
+        Stop::Time(1.5),
+        log_opts(CollisionDetail::Full),
+    );
+    s.params = params;
+    let new = tmp("v2-full.mcap");
+    run(&s, &new, Control::default()).unwrap();
+    let old = tmp("v1.mcap");
+    {
+        let mut reader = LogReader::open(&new).unwrap();
+        let mut map = reader.run_map().clone();
+        map.insert("log_format".into(), "1.2".into());
+        let mut log: Value = serde_json::from_str(&map["log_options"]).unwrap();
+        log.as_object_mut().unwrap().remove("collision_detail");
+        map.insert("log_options".into(), log.to_string());
+        let mut w = LogWriter::create(
+            &old,
+            WriterOptions::from_log_options(&reader.run().log),
+            &map,
+            WriterPosition::default(),
+        )
+        .unwrap();
+        while let Some(m) = reader.next_raw().unwrap() {
+            w.copy_message(m.channel, m.sequence, m.log_time, m.publish_time, m.data)
+                .unwrap();
+        }
+        let summary = reader.summary().unwrap().unwrap();
+        w.finish(&summary.to_map()).unwrap();
+    }
+    let info = scan(&old).unwrap();
+    assert_eq!(info.run.log_format, "1.2");
+    assert_eq!(info.run.log.collision_detail, CollisionDetail::Full);
+    assert_eq!(records(&old), records(&new));
+    analyze_log(&old, AnalysisOptions::default(), &mut Quiet).unwrap();
+    let resumed = tmp("v1-resumed.mcap");
+    let opts = ResumeOptions {
+        stop: Some(Stop::Time(3.0)),
+    };
+    resume(&old, &resumed, &opts, Control::default()).unwrap();
+    let mut r = LogReader::open(&resumed).unwrap();
+    assert_eq!(r.run().log_format, "1.2");
+    let got: Vec<_> = r.collisions().collect::<Result<_, _>>().unwrap();
+    assert!(!r.compact_collisions());
+    let full = write(
+        "v1-reference.mcap",
+        &sys,
+        params,
+        log_opts(CollisionDetail::Full),
+    );
+    assert_eq!(got, records(&full));
+    for p in [&new, &old, &resumed, &full] {
+        let _ = std::fs::remove_file(p);
+    }
+}
