@@ -335,11 +335,14 @@ fn bad_options_name_the_field() {
 #[test]
 fn docs_show_every_schema_verbatim() {
     use carom::io::CHECKPOINT_MSG;
-    use carom::io::{COLLISION_BATCH_MSG, SNAPSHOT_MSG, THERMO_JSON_SCHEMA};
+    use carom::io::{
+        COLLISION_BATCH_MSG, COMPACT_COLLISION_BATCH_MSG, SNAPSHOT_MSG, THERMO_JSON_SCHEMA,
+    };
     let doc = std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/docs/log-format.md"))
         .unwrap();
     for (name, text) in [
         ("CollisionBatch", COLLISION_BATCH_MSG),
+        ("CompactCollisionBatch", COMPACT_COLLISION_BATCH_MSG),
         ("Snapshot", SNAPSHOT_MSG),
         ("Checkpoint", CHECKPOINT_MSG),
         ("Thermo", THERMO_JSON_SCHEMA),
