@@ -283,7 +283,13 @@ impl<'a, R: Read + Seek> Cursor<'a, R> {
                 }) => (channel, sequence, log_time),
             };
             if !self.wanted.takes(channel) {
-                if let Err(e) = self.reader.sync_replay(channel, sequence, log_time) {
+                // Snapshots and checkpoints feed the replay of compact collisions.
+                let synced = if self.wanted.takes(CH_COLLISIONS) {
+                    self.reader.sync_replay(channel, sequence, log_time)
+                } else {
+                    Ok(())
+                };
+                if let Err(e) = synced {
                     self.done = true;
                     return Some(Err(e));
                 }

@@ -209,3 +209,87 @@ fn out_impulses(out: &mut CollisionBatch, b: &CompactBatch) {
     out.impulse_x.clone_from(&b.dpx);
     out.impulse_y.clone_from(&b.dpy);
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::log::format::{wall_code, CdrWriter};
+    use carom_core::{Axis, SimBox, Species};
+
+    fn snapshot() -> Snapshot {
+        Snapshot {
+            time: 0.0,
+            box_size: DVec2::new(10.0, 10.0),
+            boundary: [0, 1],
+            species_radius: vec![0.5, 0.7],
+            species_mass: vec![1.0, 3.0],
+            species: vec![0, 1],
+            positions: vec![DVec2::new(1.0, 1.0), DVec2::new(2.0, 1.0)],
+            velocities: vec![DVec2::new(1.0, 0.25), DVec2::new(-0.5, 0.1)],
+        }
+    }
+
+    fn encoded(b: &CompactBatch) -> Vec<u8> {
+        let mut w = CdrWriter::new();
+        b.encode(&mut w);
+        w.bytes().to_vec()
+    }
+
+    #[test]
+    fn a_compact_batch_before_any_snapshot_is_an_error() {
+        let b = CompactBatch {
+            time: vec![0.5],
+            i: vec![0],
+            j: vec![1],
+            dpx: vec![-1.0],
+            dpy: vec![0.0],
+            ..CompactBatch::default()
+        };
+        let mut out = CollisionBatch::default();
+        let e = Replay::new(None)
+            .expand(&encoded(&b), &mut out)
+            .unwrap_err();
+        assert!(e.to_string().contains("snapshot"), "{e}");
+        let mut r = Replay::new(None);
+        r.sync_snapshot(&snapshot());
+        let bad = CompactBatch { j: vec![7], ..b };
+        let e = r.expand(&encoded(&bad), &mut out).unwrap_err();
+        assert!(matches!(e, CdrError::Invalid { field: "j", .. }), "{e}");
+    }
+
+    #[test]
+    fn replay_applies_impulses_and_derives_the_rest() {
+        let facts = RunFacts::new(
+            &[Species::new(1, 0.5, 1.0), Species::new(1, 0.7, 3.0)],
+            &SimBox::walled(10.0, 10.0, 1.0),
+            &carom_events::EngineParams::default(),
+            &crate::LogOptions::default(),
+        );
+        let mut r = Replay::new(Some(&facts));
+        r.sync_snapshot(&snapshot());
+        let dp = DVec2::new(-0.9, 0.0);
+        let b = CompactBatch {
+            time: vec![0.5, 0.75],
+            i: vec![0, 1],
+            j: vec![1, wall_code(Axis::Y, WallSide::High)],
+            dpx: vec![dp.x, 0.0],
+            dpy: vec![dp.y, -0.2],
+            ..CompactBatch::default()
+        };
+        let mut out = CollisionBatch::default();
+        r.expand(&encoded(&b), &mut out).unwrap();
+        let (p, w) = (out.get(0), out.get(1));
+        let (vi, vj) = (DVec2::new(1.0, 0.25), DVec2::new(-0.5, 0.1));
+        assert_eq!((p.vi_before, p.vj_before), (vi, vj));
+        assert_eq!((p.vi_after, p.vj_after), (vi + dp / 1.0, vj - dp / 3.0));
+        assert_eq!(p.normal, DVec2::X);
+        assert_eq!(p.virial, 1.2 * 0.9);
+        assert_eq!((p.energy_lost, p.impulse), (0.0, dp));
+        // The wall: disc 1 after the pair collision, its y velocity changed.
+        assert_eq!(w.vi_before, vj - dp / 3.0);
+        assert_eq!(w.vi_after.y, w.vi_before.y + -0.2 / 3.0);
+        assert_eq!(w.vi_after.x, w.vi_before.x);
+        assert_eq!((w.normal, w.virial, w.kind), (DVec2::Y, 0.2, KIND_WALL));
+        assert_eq!(w.ordinal, 1);
+    }
+}
