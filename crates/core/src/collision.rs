@@ -323,6 +323,9 @@ mod tests {
             (1.0, 1.0, 1.0, 1e-14, 16_000_000),
             (1.0, 4.0, 2.0, 0.0, 400_000),
             (1.0, 1.0, 0.75, 0.0, 400_000),
+            // Masses that are not powers of two (data/binary-mixture.json): Δp/m
+            // rounds once more per component.
+            (1.0, 1.96, 1.2, 1e-14, 4_000_000),
         ];
         let mut rng = Pcg64::seed_from_u64(7);
         let gaussian =
