@@ -8,7 +8,8 @@
 //!   collisions of the same trajectory, alternated so that changing machine load
 //!   hits both alike; prints both rates, their ratio, and bytes per collision, for
 //!   the default (zstd −1, writer thread), inline writing, and zstd levels 1 and 3,
-//!   and the default at N = 10⁶ (`CAROM_BENCH_INTERLEAVED_ONLY=1` stops there);
+//!   and the default at N = 10⁶ (`CAROM_BENCH_INTERLEAVED_ONLY=1` stops there;
+//!   `CAROM_BENCH_DETAIL=full` logs the full record instead of the compact one);
 //! * `logged/zstd` (default level −1), `logged/zstd1`, `logged/lz4`, `logged/none` —
 //!   the driver's hot loop: every event to a [`LogWriter`] with its default options
 //!   (batches of 4096 collisions, writer thread), into a file that is finished and
@@ -215,6 +216,10 @@ fn interleaved_at(n: usize, label: &str, level: i32, background: bool, rounds: u
         let mut opts = WriterOptions::from_log_options(&LogOptions::default());
         opts.compression_level = level;
         opts.background = background;
+        // CAROM_BENCH_DETAIL=full: the full record (log format 1's) instead.
+        if std::env::var("CAROM_BENCH_DETAIL").is_ok_and(|d| d == "full") {
+            opts.collision_detail = carom::io::CollisionDetail::Full;
+        }
         let start = Instant::now();
         let mut w = LogWriter::create(&path, opts, &BTreeMap::new(), WriterPosition::default())
             .expect("log opens");
