@@ -7,7 +7,9 @@
 //! * first, outside criterion, `interleaved`: bare and logged blocks of 200 000
 //!   collisions of the same trajectory, alternated so that changing machine load
 //!   hits both alike; prints both rates, their ratio, and bytes per collision, for
-//!   the default (zstd −1, writer thread), inline writing, and zstd levels 1 and 3;
+//!   the default (zstd −1, writer thread), inline writing, and zstd levels 1 and 3,
+//!   and the default at N = 10⁶ (`CAROM_BENCH_INTERLEAVED_ONLY=1` stops there;
+//!   `CAROM_BENCH_DETAIL=full` logs the full record instead of the compact one);
 //! * `logged/zstd` (default level −1), `logged/zstd1`, `logged/lz4`, `logged/none` —
 //!   the driver's hot loop: every event to a [`LogWriter`] with its default options
 //!   (batches of 4096 collisions, writer thread), into a file that is finished and
@@ -37,9 +39,15 @@ fn system() -> SystemSpec {
 }
 
 fn engine() -> Engine {
-    let mut e = Engine::new(system().build().expect("valid"), EngineParams::default())
-        .expect("engine starts");
-    e.run_collisions(10 * N as u64).expect("equilibrates");
+    engine_of(N)
+}
+
+/// An equilibrated fluid of `n` discs at η = [`ETA`] (10 collisions per disc).
+fn engine_of(n: usize) -> Engine {
+    let spec = SystemSpec::periodic_fluid(n, ETA, 42);
+    let mut e =
+        Engine::new(spec.build().expect("valid"), EngineParams::default()).expect("engine starts");
+    e.run_collisions(10 * n as u64).expect("equilibrates");
     e
 }
 
@@ -190,8 +198,13 @@ fn bench(c: &mut Criterion) {
 /// Prints both rates and their ratio. Each logged block opens a log, logs every
 /// collision of the block and finishes the file (waiting for the writer thread).
 fn interleaved(label: &str, level: i32, background: bool, rounds: usize) {
+    interleaved_at(N, label, level, background, rounds);
+}
+
+/// [`interleaved`] for `n` discs.
+fn interleaved_at(n: usize, label: &str, level: i32, background: bool, rounds: usize) {
     const BLOCK: u64 = 200_000;
-    let mut bare = engine();
+    let mut bare = engine_of(n);
     let mut logged = bare.clone();
     let (mut t_bare, mut t_logged) = (Duration::ZERO, Duration::ZERO);
     let (mut bytes, mut count) = (0u64, 0u64);
@@ -204,6 +217,10 @@ fn interleaved(label: &str, level: i32, background: bool, rounds: usize) {
         let mut opts = WriterOptions::from_log_options(&LogOptions::default());
         opts.compression_level = level;
         opts.background = background;
+        // CAROM_BENCH_DETAIL=full: the full record (log format 1's) instead.
+        if std::env::var("CAROM_BENCH_DETAIL").is_ok_and(|d| d == "full") {
+            opts.collision_detail = carom::io::CollisionDetail::Full;
+        }
         let start = Instant::now();
         let mut w = LogWriter::create(&path, opts, &BTreeMap::new(), WriterPosition::default())
             .expect("log opens");
@@ -219,7 +236,7 @@ fn interleaved(label: &str, level: i32, background: bool, rounds: usize) {
     let rb = count as f64 / t_bare.as_secs_f64();
     let rl = count as f64 / t_logged.as_secs_f64();
     eprintln!(
-        "[interleaved {label}] bare {:.0} collisions/s, logged {:.0} collisions/s: {:.1} % of bare; {:.1} bytes per collision",
+        "[interleaved N = {n}, {label}] bare {:.0} collisions/s, logged {:.0} collisions/s: {:.1} % of bare; {:.1} bytes per collision",
         rb,
         rl,
         100.0 * rl / rb,
@@ -241,6 +258,17 @@ fn main() {
     interleaved("zstd level -1 (default), inline", -1, false, 10);
     interleaved("zstd level 1, writer thread", 1, true, 10);
     interleaved("zstd level 3 (zstd's default), writer thread", 3, true, 10);
+    interleaved_at(
+        1_000_000,
+        "zstd level -1 (default), writer thread",
+        -1,
+        true,
+        10,
+    );
+    // CAROM_BENCH_INTERLEAVED_ONLY=1: the interleaved ratios only, no criterion cases.
+    if std::env::var_os("CAROM_BENCH_INTERLEAVED_ONLY").is_some() {
+        return;
+    }
     benches();
     Criterion::default().configure_from_args().final_summary();
 }

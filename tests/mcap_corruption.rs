@@ -55,6 +55,7 @@ fn valid_log(compression: Compression) -> Vec<u8> {
     let log = LogOptions {
         collisions: true,
         collision_every: 1,
+        collision_detail: Default::default(),
         snapshot_interval: Some(0.5),
         thermo_interval: Some(0.25),
         checkpoint_interval: Some(1.0),

@@ -27,6 +27,7 @@ fn log_opts() -> LogOptions {
     LogOptions {
         collisions: true,
         collision_every: 1,
+        collision_detail: Default::default(),
         snapshot_interval: Some(10.0),
         thermo_interval: Some(2.0),
         checkpoint_interval: Some(20.0),
@@ -123,11 +124,7 @@ fn sigkill_mid_run_leaves_a_readable_resumable_log() {
         reference_collisions(&crash_system(), EngineParams::default(), t_last.next_up());
     assert!(reference.len() >= logged.len());
     for (k, (rec, ev)) in logged.iter().zip(&reference).enumerate() {
-        let same = match ev {
-            carom::events::Event::Pair(p) => rec.as_pair() == Some(*p),
-            carom::events::Event::Wall(w) => rec.as_wall() == Some(*w),
-            _ => false,
-        };
+        let same = same_as_engine(rec, ev);
         assert!(same, "collision {k} differs: {rec:?} vs {ev:?}");
     }
     // Strict reading reports the cut as an error.

@@ -4,7 +4,7 @@
 
 mod mcap_common;
 
-use carom::io::{Compression, LogOptions, Stop};
+use carom::io::{CollisionDetail, Compression, LogOptions, Stop};
 use carom::io::{LogEnd, LogReader};
 use carom::run::{run, Control};
 use mcap_common::*;
@@ -29,6 +29,8 @@ fn reading_a_large_log_takes_bounded_memory() {
         thermo_interval: None,
         checkpoint_interval: None,
         compression: Compression::None,
+        // The full record: the test needs a log of more than 150 MB.
+        collision_detail: CollisionDetail::Full,
         ..LogOptions::default()
     };
     let n = 1_500_000;

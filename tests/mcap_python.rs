@@ -9,7 +9,7 @@
 mod mcap_common;
 
 use carom::io::CollisionBatch;
-use carom::io::{Compression, LogOptions, Stop};
+use carom::io::{CollisionDetail, Compression, LogOptions, Stop};
 use carom::io::{LogMessage, LogReader};
 use carom::run::{run, Control};
 use mcap_common::*;
@@ -192,6 +192,8 @@ fn python_reads_what_rust_reads() {
             thermo_interval: Some(0.25),
             checkpoint_interval: Some(1.5),
             compression,
+            // The full record's layout (tests/compact_python.rs replays the compact one).
+            collision_detail: CollisionDetail::Full,
             ..LogOptions::default()
         };
         run(

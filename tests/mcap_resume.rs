@@ -8,7 +8,7 @@ mod mcap_common;
 
 use carom::io::StopReason;
 use carom::io::{scan, scan_indexed, LogEnd, LogEvent, LogReader, ReadError, ReadProgress};
-use carom::io::{Compression, LogOptions, Stop};
+use carom::io::{CollisionDetail, Compression, LogOptions, Stop};
 use carom::io::{LogWriter, WriterOptions, WriterPosition};
 use carom::run::{resume, run, Control, ResumeOptions, ResumePass, RunError};
 use mcap_common::*;
@@ -37,6 +37,7 @@ fn log_opts() -> LogOptions {
     LogOptions {
         collisions: true,
         collision_every: 1,
+        collision_detail: Default::default(),
         snapshot_interval: Some(1.0),
         thermo_interval: Some(0.5),
         checkpoint_interval: Some(2.0),
@@ -204,8 +205,13 @@ fn a_run_stops_with_a_finished_log_before_its_disk_fills() {
     let system = system(1000, 0.45, false, true, 5);
     let stop = Stop::Time(80.0);
     let full = tmp("roomy.mcap");
+    // Full records: the test needs a log of more than 18 MB.
+    let log = LogOptions {
+        collision_detail: CollisionDetail::Full,
+        ..log_opts()
+    };
     run(
-        &spec(system.clone(), stop, log_opts()),
+        &spec(system.clone(), stop, log.clone()),
         &full,
         Control::default(),
     )
@@ -225,7 +231,7 @@ fn a_run_stops_with_a_finished_log_before_its_disk_fills() {
         Ok(ROOM.saturating_sub(std::fs::metadata(p)?.len()))
     };
     let s = run(
-        &spec(system, stop, log_opts()),
+        &spec(system, stop, log),
         &cut,
         Control {
             free_space: Some(&mut free),

@@ -20,6 +20,7 @@ fn log_opts(compression: Compression) -> LogOptions {
     LogOptions {
         collisions: true,
         collision_every: 1,
+        collision_detail: Default::default(),
         snapshot_interval: Some(1.0),
         thermo_interval: Some(0.5),
         checkpoint_interval: Some(2.0),
@@ -37,11 +38,7 @@ fn read_collisions(path: &std::path::Path) -> Vec<CollisionRecord> {
 }
 
 fn matches_event(rec: &CollisionRecord, ev: &Event) -> bool {
-    match ev {
-        Event::Pair(p) => rec.as_pair() == Some(*p) && rec.time.to_bits() == p.time.to_bits(),
-        Event::Wall(w) => rec.as_wall() == Some(*w) && rec.time.to_bits() == w.time.to_bits(),
-        Event::Scheduled { .. } => false,
-    }
+    same_as_engine(rec, ev)
 }
 
 #[test]
@@ -339,11 +336,14 @@ fn bad_options_name_the_field() {
 #[test]
 fn docs_show_every_schema_verbatim() {
     use carom::io::CHECKPOINT_MSG;
-    use carom::io::{COLLISION_BATCH_MSG, SNAPSHOT_MSG, THERMO_JSON_SCHEMA};
+    use carom::io::{
+        COLLISION_BATCH_MSG, COMPACT_COLLISION_BATCH_MSG, SNAPSHOT_MSG, THERMO_JSON_SCHEMA,
+    };
     let doc = std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/docs/log-format.md"))
         .unwrap();
     for (name, text) in [
         ("CollisionBatch", COLLISION_BATCH_MSG),
+        ("CompactCollisionBatch", COMPACT_COLLISION_BATCH_MSG),
         ("Snapshot", SNAPSHOT_MSG),
         ("Checkpoint", CHECKPOINT_MSG),
         ("Thermo", THERMO_JSON_SCHEMA),

@@ -82,6 +82,7 @@ pub fn resume(
     }
     let next_ordinal = done;
     let resumed_at = engine.now;
+    let collision_normals = WriterOptions::needs_normals(engine.params.restitution);
     let engine = Engine::from_checkpoint(engine).map_err(|source| RunError::BadCheckpoint {
         file: input.to_path_buf(),
         source,
@@ -123,7 +124,10 @@ pub fn resume(
     let mut temp = TempFile(in_place.then(|| target.clone()));
     let mut writer = LogWriter::create(
         &target,
-        WriterOptions::from_log_options(&meta.log),
+        WriterOptions {
+            collision_normals,
+            ..WriterOptions::from_log_options(&meta.log)
+        },
         &meta.to_map(),
         WriterPosition {
             next_ordinal,

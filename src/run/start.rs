@@ -62,7 +62,10 @@ pub fn run(spec: &RunSpec, out: &Path, mut control: Control<'_>) -> Result<RunSu
     };
     let writer = LogWriter::create(
         out,
-        WriterOptions::from_log_options(&spec.log),
+        WriterOptions {
+            collision_normals: WriterOptions::needs_normals(spec.params.restitution),
+            ..WriterOptions::from_log_options(&spec.log)
+        },
         &meta.to_map(),
         WriterPosition::default(),
     )?;

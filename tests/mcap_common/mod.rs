@@ -166,3 +166,45 @@ pub fn node_read(path: &Path) -> Option<Value> {
     );
     Some(serde_json::from_slice(&out.stdout).expect("read.mjs prints JSON"))
 }
+
+/// Whether a logged collision is the engine's event `ev`: time, discs and every
+/// velocity bit for bit; the normal, virial and energy lost equal in a full
+/// record and to rounding (1e-12 relative) in a replayed compact one, which
+/// derives them (docs/log-format.md); a compact record's impulse bit for bit
+/// (a full record has none for a pair).
+pub fn same_as_engine(rec: &carom::io::CollisionRecord, ev: &Event) -> bool {
+    let close = |a: f64, b: f64| (a - b).abs() <= 1e-12 * a.abs().max(b.abs()).max(1e-300);
+    let near = |a: DVec2, b: DVec2| (a - b).length() <= 1e-12 * a.length().max(1.0);
+    let (p, impulse) = match ev {
+        Event::Pair(p) => match rec.as_pair() {
+            Some(_) => (*p, p.impulse),
+            None => return false,
+        },
+        Event::Wall(w) => match rec.as_wall() {
+            Some(_) => {
+                let c = carom::io::CollisionRecord::from_wall(w, rec.ordinal);
+                (c.collision, w.impulse_vector())
+            }
+            None => return false,
+        },
+        Event::Scheduled { .. } => return false,
+    };
+    let c = &rec.collision;
+    let exact = bits(&[c.vi_before, c.vj_before, c.vi_after, c.vj_after])
+        == bits(&[p.vi_before, p.vj_before, p.vi_after, p.vj_after])
+        && (c.time.to_bits(), c.i, c.j) == (p.time.to_bits(), p.i, p.j);
+    // A full record stores no pair impulse (zero); a wall's follows from |Δp|.
+    let compact = c.impulse != DVec2::ZERO && rec.kind == carom::io::KIND_PAIR;
+    exact
+        && (rec.kind == carom::io::KIND_PAIR || c.impulse == impulse)
+        && if compact {
+            bits(&[c.impulse]) == bits(&[impulse])
+                && near(c.normal, p.normal)
+                && close(c.virial, p.virial)
+                && (c.energy_lost - p.energy_lost).abs()
+                    <= 1e-12
+                        * (c.vi_before.length_squared() + c.vj_before.length_squared() + 1e-300)
+        } else {
+            (c.normal, c.virial, c.energy_lost) == (p.normal, p.virial, p.energy_lost)
+        }
+}

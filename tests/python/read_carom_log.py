@@ -35,6 +35,8 @@ BATCH_FIELDS = [
     ("vix_after", "d"), ("viy_after", "d"), ("vjx_after", "d"), ("vjy_after", "d"),
     ("energy_lost", "d"), ("virial", "d"),
 ]
+# The compact record (log format 2; tests/python/replay_compact_log.py replays it).
+COMPACT_FIELDS = [("time", "d"), ("i", "I"), ("j", "I"), ("dpx", "d"), ("dpy", "d")]
 SNAPSHOT_FIELDS = [("species", "H"), ("x", "d"), ("y", "d"), ("vx", "d"), ("vy", "d")]
 
 
@@ -70,6 +72,7 @@ def main():
     }
     ros2 = DecoderFactory()
     batch_crc = Crc(BATCH_FIELDS)
+    compact_crc = Crc(COMPACT_FIELDS)
     snap_crc = Crc(SNAPSHOT_FIELDS)
     with open(path, "rb") as f:
         reader = (
@@ -94,7 +97,8 @@ def main():
                 msg = decode(message.data)
                 if topic == "/collisions":
                     n = len(msg.time)
-                    for name, _ in BATCH_FIELDS:
+                    compact = schema.name == "carom_msgs/msg/CompactCollisionBatch"
+                    for name, _ in COMPACT_FIELDS if compact else BATCH_FIELDS:
                         assert len(getattr(msg, name)) == n, name
                     out["batches"].append(
                         {
@@ -106,7 +110,7 @@ def main():
                             "first_time": msg.time[0].hex() if n else None,
                         }
                     )
-                    batch_crc.add(msg)
+                    (compact_crc if compact else batch_crc).add(msg)
                 elif topic == "/snapshot":
                     out["snapshots"].append(
                         {
@@ -142,6 +146,7 @@ def main():
                     summary.channels[cid].topic: n for cid, n in stats.items()
                 }
     out["batch_crc"] = batch_crc.crc
+    out["compact_crc"] = compact_crc.crc
     out["snapshot_crc"] = snap_crc.crc
     json.dump(out, sys.stdout)
 

@@ -53,8 +53,8 @@ pub struct Resolution {
     pub vj: DVec2,
     /// Kinetic energy dissipated, from the model's closed form (energy; 0 when elastic).
     pub energy_lost: f64,
-    /// Momentum given to disc i, Δp_i = m_i (v_i' − v_i) (mass·length/time);
-    /// disc j receives −Δp_i.
+    /// Momentum given to disc i, Δp_i (mass·length/time); disc j receives −Δp_i,
+    /// and the velocities are exactly [`apply_impulse`] of it.
     pub impulse_i: DVec2,
 }
 
@@ -70,7 +70,8 @@ pub fn elastic(vi: DVec2, vj: DVec2, mi: f64, mj: f64, n: DVec2) -> (DVec2, DVec
 /// Normal restitution (physics.md §4b):
 /// v_i' = v_i − (1+e) (m_j/(m_i+m_j)) u n,  v_j' = v_j + (1+e) (m_i/(m_i+m_j)) u n.
 /// With e = 1 this is exactly [`elastic`]. `n` is the line of centres from i to j
-/// (any length; u n is evaluated as (g·n) n/|n|²). Returns (v_i', v_j').
+/// (any length; u n is evaluated as (g·n) n/|n|²). Returns (v_i', v_j'), applied
+/// from the impulse [`normal_impulse`] by [`apply_impulse`].
 #[inline]
 pub fn normal_restitution(
     vi: DVec2,
@@ -80,8 +81,38 @@ pub fn normal_restitution(
     n: DVec2,
     e: f64,
 ) -> (DVec2, DVec2) {
+    apply_impulse(vi, vj, mi, mj, normal_impulse(vi, vj, mi, mj, n, e))
+}
+
+/// The momentum Δp_i given to disc i by normal restitution e (physics.md §4b):
+/// Δp_i = −(1+e) μ (g·n) n/|n|², μ = m_i m_j/(m_i+m_j); disc j receives −Δp_i.
+/// Along −n: a reader recovers the unit normal as −Δp_i/|Δp_i|. The scalar is
+/// evaluated as ((1+e)(g·n)/|n|²/(m_i+m_j)) m_i m_j: rounded per collision, not
+/// through a fixed rounded μ, whose constant error would bias the energy of every
+/// elastic collision the same way (unequal masses; see the module docs), and with
+/// masses that are powers of two the velocities equal those of
+/// v_i − (2 m_j/(m_i+m_j)) u n bit for bit.
+#[inline]
+pub fn normal_impulse(vi: DVec2, vj: DVec2, mi: f64, mj: f64, n: DVec2, e: f64) -> DVec2 {
     let k = (1.0 + e) * normal_ratio(vi - vj, n) / (mi + mj);
-    (vi - n * (k * mj), vj + n * (k * mi))
+    n * -(k * mi * mj)
+}
+
+/// The velocities after disc i receives the momentum `dp` (Δp_i) and disc j
+/// receives −Δp_i: (v_i + Δp_i/m_i, v_j − Δp_i/m_j), componentwise in exactly this
+/// order of operations (one division and one addition per component). The engine
+/// changes velocities only through this function (and [`apply_wall_impulse`]), so
+/// that a reader of the log repeating it gets every velocity bit for bit.
+#[inline]
+pub fn apply_impulse(vi: DVec2, vj: DVec2, mi: f64, mj: f64, dp: DVec2) -> (DVec2, DVec2) {
+    (vi + dp / mi, vj - dp / mj)
+}
+
+/// The velocity component after a wall gives the momentum `dp` (Δp along the
+/// wall's axis) to a disc of mass `m`: v + Δp/m (see [`apply_impulse`]).
+#[inline]
+pub fn apply_wall_impulse(v: f64, m: f64, dp: f64) -> f64 {
+    v + dp / m
 }
 
 /// The ratio (g·n)/|n|² (time⁻¹ for a relative velocity g and a contact vector n),
@@ -134,7 +165,8 @@ fn two_sum(a: f64, b: f64) -> (f64, f64) {
 
 /// The seed's centre-of-mass restitution (seed 000 Eq. 22–27, physics.md §4a):
 /// elastic resolution, then v'' = (v' − v_cm) R + v_cm with
-/// v_cm = (m_i v_i + m_j v_j)/(m_i + m_j). `n` as in [`elastic`]. Returns (v_i'', v_j'').
+/// v_cm = (m_i v_i + m_j v_j)/(m_i + m_j). `n` as in [`elastic`]. Returns (v_i'', v_j''),
+/// applied from the impulse [`centre_of_mass_impulse`] by [`apply_impulse`].
 #[inline]
 pub fn centre_of_mass_restitution(
     vi: DVec2,
@@ -144,12 +176,21 @@ pub fn centre_of_mass_restitution(
     n: DVec2,
     r: f64,
 ) -> (DVec2, DVec2) {
-    let (ei, ej) = elastic(vi, vj, mi, mj, n);
+    apply_impulse(vi, vj, mi, mj, centre_of_mass_impulse(vi, vj, mi, mj, n, r))
+}
+
+/// The momentum Δp_i given to disc i by the centre-of-mass rule with R
+/// (physics.md §4a): m_i (v_i'' − v_i) = −μ [(1 − R) g + 2R (g·n) n/|n|²], with
+/// g = v_i − v_j and μ the reduced mass; the elastic impulse when R = 1. Not along
+/// n unless R = 1 or g ∥ n, so a log of this rule stores the normal as well.
+#[inline]
+pub fn centre_of_mass_impulse(vi: DVec2, vj: DVec2, mi: f64, mj: f64, n: DVec2, r: f64) -> DVec2 {
     if r == 1.0 {
-        return (ei, ej);
+        return normal_impulse(vi, vj, mi, mj, n, 1.0);
     }
-    let vcm = (vi * mi + vj * mj) / (mi + mj);
-    ((ei - vcm) * r + vcm, (ej - vcm) * r + vcm)
+    let g = vi - vj;
+    let w = (g * (1.0 - r) + n * (2.0 * r * normal_ratio(g, n))) / (mi + mj);
+    w * -(mi * mj)
 }
 
 /// Resolve a pair collision with the chosen rule (physics.md §3–4).
@@ -159,28 +200,30 @@ pub fn centre_of_mass_restitution(
 /// centre-of-mass model, with μ = m_i m_j/(m_i + m_j).
 #[inline]
 pub fn resolve(vi: DVec2, vj: DVec2, mi: f64, mj: f64, n: DVec2, rule: Restitution) -> Resolution {
-    let (vi2, vj2, energy_lost) = match rule {
-        Restitution::Elastic => {
-            let (a, b) = elastic(vi, vj, mi, mj, n);
-            (a, b, 0.0)
-        }
+    let (impulse_i, energy_lost) = match rule {
+        Restitution::Elastic => (normal_impulse(vi, vj, mi, mj, n, 1.0), 0.0),
         Restitution::Normal(e) => {
-            let (a, b) = normal_restitution(vi, vj, mi, mj, n, e);
             let un = (vi - vj).dot(n);
             let u2 = un * un / n.length_squared();
-            (a, b, 0.5 * (1.0 - e * e) * reduced_mass(mi, mj) * u2)
+            (
+                normal_impulse(vi, vj, mi, mj, n, e),
+                0.5 * (1.0 - e * e) * reduced_mass(mi, mj) * u2,
+            )
         }
         Restitution::CentreOfMass(r) => {
-            let (a, b) = centre_of_mass_restitution(vi, vj, mi, mj, n, r);
             let g2 = (vi - vj).length_squared();
-            (a, b, 0.5 * (1.0 - r * r) * reduced_mass(mi, mj) * g2)
+            (
+                centre_of_mass_impulse(vi, vj, mi, mj, n, r),
+                0.5 * (1.0 - r * r) * reduced_mass(mi, mj) * g2,
+            )
         }
     };
+    let (vi2, vj2) = apply_impulse(vi, vj, mi, mj, impulse_i);
     Resolution {
         vi: vi2,
         vj: vj2,
         energy_lost,
-        impulse_i: (vi2 - vi) * mi,
+        impulse_i,
     }
 }
 
@@ -280,6 +323,9 @@ mod tests {
             (1.0, 1.0, 1.0, 1e-14, 16_000_000),
             (1.0, 4.0, 2.0, 0.0, 400_000),
             (1.0, 1.0, 0.75, 0.0, 400_000),
+            // Masses that are not powers of two (data/binary-mixture.json): Δp/m
+            // rounds once more per component.
+            (1.0, 1.96, 1.2, 1e-14, 4_000_000),
         ];
         let mut rng = Pcg64::seed_from_u64(7);
         let gaussian =

@@ -449,8 +449,8 @@ proptest! {
     }
 
     /// Both inelastic models: the closed-form loss equals K_before − K_after to 1e-12
-    /// of K_before, momentum is conserved to 1e-12 Σ m|v|, and the reported impulse is
-    /// m_i (v_i' − v_i).
+    /// of K_before, momentum is conserved to 1e-12 Σ m|v|, and the velocities are
+    /// exactly those the reported impulse gives: v_i + Δp_i/m_i, v_j − Δp_i/m_j.
     #[test]
     fn inelastic_models_lose_exactly_their_formula(
         c in arb_collision(),
@@ -488,7 +488,8 @@ proptest! {
         let dp = (res.vi * c.m1 + res.vj * c.m2) - (p.v1 * c.m1 + p.v2 * c.m2);
         let pscale = momentum_scale(&c, res.vi, res.vj);
         prop_assert!(dp.length() <= 1e-12 * pscale, "{rule:?}: ΔP {dp}");
-        prop_assert_eq!(res.impulse_i, (res.vi - p.v1) * c.m1);
+        prop_assert_eq!(res.vi, p.v1 + res.impulse_i / c.m1);
+        prop_assert_eq!(res.vj, p.v2 - res.impulse_i / c.m2);
     }
 
     /// Coefficient 1 is bit-identical to the elastic rule in both models and through
@@ -516,7 +517,8 @@ proptest! {
     }
 
     /// Centre-of-mass model with R = 0: both discs leave with the centre-of-mass
-    /// velocity (exactly, since (v' − v_cm)·0 + v_cm = v_cm), losing all the relative
+    /// velocity (to rounding: the velocities are applied from the impulse −μ g, so
+    /// v_i' − v_j' is a few ulp of the speeds, not exactly 0), losing all the relative
     /// kinetic energy μ|g|²/2. With general R the relative velocity (normal and
     /// tangential) is the elastic one scaled by R.
     #[test]
@@ -524,9 +526,10 @@ proptest! {
         let p = &c.pair;
         let vcm = (p.v1 * c.m1 + p.v2 * c.m2) / (c.m1 + c.m2);
         let stuck = resolve(p.v1, p.v2, c.m1, c.m2, c.n, Restitution::CentreOfMass(0.0));
-        prop_assert_eq!(stuck.vi, stuck.vj);
-        prop_assert_eq!(stuck.vi, vcm);
         let g = p.v1 - p.v2;
+        let speeds = p.v1.length() + p.v2.length() + g.length();
+        prop_assert!((stuck.vi - stuck.vj).length() <= 1e-15 * speeds, "{} vs {}", stuck.vi, stuck.vj);
+        prop_assert!((stuck.vi - vcm).length() <= 1e-15 * speeds, "{} vs {vcm}", stuck.vi);
         let mu = reduced_mass(c.m1, c.m2);
         let k0 = kinetic(c.m1, p.v1, c.m2, p.v2);
         prop_assert!((stuck.energy_lost - 0.5 * mu * g.length_squared()).abs() <= 1e-12 * k0);

@@ -26,6 +26,10 @@ pub struct PairCollision {
     /// Collision virial r_ij·Δp_i with r_ij = r_i − r_j at contact (energy·time,
     /// i.e. length·momentum); physics.md §5.
     pub virial: f64,
+    /// Momentum given to disc i, Δp_i (mass·length/time); disc j received −Δp_i
+    /// and the velocities after are exactly v_i + Δp_i/m_i and v_j − Δp_i/m_j
+    /// (`carom_core::collision::apply_impulse`).
+    pub impulse: DVec2,
 }
 
 /// A collision of a disc with a hard wall.
@@ -43,10 +47,28 @@ pub struct WallCollision {
     pub v_before: DVec2,
     /// Velocity after (length/time).
     pub v_after: DVec2,
-    /// Magnitude of the momentum given to the wall (mass·length/time).
+    /// Magnitude of the momentum given to the wall (mass·length/time). The disc
+    /// received Δp = −(1 + e) m v_k along the wall's axis k, of this magnitude and
+    /// pointing away from the wall ([`WallCollision::impulse_vector`]), and its
+    /// velocity after is exactly v_k + Δp/m.
     pub impulse: f64,
     /// Kinetic energy dissipated (energy).
     pub energy_lost: f64,
+}
+
+impl WallCollision {
+    /// The momentum Δp the disc received (mass·length/time): [`WallCollision::impulse`]
+    /// along the wall's axis, away from the wall.
+    pub fn impulse_vector(&self) -> DVec2 {
+        let dp = match self.side {
+            WallSide::Low => self.impulse,
+            WallSide::High => -self.impulse,
+        };
+        match self.axis {
+            Axis::X => DVec2::new(dp, 0.0),
+            Axis::Y => DVec2::new(0.0, dp),
+        }
+    }
 }
 
 /// An event the caller sees. Cell crossings and invalidated predictions are internal

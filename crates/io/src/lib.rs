@@ -14,13 +14,14 @@ mod log;
 mod options;
 
 pub use options::{
-    check_log_options, Compression, LogOptions, OptionsError, RunSpec, Stop, MAX_RECORDS,
+    check_log_options, CollisionDetail, Compression, LogOptions, OptionsError, RunSpec, Stop,
+    MAX_RECORDS,
 };
 
 pub use config::{
     apply_set, load_config, AxisBoundary, BoundaryConfig, BoxConfig, CollisionConfig,
-    CollisionModel, CompressionConfig, Config, ConfigError, LogConfig, PlacementConfig,
-    SpeciesConfig, StopConfig, VelocitiesConfig, DEFAULT_COUNT, DEFAULT_DURATION,
+    CollisionDetailConfig, CollisionModel, CompressionConfig, Config, ConfigError, LogConfig,
+    PlacementConfig, SpeciesConfig, StopConfig, VelocitiesConfig, DEFAULT_COUNT, DEFAULT_DURATION,
     DEFAULT_PACKING_FRACTION,
 };
 
@@ -31,6 +32,10 @@ pub use log::format::{
     Thermo, CHANNELS, CHECKPOINT_FORMAT_VERSION, CHECKPOINT_MSG, CH_CHECKPOINT, CH_COLLISIONS,
     CH_SNAPSHOT, CH_THERMO, COLLISION_BATCH_MSG, KIND_PAIR, KIND_WALL, LOG_FORMAT_VERSION,
     METADATA_RUN, METADATA_SUMMARY, NO_DISC, SNAPSHOT_MSG, THERMO_JSON_SCHEMA, TOPICS,
+};
+pub use log::format::{
+    wall_code, wall_of, CompactBatch, COMPACT_COLLISIONS_CHANNEL, COMPACT_COLLISION_BATCH_MSG,
+    READABLE_MAJOR_VERSIONS, WALL_CODE_BASE,
 };
 pub use log::read::{
     last_checkpoint, last_checkpoint_observed, scan, scan_indexed, scan_observed, Collisions,

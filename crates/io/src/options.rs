@@ -19,6 +19,37 @@ pub enum Compression {
     None,
 }
 
+/// What `/collisions` stores per collision (physics of the records:
+/// docs/log-format.md).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum CollisionDetail {
+    /// Time, discs and impulse (and the normal when the rule needs it); velocities
+    /// are replayed from a snapshot. Needs every collision logged.
+    #[default]
+    Compact,
+    /// Velocities before and after, normal, energy lost and virial (format 1's record).
+    Full,
+}
+
+impl CollisionDetail {
+    /// The configuration's word: `"compact"` or `"full"`.
+    pub fn name(self) -> &'static str {
+        match self {
+            CollisionDetail::Compact => "compact",
+            CollisionDetail::Full => "full",
+        }
+    }
+
+    /// The detail named `name` (`"compact"` or `"full"`).
+    pub fn from_name(name: &str) -> Option<Self> {
+        match name {
+            "compact" => Some(CollisionDetail::Compact),
+            "full" => Some(CollisionDetail::Full),
+            _ => None,
+        }
+    }
+}
+
 /// What the MCAP log records and how often.
 #[derive(Debug, Clone, PartialEq)]
 pub struct LogOptions {
@@ -26,6 +57,8 @@ pub struct LogOptions {
     pub collisions: bool,
     /// Log every k-th collision (1 = every collision).
     pub collision_every: u64,
+    /// The record asked for; see [`LogOptions::collision_record`] for the one written.
+    pub collision_detail: CollisionDetail,
     /// Simulated time between `/snapshot` messages (time); `None` = no snapshots.
     pub snapshot_interval: Option<f64>,
     /// Simulated time between `/thermo` messages (time); `None` = no thermo.
@@ -47,6 +80,7 @@ impl Default for LogOptions {
         LogOptions {
             collisions: true,
             collision_every: 1,
+            collision_detail: CollisionDetail::Compact,
             snapshot_interval: Some(1.0),
             thermo_interval: Some(0.1),
             checkpoint_interval: Some(10.0),
@@ -58,6 +92,17 @@ impl Default for LogOptions {
 }
 
 impl LogOptions {
+    /// The record `/collisions` holds: compact records replay velocities only
+    /// from every collision, so with `collision_every` > 1 the log keeps the full
+    /// record.
+    pub fn collision_record(&self) -> CollisionDetail {
+        if self.collision_every > 1 {
+            CollisionDetail::Full
+        } else {
+            self.collision_detail
+        }
+    }
+
     /// The record intervals with their configuration names: snapshot, thermo,
     /// checkpoint and scene (time; `None` for none).
     pub fn intervals(&self) -> [(&'static str, Option<f64>); 4] {

@@ -4,17 +4,19 @@
 //! A pair collision applies the configured rule (physics.md §3–4) to the contact
 //! vector r_j − r_i, or the elastic rule when either disc collided less than t_c
 //! ago (the TC model, §4); its virial r_ij·Δp_i (§5) goes to the running totals. A
-//! wall reflects the normal velocity, v_k ← −e v_k. A velocity change moves the
+//! wall gives Δp_k = −(1+e) m v_k, so v_k ← v_k + Δp_k/m (= −e v_k up to rounding). A velocity change moves the
 //! path's origin so that r0 + v t still passes through the disc's position now, and
 //! bumps the disc's collision counter, which makes its partners' predictions
 //! obsolete. A crossing moves the disc into the next cell (wrapping by a box length
-//! on a periodic axis) and predicts again. See docs/performance.md, "resolution".
+//! on a periodic axis) and predicts again. Every velocity change is applied from an
+//! impulse Δp as v + Δp/m (carom_core::collision::apply_impulse), the arithmetic
+//! a reader of the log repeats to replay velocities bit for bit. See
+//! docs/performance.md, "resolution".
 
 use super::body::{origin_after, Face, Image};
 use super::Engine;
 use crate::event::{PairCollision, WallCollision};
-use carom_core::boundary::wall_reflect;
-use carom_core::collision::resolve;
+use carom_core::collision::{apply_impulse, apply_wall_impulse, reduced_mass, resolve};
 use carom_core::{Axis, Boundary, DVec2, Restitution, WallSide};
 
 /// Whether discs i and j, whose paths (origin, velocity) were `paths` before a
@@ -34,13 +36,16 @@ fn approaching(
     (rj - (ri - shift)).dot(vj - vi) < 0.0 || (ri - (rj + shift)).dot(vi - vj) < 0.0
 }
 
-/// The velocities (v_i', v_j') after an extra impulse along the contact vector `n`,
-/// the smallest of a doubling sequence (starting at a relative velocity change of
-/// about one ulp of the speeds) with which the pair no longer [`approaching`].
-/// Momentum is kept (the two changes are m_j/M and m_i/M of one relative change);
-/// the kinetic energy changes by the rounding-level work of that impulse, about
-/// ε m v² relative to the pair. `None` if no finite impulse does it (the
-/// collision is then left as the rule made it).
+/// The total impulse Δp_i and the velocities (v_i', v_j') = [`apply_impulse`] of
+/// it to the velocities before, `before`, after an extra impulse along the
+/// contact vector `n` is added to the rule's impulse `dp`: the smallest of a
+/// doubling sequence (starting at a velocity change of about one ulp of the
+/// speeds) with which the pair no longer [`approaching`]. Momentum is kept (j
+/// receives −Δp_i), and the velocities stay exactly those a reader of the log
+/// gets by applying the logged Δp_i; the kinetic energy changes by the
+/// rounding-level work of the extra impulse, about ε m v² relative to the pair.
+/// `None` if no finite impulse does it (the collision is then left as the rule
+/// made it).
 #[cold]
 #[inline(never)]
 fn push_apart(
@@ -48,16 +53,19 @@ fn push_apart(
     shift: DVec2,
     now: f64,
     n: DVec2,
-    (vi, vj): (DVec2, DVec2),
+    before: (DVec2, DVec2),
+    dp: DVec2,
     (mi, mj): (f64, f64),
-) -> Option<(DVec2, DVec2)> {
+) -> Option<(DVec2, DVec2, DVec2)> {
+    let (vi, vj) = apply_impulse(before.0, before.1, mi, mj, dp);
     let speed = vi.abs().max_element().max(vj.abs().max_element());
-    let (wi, wj) = (mj / (mi + mj), mi / (mi + mj));
+    let mu = reduced_mass(mi, mj);
     let mut k = (f64::EPSILON * speed / n.length_squared()).max(f64::MIN_POSITIVE);
     while k.is_finite() {
-        let pushed = (vi - n * (k * wi), vj + n * (k * wj));
+        let total = dp - n * (k * mu);
+        let pushed = apply_impulse(before.0, before.1, mi, mj, total);
         if !approaching(paths, shift, now, pushed) {
-            return Some(pushed);
+            return Some((total, pushed.0, pushed.1));
         }
         k *= 2.0;
     }
@@ -136,13 +144,12 @@ impl Engine {
         let separated = if (tc > 0.0 || self.params.restitution.is_elastic())
             && approaching(paths, shift, now, (res.vi, res.vj))
         {
-            push_apart(paths, shift, now, dr, (res.vi, res.vj), (mi, mj))
+            push_apart(paths, shift, now, dr, (vi, vj), res.impulse_i, (mi, mj))
         } else {
             None
         };
-        if let Some((a, b)) = separated {
-            res.impulse_i += (a - res.vi) * mi;
-            (res.vi, res.vj) = (a, b);
+        if let Some((dp, a, b)) = separated {
+            (res.impulse_i, res.vi, res.vj) = (dp, a, b);
         }
         // r_ij = r_i − r_j = −dr.
         let virial = -dr.dot(res.impulse_i);
@@ -173,6 +180,7 @@ impl Engine {
             vj_after: res.vj,
             energy_lost: res.energy_lost,
             virial,
+            impulse: res.impulse_i,
         }
     }
 
@@ -201,11 +209,16 @@ impl Engine {
         let m = self.mass(i);
         let before = self.bodies[i].v;
         let mut after = before;
-        after[k] = wall_reflect(before[k], e);
+        // The wall gives Δp = −(1 + e) m v_k, applied as v_k + Δp/m (the
+        // arithmetic a reader of the log repeats, [`apply_wall_impulse`]). The
+        // product is taken as ((−(1 + e) v_k) m) so that Δp/m gives back −(1 + e) v_k
+        // exactly in nearly every case, and an elastic wall then v_k' = −v_k.
+        let dp = -(1.0 + e) * before[k] * m;
+        after[k] = apply_wall_impulse(before[k], m, dp);
         self.bodies[i].set_velocity(after, now);
         self.keep_origin_near([i]);
         self.bodies[i].count = self.bodies[i].count.wrapping_add(1);
-        let impulse = m * (before[k] - after[k]).abs();
+        let impulse = dp.abs();
         let energy_lost = 0.5 * m * (1.0 - e * e) * before[k] * before[k];
         self.stats.wall_collisions += 1;
         self.stats.wall_impulse[k][face.high() as usize] += impulse;

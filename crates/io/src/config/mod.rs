@@ -25,9 +25,9 @@ mod validate;
 pub use error::ConfigError;
 pub use front::{apply_set, load_config};
 pub use model::{
-    AxisBoundary, BoundaryConfig, BoxConfig, CollisionConfig, CollisionModel, CompressionConfig,
-    Config, LogConfig, PlacementConfig, SpeciesConfig, StopConfig, VelocitiesConfig, DEFAULT_COUNT,
-    DEFAULT_DURATION, DEFAULT_PACKING_FRACTION,
+    AxisBoundary, BoundaryConfig, BoxConfig, CollisionConfig, CollisionDetailConfig,
+    CollisionModel, CompressionConfig, Config, LogConfig, PlacementConfig, SpeciesConfig,
+    StopConfig, VelocitiesConfig, DEFAULT_COUNT, DEFAULT_DURATION, DEFAULT_PACKING_FRACTION,
 };
 
 #[cfg(test)]

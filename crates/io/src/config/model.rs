@@ -308,6 +308,18 @@ pub enum CompressionConfig {
     None,
 }
 
+/// What `/collisions` stores per collision (maps to [`crate::CollisionDetail`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum CollisionDetailConfig {
+    /// Time, discs and impulse; velocities replayed from snapshots (the default
+    /// with `collision_every` = 1).
+    Compact,
+    /// Velocities before and after, normal, energy lost and virial (the default,
+    /// and the only record, with `collision_every` > 1).
+    Full,
+}
+
 /// What the MCAP log records and how often (maps to [`LogOptions`]).
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -319,6 +331,13 @@ pub struct LogConfig {
     /// k > 1 the analysis takes the pressure from the `/thermo` running totals.)
     #[serde(default = "default_one_u64", deserialize_with = "de_count")]
     pub collision_every: u64,
+    /// What each logged collision stores: `"compact"` (time, discs, impulse) or
+    /// `"full"` (velocities before and after, normal, energy lost, virial).
+    /// Default `"compact"`, or `"full"` when `collision_every` > 1 (compact
+    /// records replay velocities only from every collision: `"compact"` with
+    /// `collision_every` > 1 is refused).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub collision_detail: Option<CollisionDetailConfig>,
     /// Simulated time between `/snapshot` messages (time). Default 1; `null` for no
     /// snapshots; otherwise finite, > 0, and at least `stop.duration` /
     /// [`MAX_RECORDS`](crate::MAX_RECORDS).
@@ -353,6 +372,7 @@ impl Default for LogConfig {
         LogConfig {
             collisions: d.collisions,
             collision_every: d.collision_every,
+            collision_detail: None,
             snapshot_interval: d.snapshot_interval,
             thermo_interval: d.thermo_interval,
             checkpoint_interval: d.checkpoint_interval,

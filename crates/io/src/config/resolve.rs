@@ -3,10 +3,11 @@
 //! from the packing fraction when the configuration gives none.
 
 use super::{
-    AxisBoundary, BoxConfig, CollisionModel, CompressionConfig, Config, ConfigError, LogConfig,
-    PlacementConfig, StopConfig, VelocitiesConfig, DEFAULT_DURATION, DEFAULT_PACKING_FRACTION,
+    AxisBoundary, BoxConfig, CollisionDetailConfig, CollisionModel, CompressionConfig, Config,
+    ConfigError, LogConfig, PlacementConfig, StopConfig, VelocitiesConfig, DEFAULT_DURATION,
+    DEFAULT_PACKING_FRACTION,
 };
-use crate::options::{Compression, LogOptions, RunSpec, Stop};
+use crate::options::{CollisionDetail, Compression, LogOptions, RunSpec, Stop};
 use carom_core::{Boundary, DVec2, Restitution, SimBox, Species};
 use carom_events::{box_size_for, largest_radius, EngineParams, Placement, SystemSpec, Velocities};
 
@@ -159,6 +160,12 @@ impl LogConfig {
         LogOptions {
             collisions: self.collisions,
             collision_every: self.collision_every,
+            collision_detail: match self.collision_detail {
+                Some(CollisionDetailConfig::Full) => CollisionDetail::Full,
+                Some(CollisionDetailConfig::Compact) => CollisionDetail::Compact,
+                None if self.collision_every > 1 => CollisionDetail::Full,
+                None => CollisionDetail::Compact,
+            },
             snapshot_interval: self.snapshot_interval,
             thermo_interval: self.thermo_interval,
             checkpoint_interval: self.checkpoint_interval,

@@ -2,7 +2,7 @@
 
 use super::error::init_field_to_config;
 use super::*;
-use crate::{LogOptions, RunSpec, Stop};
+use crate::{CollisionDetail, LogOptions, RunSpec, Stop};
 use carom_core::Restitution;
 use carom_events::{EngineParams, Placement, Velocities};
 use serde_json::Value;
@@ -287,6 +287,14 @@ fn out_of_range_values_are_named() {
         ),
         (r#"{"log": {"collision_every": 0}}"#, "log.collision_every"),
         (
+            r#"{"log": {"collision_every": 2, "collision_detail": "compact"}}"#,
+            "log.collision_detail",
+        ),
+        (
+            r#"{"log": {"collision_detail": "short"}}"#,
+            "log.collision_detail",
+        ),
+        (
             r#"{"log": {"snapshot_interval": 0}}"#,
             "log.snapshot_interval",
         ),
@@ -370,6 +378,36 @@ fn log_intervals_give_at_most_a_billion_records_per_run() {
     ok(r#"{"stop": {"max_time_without_collision": 5}}"#);
     // A run stopped by its collision count has no known length: not checked.
     ok(r#"{"stop": {"collisions": 10}, "log": {"thermo_interval": 1e-17}}"#);
+}
+
+/// The collision record: compact by default, full when asked for or when only
+/// every k-th collision is logged (compact records need every collision).
+#[test]
+fn collision_detail_defaults_to_compact_and_full_with_a_stride() {
+    let detail = |text: &str| {
+        let c: Config = serde_json::from_str(text).unwrap();
+        c.validate().unwrap();
+        c.log.options().collision_record()
+    };
+    assert_eq!(detail("{}"), CollisionDetail::Compact);
+    assert_eq!(
+        detail(r#"{"log": {"collision_detail": "full"}}"#),
+        CollisionDetail::Full
+    );
+    assert_eq!(
+        detail(r#"{"log": {"collision_every": 3}}"#),
+        CollisionDetail::Full
+    );
+    assert_eq!(
+        detail(r#"{"log": {"collision_every": 3, "collision_detail": "full"}}"#),
+        CollisionDetail::Full
+    );
+    let e = err_of(
+        r#"{"log": {"collision_every": 2, "collision_detail": "compact"}}"#,
+        &[],
+    );
+    let text = e.to_string();
+    assert!(text.contains("collision_every"), "{text}");
 }
 
 #[test]
@@ -590,6 +628,7 @@ fn maximal_values() -> Vec<Value> {
         ..Config::default()
     };
     c.collision.coefficient = Some(1.0);
+    c.log.collision_detail = Some(CollisionDetailConfig::Full);
     let mut d = c.clone();
     c.placement = PlacementConfig::Explicit(vec![[0.0, 0.0]]);
     c.velocities = VelocitiesConfig::Explicit(vec![[0.0, 0.0]]);

@@ -4,7 +4,10 @@
 //! calls too. Errors name the field. Placement feasibility and overlaps are
 //! checked when the state is built ([`ConfigError::from_init`]).
 
-use super::{AxisBoundary, CollisionModel, Config, ConfigError, PlacementConfig, VelocitiesConfig};
+use super::{
+    AxisBoundary, CollisionDetailConfig, CollisionModel, Config, ConfigError, PlacementConfig,
+    VelocitiesConfig,
+};
 use crate::options::check_log_options;
 use carom_core::{check_species, Species};
 
@@ -21,6 +24,20 @@ impl Config {
         self.check_initial_state(n)?;
         self.check_collision()?;
         self.check_stop()?;
+        if self.log.collision_detail == Some(CollisionDetailConfig::Compact)
+            && self.log.collision_every > 1
+        {
+            return Err(ConfigError::invalid(
+                "log.collision_detail",
+                format!(
+                    "\"compact\" with log.collision_every = {}: compact records replay \
+                     velocities only from every collision",
+                    self.log.collision_every
+                ),
+                "\"full\" (or no log.collision_detail) when log.collision_every > 1; \
+                 \"compact\" with log.collision_every = 1",
+            ));
+        }
         // A run of known length starts at time 0 and lasts stop.duration.
         check_log_options(&self.log.options(), &self.stop.stop(), 0.0, "stop.duration")?;
         Ok(())

@@ -43,8 +43,10 @@ pub const NO_DISC: u32 = u32::MAX;
 /// kind, and the collision in the engine's pair form, which it reads through
 /// (`record.time`, `record.vi_before`, …). A wall collision fills that form as
 /// the log stores it: `j` is [`NO_DISC`], the normal points from the disc to the
-/// wall, the second disc's velocities are zero and `virial` holds |Δp| given to
-/// the wall (momentum).
+/// wall, the second disc's velocities are zero, `virial` holds |Δp| given to
+/// the wall (momentum) and `impulse` the Δp the disc received. The full record
+/// does not store a pair's impulse: decoded from it, a pair's `impulse` is zero
+/// (which no real collision gives; a compact record's replay fills it).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct CollisionRecord {
     /// 0-based ordinal among all collisions (pair + wall) of the run.
@@ -100,6 +102,7 @@ impl CollisionRecord {
                 vj_after: DVec2::ZERO,
                 energy_lost: c.energy_lost,
                 virial: c.impulse,
+                impulse: c.impulse_vector(),
             },
         }
     }
@@ -183,6 +186,11 @@ pub struct CollisionBatch {
     pub energy_lost: Vec<f64>,
     /// Pair virial r_ij·Δp_i or wall impulse |Δp|.
     pub virial: Vec<f64>,
+    /// Δp_i, x, when known (a replayed compact batch); empty otherwise. Not part
+    /// of the encoded full record.
+    pub impulse_x: Vec<f64>,
+    /// Δp_i, y, like `impulse_x`.
+    pub impulse_y: Vec<f64>,
 }
 
 impl CollisionBatch {
@@ -208,6 +216,8 @@ impl CollisionBatch {
             vjy_after: f(),
             energy_lost: f(),
             virial: f(),
+            impulse_x: Vec::new(),
+            impulse_y: Vec::new(),
         }
     }
 
@@ -239,6 +249,8 @@ impl CollisionBatch {
         self.vjy_after.clear();
         self.energy_lost.clear();
         self.virial.clear();
+        self.impulse_x.clear();
+        self.impulse_y.clear();
     }
 
     #[allow(clippy::too_many_arguments)]
@@ -324,6 +336,14 @@ impl CollisionBatch {
                 vj_after: v(&self.vjx_after, &self.vjy_after),
                 energy_lost: self.energy_lost[k],
                 virial: self.virial[k],
+                impulse: if k < self.impulse_x.len() {
+                    v(&self.impulse_x, &self.impulse_y)
+                } else if self.kind[k] == KIND_WALL {
+                    // Away from the wall the normal points to.
+                    v(&self.nx, &self.ny) * -self.virial[k]
+                } else {
+                    DVec2::ZERO
+                },
             },
         }
     }
@@ -412,6 +432,8 @@ impl CollisionBatch {
 
     fn decode_inner(&mut self, data: &[u8]) -> Result<(), CdrError> {
         let mut r = CdrReader::new(data)?;
+        self.impulse_x.clear();
+        self.impulse_y.clear();
         self.first_ordinal = r.get("first_ordinal")?;
         self.stride = r.get("stride")?;
         r.seq_into("time", &mut self.time)?;
@@ -483,6 +505,7 @@ mod tests {
             vj_after: DVec2::new(0.3, 0.4),
             energy_lost: 0.0,
             virial: -0.7,
+            impulse: DVec2::ZERO,
         });
         b.push_wall(&WallCollision {
             time: 1.5,
@@ -506,6 +529,9 @@ mod tests {
         let mut d = CollisionBatch::default();
         d.decode_into(w.bytes()).unwrap();
         assert_eq!(d, b);
+        let wall = d.get(1);
+        assert_eq!(wall.impulse, DVec2::new(0.0, 1.9));
+        assert_eq!(d.get(0).impulse, DVec2::ZERO);
         let recs: Vec<_> = b.iter().collect();
         let mut w2 = CdrWriter::new();
         CollisionBatch::encode_records(&recs, b.first_ordinal, b.stride, &mut w2);

@@ -3,8 +3,8 @@
 //! of strings to strings; this module is their typed form.
 
 use super::facts::RunFacts;
-use super::LOG_FORMAT_VERSION;
-use crate::options::{Compression, LogOptions, Stop};
+use super::{LOG_FORMAT_VERSION, READABLE_MAJOR_VERSIONS};
+use crate::options::{CollisionDetail, Compression, LogOptions, Stop};
 use serde_json::{json, Value};
 use std::collections::BTreeMap;
 use std::time::{SystemTime, UNIX_EPOCH};
@@ -106,14 +106,15 @@ fn compression_name(c: Compression) -> &'static str {
     }
 }
 
-/// Log options as JSON: `{"collisions", "collision_every", "snapshot_interval",
-/// "thermo_interval", "checkpoint_interval", "scene_interval", "compression",
-/// "flush_seconds"}`
-/// (intervals `null` when off).
+/// Log options as JSON: `{"collisions", "collision_every", "collision_detail",
+/// "snapshot_interval", "thermo_interval", "checkpoint_interval", "scene_interval",
+/// "compression", "flush_seconds"}` (intervals `null` when off; `collision_detail`
+/// the record the log holds, [`LogOptions::collision_record`]).
 pub fn log_options_to_json(o: &LogOptions) -> Value {
     json!({
         "collisions": o.collisions,
         "collision_every": o.collision_every,
+        "collision_detail": o.collision_record().name(),
         "snapshot_interval": o.snapshot_interval,
         "thermo_interval": o.thermo_interval,
         "checkpoint_interval": o.checkpoint_interval,
@@ -123,7 +124,8 @@ pub fn log_options_to_json(o: &LogOptions) -> Value {
     })
 }
 
-/// Log options from JSON; missing keys take their defaults.
+/// Log options from JSON; missing keys take their defaults, except
+/// `collision_detail`, which is `"full"` when missing (logs of format 1).
 pub fn log_options_from_json(v: &Value) -> Option<LogOptions> {
     let d = LogOptions::default();
     let interval = |k: &str, def: Option<f64>| match v.get(k) {
@@ -138,6 +140,10 @@ pub fn log_options_from_json(v: &Value) -> Option<LogOptions> {
         collision_every: v
             .get("collision_every")
             .map_or(Some(d.collision_every), Value::as_u64)?,
+        collision_detail: match v.get("collision_detail").and_then(Value::as_str) {
+            None => CollisionDetail::Full,
+            Some(name) => CollisionDetail::from_name(name)?,
+        },
         snapshot_interval: interval("snapshot_interval", d.snapshot_interval)?,
         thermo_interval: interval("thermo_interval", d.thermo_interval)?,
         checkpoint_interval: interval("checkpoint_interval", d.checkpoint_interval)?,
@@ -189,12 +195,14 @@ impl RunMetadata {
     pub fn from_map(m: &BTreeMap<String, String>) -> Result<Self, MetadataError> {
         const R: &str = "carom.run";
         let log_format = get(m, R, "log_format")?.to_string();
-        if log_format.split('.').next() != LOG_FORMAT_VERSION.split('.').next() {
+        let major = log_format.split('.').next().unwrap_or_default();
+        if !READABLE_MAJOR_VERSIONS.contains(&major) {
             return Err(MetadataError {
                 record: R,
                 key: "log_format",
                 problem: format!(
-                    "log format {log_format} is not supported (this carom reads {LOG_FORMAT_VERSION})"
+                    "log format {log_format} is not supported (this carom reads {} and writes {LOG_FORMAT_VERSION})",
+                    READABLE_MAJOR_VERSIONS.map(|v| format!("{v}.x")).join(" and ")
                 ),
             });
         }
@@ -478,9 +486,18 @@ mod tests {
         let mut bad = m.to_map();
         bad.insert("run_facts".into(), "{\"n_discs\": 1}".into());
         assert_eq!(RunMetadata::from_map(&bad).unwrap_err().key, "run_facts");
+        // Format 1.x logs hold the full collision record (no `collision_detail`).
+        let mut log = serde_json::from_str::<Value>(&old["log_options"]).unwrap();
+        log.as_object_mut().unwrap().remove("collision_detail");
+        old.insert("log_options".into(), log.to_string());
+        let read = RunMetadata::from_map(&old).unwrap();
+        assert_eq!(read.log.collision_detail, CollisionDetail::Full);
+        assert_eq!(m.log.collision_record(), CollisionDetail::Compact);
         let mut bad = m.to_map();
-        bad.insert("log_format".into(), "2".into());
-        assert_eq!(RunMetadata::from_map(&bad).unwrap_err().key, "log_format");
+        bad.insert("log_format".into(), "3.0".into());
+        let err = RunMetadata::from_map(&bad).unwrap_err();
+        assert_eq!(err.key, "log_format");
+        assert!(err.problem.contains("1.x and 2.x"), "{}", err.problem);
         bad.remove("log_format");
         assert_eq!(RunMetadata::from_map(&bad).unwrap_err().problem, "missing");
     }

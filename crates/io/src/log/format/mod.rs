@@ -4,7 +4,7 @@
 //!
 //! | topic | schema | encoding | content |
 //! |---|---|---|---|
-//! | `/collisions` | `carom_msgs/msg/CollisionBatch` (`ros2msg`) | `cdr` | [`CollisionBatch`] |
+//! | `/collisions` | `carom_msgs/msg/CompactCollisionBatch` or (`collision_detail = "full"`, format 1) `carom_msgs/msg/CollisionBatch` (`ros2msg`) | `cdr` | [`CompactBatch`], [`CollisionBatch`] |
 //! | `/snapshot` | `carom_msgs/msg/Snapshot` (`ros2msg`) | `cdr` | [`Snapshot`] |
 //! | `/thermo` | `carom.Thermo` (`jsonschema`) | `json` | [`Thermo`] |
 //! | `/checkpoint` | `carom_msgs/msg/Checkpoint` (`ros2msg`) | `cdr` | [`LogCheckpoint`] |
@@ -16,6 +16,7 @@
 mod cdr;
 mod checkpoint;
 mod collisions;
+mod compact;
 mod facts;
 mod metadata;
 mod scene;
@@ -27,6 +28,10 @@ pub(crate) use cdr::{CdrReader, CdrWriter};
 pub use checkpoint::{DriverState, LogCheckpoint, CHECKPOINT_FORMAT_VERSION, CHECKPOINT_MSG};
 pub use collisions::{
     CollisionBatch, CollisionRecord, COLLISION_BATCH_MSG, KIND_PAIR, KIND_WALL, NO_DISC,
+};
+pub use compact::{
+    wall_code, wall_of, CompactBatch, COMPACT_COLLISIONS_CHANNEL, COMPACT_COLLISION_BATCH_MSG,
+    WALL_CODE_BASE,
 };
 pub use facts::RunFacts;
 pub use metadata::{now_rfc3339, MetadataError, RunMetadata, StopReason, SummaryMetadata};
@@ -56,8 +61,14 @@ pub const METADATA_SUMMARY: &str = "carom.summary";
 /// 1.1: `/checkpoint` format 2 (each disc's pair candidate time; the engine's
 /// internal clock and its epoch); a log 1.0 checkpoint cannot be resumed (its
 /// reader reports the format). 1.2: `carom.run` gains `run_facts` ([`RunFacts`]);
-/// the messages are unchanged, and 1.1 logs read with no facts.
-pub const LOG_FORMAT_VERSION: &str = "1.2";
+/// the messages are unchanged, and 1.1 logs read with no facts. 2.0: `/collisions`
+/// is by default the compact record ([`COMPACT_COLLISIONS_CHANNEL`]: time, discs,
+/// impulse), replayed from a snapshot; the log options gain `collision_detail`.
+/// Readers accept 1.x (full records) and 2.x.
+pub const LOG_FORMAT_VERSION: &str = "2.0";
+
+/// Major versions of the log format this carom reads.
+pub const READABLE_MAJOR_VERSIONS: [&str; 2] = ["1", "2"];
 
 /// Encoding of the JSON Schema `carom.Thermo`.
 pub const SCHEMA_ENCODING_JSONSCHEMA: &str = "jsonschema";

@@ -2,7 +2,9 @@
 //! collision ([`Collisions`]), the messages of one channel ([`Filtered`]) and all
 //! events in time order ([`Events`]). The three share one loop ([`Cursor`]):
 //! collision batches are decoded into the reader's one reused batch and handed out
-//! one record at a time; other messages are decoded whole.
+//! one record at a time; other messages are decoded whole. Compact batches are
+//! replayed into full ones (`replay`), for which every snapshot and checkpoint
+//! is decoded too, wanted or not.
 
 use super::{Found, LogEnd, LogReader, ReadError, MESSAGE_HEADER_LEN};
 use crate::log::format::CH_SCENE;
@@ -86,13 +88,32 @@ impl<R: Read + Seek> LogReader<R> {
         }
     }
 
-    /// Decode the current record as a collision batch into the reader's own batch.
+    /// Decode the current record as a collision batch into the reader's own batch
+    /// (replaying it if compact).
     fn decode_batch_in_place(&mut self, sequence: u32, log_time: u64) -> Result<(), ReadError> {
         let data = &self.record[MESSAGE_HEADER_LEN.min(self.record.len())..];
-        if let Err(e) = self.batch.decode_into(data) {
+        let r = match &mut self.replay {
+            Some(replay) => replay.expand(data, &mut self.batch),
+            None => self.batch.decode_into(data),
+        };
+        if let Err(e) = r {
             return Err(self.decode_error(CH_COLLISIONS, sequence, log_time, e));
         }
         Ok(())
+    }
+
+    /// Give the replay of compact records the velocities of the current record, a
+    /// snapshot or a checkpoint that no one asked for.
+    fn sync_replay(
+        &mut self,
+        channel: usize,
+        sequence: u32,
+        log_time: u64,
+    ) -> Result<(), ReadError> {
+        if self.replay.is_none() || !(channel == CH_SNAPSHOT || channel == CH_CHECKPOINT) {
+            return Ok(());
+        }
+        decode_current(self, channel, sequence, log_time).map(|_| ())
     }
 
     fn missing(&self, ch: usize) -> Option<ReadError> {
@@ -147,9 +168,18 @@ fn decode_current<R: Read + Seek>(
     let r = match channel {
         CH_COLLISIONS => {
             let mut b = Box::<CollisionBatch>::default();
-            b.decode_into(data).map(|_| LogMessage::Collisions(b))
+            match &mut reader.replay {
+                Some(replay) => replay.expand(data, &mut b),
+                None => b.decode_into(data),
+            }
+            .map(|_| LogMessage::Collisions(b))
         }
-        CH_SNAPSHOT => Snapshot::decode(data).map(LogMessage::Snapshot),
+        CH_SNAPSHOT => Snapshot::decode(data).map(|s| {
+            if let Some(replay) = &mut reader.replay {
+                replay.sync_snapshot(&s);
+            }
+            LogMessage::Snapshot(s)
+        }),
         CH_THERMO => {
             return Thermo::decode(data)
                 .map(LogMessage::Thermo)
@@ -159,7 +189,12 @@ fn decode_current<R: Read + Seek>(
                     source,
                 })
         }
-        _ => LogCheckpoint::decode(data).map(|c| LogMessage::Checkpoint(Box::new(c))),
+        _ => LogCheckpoint::decode(data).map(|c| {
+            if let Some(replay) = &mut reader.replay {
+                replay.sync_checkpoint(&c);
+            }
+            LogMessage::Checkpoint(Box::new(c))
+        }),
     };
     r.map_err(|e| reader.decode_error(channel, sequence, log_time, e))
 }
@@ -254,6 +289,16 @@ impl<'a, R: Read + Seek> Cursor<'a, R> {
                 }) => (channel, sequence, log_time),
             };
             if !self.wanted.takes(channel) {
+                // Snapshots and checkpoints feed the replay of compact collisions.
+                let synced = if self.wanted.takes(CH_COLLISIONS) {
+                    self.reader.sync_replay(channel, sequence, log_time)
+                } else {
+                    Ok(())
+                };
+                if let Err(e) = synced {
+                    self.done = true;
+                    return Some(Err(e));
+                }
                 continue;
             }
             self.k = 0;

@@ -26,6 +26,7 @@
 mod error;
 mod indexed;
 mod iter;
+mod replay;
 mod scan;
 
 pub use error::{LogEnd, ReadError};
@@ -35,10 +36,12 @@ pub use scan::{last_checkpoint, last_checkpoint_observed, scan, scan_observed, L
 
 use crate::log::format::N_CHANNELS;
 use crate::log::format::{
-    CollisionBatch, RunMetadata, SummaryMetadata, CHANNELS, METADATA_RUN, METADATA_SUMMARY, TOPICS,
+    CollisionBatch, RunMetadata, SummaryMetadata, CHANNELS, CH_COLLISIONS,
+    COMPACT_COLLISIONS_CHANNEL, METADATA_RUN, METADATA_SUMMARY, TOPICS,
 };
 use mcap::records::Record;
 use mcap::sans_io::{LinearReadEvent, LinearReader, LinearReaderOptions};
+use replay::Replay;
 use std::collections::{BTreeMap, HashMap};
 use std::fs::File;
 use std::io::{BufReader, Read, Seek, SeekFrom};
@@ -115,6 +118,9 @@ pub struct LogReader<R: Read + Seek = BufReader<File>> {
     end: LogEnd,
     messages: u64,
     batch: CollisionBatch,
+    /// The replay of compact `/collisions` records (`Some` once the channel is
+    /// found to hold them): batches decode through it into `batch`.
+    replay: Option<Box<Replay>>,
     /// Bytes taken from the source so far.
     bytes_read: u64,
     /// The source's length (bytes).
@@ -229,6 +235,7 @@ impl<R: Read + Seek> LogReader<R> {
             end: LogEnd::Reading,
             messages: 0,
             batch: CollisionBatch::default(),
+            replay: None,
             bytes_read: 0,
             source_bytes: len,
         };
@@ -371,7 +378,16 @@ impl<R: Read + Seek> LogReader<R> {
                     if let Some(k) = ours {
                         let (sname, senc) =
                             self.schemas.get(&c.schema_id).cloned().unwrap_or_default();
-                        let want = &CHANNELS[k];
+                        let compact =
+                            k == CH_COLLISIONS && sname == COMPACT_COLLISIONS_CHANNEL.schema_name;
+                        let want = if compact {
+                            &COMPACT_COLLISIONS_CHANNEL
+                        } else {
+                            &CHANNELS[k]
+                        };
+                        if compact && self.replay.is_none() {
+                            self.replay = Some(Box::new(Replay::new(self.run.run_facts.as_ref())));
+                        }
                         if sname != want.schema_name
                             || senc != want.schema_encoding
                             || c.message_encoding != want.message_encoding
@@ -497,6 +513,12 @@ impl<R: Read + Seek> LogReader<R> {
             *shown = p.bytes_read;
             p
         })
+    }
+
+    /// Whether `/collisions` holds compact records (replayed into full ones by
+    /// the decoding iterators), as far as read so far.
+    pub fn compact_collisions(&self) -> bool {
+        self.replay.is_some()
     }
 
     /// Whether each channel (see [`TOPICS`]) has been defined so far.

@@ -3,7 +3,7 @@
 //! ([`WriteError`]).
 
 use crate::log::format::N_CHANNELS;
-use crate::options::{Compression, LogOptions};
+use crate::options::{CollisionDetail, Compression, LogOptions};
 use std::path::{Path, PathBuf};
 use std::time::Duration;
 use thiserror::Error;
@@ -74,6 +74,12 @@ pub struct WriterOptions {
     pub collisions: bool,
     /// Log the collisions whose ordinal is a multiple of this (≥ 1).
     pub collision_every: u64,
+    /// The record `/collisions` holds ([`LogOptions::collision_record`]): compact
+    /// only with `collision_every` = 1.
+    pub collision_detail: CollisionDetail,
+    /// Compact records also store the contact normal: set when the run's pair rule
+    /// gives impulses off the line of centres (the centre-of-mass rule with R < 1).
+    pub collision_normals: bool,
     /// Chunk compression.
     pub compression: Compression,
     /// Compression level: zstd 1 to 22, or negative for zstd's fast levels (−1 to
@@ -106,6 +112,8 @@ impl WriterOptions {
         WriterOptions {
             collisions: o.collisions,
             collision_every: o.collision_every.max(1),
+            collision_detail: o.collision_record(),
+            collision_normals: false,
             compression: o.compression,
             compression_level: match o.compression {
                 Compression::Zstd => DEFAULT_ZSTD_LEVEL,
@@ -120,6 +128,14 @@ impl WriterOptions {
             }),
             background: std::thread::available_parallelism().is_ok_and(|n| n.get() > 1),
         }
+    }
+}
+
+impl WriterOptions {
+    /// Whether compact records of a run with pair rule `rule` must store the
+    /// contact normal (its impulse is not along the line of centres).
+    pub fn needs_normals(rule: carom_core::Restitution) -> bool {
+        matches!(rule, carom_core::Restitution::CentreOfMass(r) if r != 1.0)
     }
 }
 

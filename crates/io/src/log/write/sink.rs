@@ -4,9 +4,11 @@
 
 use super::options::{WriteError, WriterOptions};
 use crate::log::format::{
-    log_time_ns, CdrWriter, CollisionBatch, CollisionRecord, CHANNELS, CH_COLLISIONS, METADATA_RUN,
+    log_time_ns, CdrWriter, CollisionBatch, CollisionRecord, CompactBatch, CHANNELS, CH_COLLISIONS,
+    COMPACT_COLLISIONS_CHANNEL, METADATA_RUN,
 };
 use crate::log::format::{CH_SCENE, N_CHANNELS};
+use crate::options::CollisionDetail;
 use crate::options::Compression;
 use mcap::records::{MessageHeader, Metadata};
 use std::collections::BTreeMap;
@@ -58,6 +60,8 @@ pub(super) struct Sink {
     mcap: mcap::Writer<BufWriter<File>>,
     /// MCAP channel id of each channel, once defined.
     channel_ids: [Option<u16>; N_CHANNELS],
+    /// `Some(normals)` when `/collisions` holds compact records.
+    compact: Option<bool>,
     cdr: CdrWriter,
     pub(super) flush_every: Duration,
     pub(super) last_flush: Instant,
@@ -67,7 +71,9 @@ pub(super) struct Sink {
 impl Sink {
     /// Create `path` (truncating it), write the `carom.run` metadata record and
     /// register the channels of [`CHANNELS`] but `/scene`, which is defined
-    /// before its first message (runs without scene frames do not show it).
+    /// before its first message (runs without scene frames do not show it);
+    /// `/collisions` with the compact schema unless the options ask for the full
+    /// record.
     pub(super) fn create(
         path: &Path,
         opts: &WriterOptions,
@@ -105,10 +111,14 @@ impl Sink {
             metadata: run_metadata.clone(),
         })
         .map_err(mcap_err)?;
+        let compact = (opts.collision_detail == CollisionDetail::Compact
+            && opts.collision_every == 1)
+            .then_some(opts.collision_normals);
         let mut sink = Sink {
             path: path.to_path_buf(),
             mcap,
             channel_ids: [None; N_CHANNELS],
+            compact,
             cdr: CdrWriter::new(),
             flush_every: opts.flush_every,
             last_flush: Instant::now(),
@@ -126,7 +136,10 @@ impl Sink {
         if let Some(id) = self.channel_ids[ch] {
             return Ok(id);
         }
-        let c = &CHANNELS[ch];
+        let c = match self.compact {
+            Some(_) if ch == CH_COLLISIONS => &COMPACT_COLLISIONS_CHANNEL,
+            _ => &CHANNELS[ch],
+        };
         let sid = self
             .mcap
             .add_schema(c.schema_name, c.schema_encoding, c.schema_text.as_bytes())
@@ -158,7 +171,20 @@ impl Sink {
                 mut records,
             } => {
                 if !records.is_empty() {
-                    CollisionBatch::encode_records(&records, first_ordinal, stride, &mut self.cdr);
+                    match self.compact {
+                        Some(normals) => CompactBatch::encode_records(
+                            &records,
+                            first_ordinal,
+                            normals,
+                            &mut self.cdr,
+                        ),
+                        None => CollisionBatch::encode_records(
+                            &records,
+                            first_ordinal,
+                            stride,
+                            &mut self.cdr,
+                        ),
+                    }
                     let header = MessageHeader {
                         channel_id: self.channel_id(CH_COLLISIONS)?,
                         sequence,
