@@ -63,8 +63,10 @@ pub const METADATA_SUMMARY: &str = "carom.summary";
 /// reader reports the format). 1.2: `carom.run` gains `run_facts` ([`RunFacts`]);
 /// the messages are unchanged, and 1.1 logs read with no facts. 2.0: `/collisions`
 /// is by default the compact record ([`COMPACT_COLLISIONS_CHANNEL`]: time, discs,
-/// impulse), replayed from a snapshot; the log options gain `collision_detail`.
-/// Readers accept 1.x (full records) and 2.x.
+/// impulse), replayed from a snapshot; the log options gain `collision_detail`
+/// and `scene_interval` (the optional `/scene` channel); `carom.run` may hold
+/// `max_time_without_collision`, and `carom.summary` the stop reason
+/// `no_collision`. Readers accept 1.x (full records) and 2.x.
 pub const LOG_FORMAT_VERSION: &str = "2.0";
 
 /// Major versions of the log format this carom reads.
