@@ -31,4 +31,4 @@ pub use report::{
     InelasticReport, KsReport, PressureReport, Report, SpeciesInfo, SpeciesMb, SpeciesUntested,
     TemperatureReport, WindowReport,
 };
-pub use velocity::{MAX_SNAPSHOT_CORRELATION, MB_P_THRESHOLD};
+pub use velocity::{MAX_SNAPSHOT_CORRELATION, MB_FAMILY_ALPHA, MB_TESTS_PER_SPECIES};

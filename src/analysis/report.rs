@@ -7,7 +7,7 @@ use serde::Serialize;
 
 use super::stats::{Histogram, KsTest};
 #[cfg(doc)]
-use super::{DECORRELATION_COLLISIONS, MAX_SNAPSHOT_CORRELATION};
+use super::{DECORRELATION_COLLISIONS, MAX_SNAPSHOT_CORRELATION, MB_FAMILY_ALPHA};
 
 /// Everything `carom analyze` reports. Serialised as one JSON object; units are
 /// the run's (length, time, mass; energies as kT).
@@ -219,7 +219,16 @@ pub struct SpeciesMb {
     pub ks_vx: KsReport,
     /// KS test of v_y against the Gaussian.
     pub ks_vy: KsReport,
-    /// Both speed tests have p ≥ 10⁻³.
+    /// The smallest p-value of this species' four tests (speed χ², speed KS, v_x
+    /// KS, v_y KS).
+    pub min_p_value: f64,
+    /// Tests made over all species (4 per species tested): the m of the
+    /// Bonferroni rule.
+    pub tests: usize,
+    /// α/m with α = [`MB_FAMILY_ALPHA`]: the p-value below which a test rejects.
+    pub p_threshold: f64,
+    /// `min_p_value ≥ p_threshold`: no test of this species rejects
+    /// Maxwell–Boltzmann at family-wise level α (physics.md §6).
     pub passed: bool,
 }
 

@@ -148,7 +148,13 @@ pub fn text(r: &Report, args: &AnalyzeArgs, complete: bool) -> String {
     } else {
         let _ = writeln!(
             s,
-            "Maxwell–Boltzmann  (kT measured from the same snapshots: χ² loses one dof, KS p is conservative)"
+            "Maxwell–Boltzmann  (kT measured from the same snapshots: χ² loses one dof, KS p is conservative; \
+             verdict: Bonferroni over the {} tests made (speed χ², speed KS, vx KS, vy KS per species), \
+             a species is rejected when its smallest p < α/{} = {:.2e}, α = {})",
+            r.maxwell_boltzmann.first().map_or(0, |m| m.tests),
+            r.maxwell_boltzmann.first().map_or(0, |m| m.tests),
+            r.maxwell_boltzmann.first().map_or(0.0, |m| m.p_threshold),
+            carom::analysis::MB_FAMILY_ALPHA
         );
     }
     for m in &r.maxwell_boltzmann {
