@@ -128,6 +128,31 @@ fn equation_of_state_at_eta_0_3_and_enskog_check() {
     assert!(mb.passed, "{:?} {:?}", mb.chi_square, mb.ks);
     assert!(mb.snapshots >= 40 && mb.snapshots <= 51, "{}", mb.snapshots);
     assert!(r.inelastic.is_none());
+    // An equilibrated fluid does not drift: halves within 4 standard errors.
+    for d in [p.drift.as_ref(), r.collision_rate.drift.as_ref()] {
+        let d = d.expect("a drift check");
+        assert!(d.difference_std_errors.abs() < 4.0 && !d.drifting, "{d:?}");
+    }
+}
+
+/// A dense fluid analysed from its lattice start (--equilibrate 0) climbs
+/// towards its equation of state: the drift check flags Z and ω instead of
+/// reporting a converged mean.
+#[test]
+fn a_dense_fluid_analysed_from_its_lattice_start_drifts() {
+    let opts = AnalysisOptions {
+        equilibrate: Some(0.0),
+        ..Default::default()
+    };
+    let r = analyse(
+        fluid(400, 0.68, 3, Velocities::EqualSpeed),
+        EngineParams::default(),
+        8.0,
+        0.5,
+        opts,
+    );
+    let d = r.pressure.as_ref().unwrap().drift.as_ref().unwrap();
+    assert!(d.drifting && d.difference_std_errors.abs() > 3.0, "{d:?}");
 }
 
 #[test]

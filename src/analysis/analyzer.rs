@@ -331,7 +331,7 @@ impl Analyzer {
         let z_bins = pressure::z_per_bin(&self, &kt_bins);
         let omega_bins = collision_rate::omega_per_bin(&self);
         let pressure = pressure::report(&self, &z_bins, &kt_bins)?;
-        let collision_rate = collision_rate::report(&self, &omega_bins)?;
+        let collision_rate = collision_rate::report(&self, &omega_bins, elastic)?;
         let bins = [&z_bins[..], &omega_bins[..], &kt_bins[..]];
         let enskog = collision_rate::enskog(&self, elastic, pressure.as_ref(), bins)?;
         let inelastic = (!elastic).then(|| inelastic::report(&self));

@@ -258,6 +258,27 @@ pub struct PressureReport {
     pub converged: bool,
     /// Z against time: [time, Z] averaged over ~64 consecutive intervals.
     pub series: Vec<[f64; 2]>,
+    /// Drift check of Z over the window; `null` when too short.
+    pub drift: Option<DriftReport>,
+}
+
+/// Drift check of a series reported as a mean with a blocked standard error: the
+/// means of the window's two halves (physics.md §5, drift). A drifting series has
+/// not reached its steady state: its mean and error mean little.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct DriftReport {
+    /// Mean over the first half of the window.
+    pub first_half: f64,
+    /// Its blocked standard error.
+    pub first_half_std_error: f64,
+    /// Mean over the second half of the window.
+    pub second_half: f64,
+    /// Its blocked standard error.
+    pub second_half_std_error: f64,
+    /// (second − first)/√(SE₁² + SE₂²).
+    pub difference_std_errors: f64,
+    /// |difference_std_errors| > 3.
+    pub drifting: bool,
 }
 
 /// Pair collision rate (physics.md §7).
@@ -275,6 +296,9 @@ pub struct CollisionRateReport {
     pub collision_stride: u64,
     /// [start, end] of the window the rate is measured over (time).
     pub window: [f64; 2],
+    /// Drift check of ω over the window; `null` for inelastic runs (ω ∝ √T
+    /// changes as they cool) or a window too short.
+    pub drift: Option<DriftReport>,
 }
 
 /// Enskog consistency check Z − 1 = (√π/4) ω τ0 (physics.md §7).

@@ -196,9 +196,28 @@ pub fn text(r: &Report, args: &AnalyzeArgs, complete: bool) -> String {
                 Num(p.area),
                 p.blocks,
                 Num(p.block_time),
-                if p.converged { "" } else { "; blocking did not converge: run longer" }
+                match (p.converged, p.drift.as_ref().is_some_and(|d| d.drifting)) {
+                    (_, true) => "; DRIFTING, see below",
+                    (true, false) => "",
+                    (false, false) => "; blocking did not converge: run longer",
+                }
             );
             let _ = writeln!(s, "  estimator: {}", p.estimator);
+            if let Some(d) = p.drift.as_ref().filter(|d| d.drifting) {
+                let w = &r.window;
+                let _ = writeln!(
+                    s,
+                    "  drifting: first half Z = {:.5} ± {:.5}, second half {:.5} ± {:.5} ({:.1} standard errors apart): \
+                     not in a steady state, the mean and its error mean little; equilibrate longer with \
+                     --equilibrate T (e.g. {:.4}) or run longer",
+                    d.first_half,
+                    d.first_half_std_error,
+                    d.second_half,
+                    d.second_half_std_error,
+                    d.difference_std_errors,
+                    Num(0.5 * (w.equilibrate + w.t_end))
+                );
+            }
         }
         None => {
             let _ = writeln!(s, "pressure  not available (no temperature in the log)");
@@ -210,6 +229,18 @@ pub fn text(r: &Report, args: &AnalyzeArgs, complete: bool) -> String {
         "collision rate  ω = {:.5} ± {:.5} pair collisions per disc per unit time ({} pair, {} wall collisions logged, every {})",
         Num(c.per_disc), Num(c.std_error), c.logged_pair_collisions, c.logged_wall_collisions, c.collision_stride
     );
+    if let Some(d) = c.drift.as_ref().filter(|d| d.drifting) {
+        let _ = writeln!(
+            s,
+            "  drifting: first half ω = {:.5} ± {:.5}, second half {:.5} ± {:.5} ({:.1} standard errors apart); \
+             equilibrate longer with --equilibrate T",
+            Num(d.first_half),
+            Num(d.first_half_std_error),
+            Num(d.second_half),
+            Num(d.second_half_std_error),
+            d.difference_std_errors
+        );
+    }
     if let Some(e) = &r.enskog {
         let _ = writeln!(
             s,
