@@ -28,8 +28,8 @@ pub use from_log::{analyze_log, AnalysisError, ReadObserver};
 pub use options::{AnalysisOptions, CORRELATED_SPACING, DECORRELATION_COLLISIONS, MAX_VELOCITIES};
 pub use report::{
     ChiSquareReport, CollisionRateReport, DriftReport, EnergyBudget, EnskogReport, HaffReport,
-    HistogramReport, InelasticReport, KsReport, PressureReport, Report, SpeciesInfo, SpeciesMb,
-    SpeciesUntested, TemperatureReport, WindowReport,
+    HistogramReport, InelasticReport, KsReport, PressureReport, Report, SonineReport, SpeciesInfo,
+    SpeciesMb, SpeciesUntested, TemperatureReport, WindowReport,
 };
 pub use series::DRIFT_STD_ERRORS;
 pub use velocity::{MAX_SNAPSHOT_CORRELATION, MB_FAMILY_ALPHA, MB_TESTS_PER_SPECIES};

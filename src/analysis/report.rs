@@ -205,6 +205,9 @@ pub struct SpeciesMb {
     pub snapshot_step: usize,
     /// kT of the reference distribution (energy), measured from the same snapshots.
     pub kt: f64,
+    /// Inelastic runs: each snapshot's velocities were scaled by √(kt/kT(t)) to
+    /// the common `kt` before testing (the homogeneous cooling state).
+    pub scaled_to_snapshot_temperature: bool,
     /// Speed histogram over [0, 4.5 √(kT/m)) with the MB speed pdf.
     pub speed_histogram: HistogramReport,
     /// v_x histogram over ±4.5 √(kT/m) with the Gaussian pdf.
@@ -327,6 +330,27 @@ pub struct InelasticReport {
     pub energy: Option<EnergyBudget>,
     /// Haff's law check (normal restitution only).
     pub haff: Option<HaffReport>,
+    /// Sonine coefficient a2 of the velocities; `null` with fewer than two
+    /// snapshots used.
+    pub sonine: Option<SonineReport>,
+}
+
+/// The Sonine coefficient a2 = ⟨c⁴⟩/⟨c⁴⟩_MB − 1 = ⟨(m v²)²⟩/(2⟨m v²⟩²) − 1 of a
+/// cooling gas (physics.md (8.5)), per snapshot, averaged over the snapshots used.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct SonineReport {
+    /// Measured a2 (mean over the snapshots used).
+    pub a2: f64,
+    /// Its standard error.
+    pub std_error: f64,
+    /// Whether the error is blocked over the snapshots (≥ 16) or the plain error
+    /// of the mean.
+    pub std_error_blocked: bool,
+    /// Snapshots averaged.
+    pub snapshots: usize,
+    /// van Noije & Ernst's a2 for the run's e (physics.md (8.4)); `null` unless
+    /// normal restitution.
+    pub theory: Option<f64>,
 }
 
 /// E(t_end) = E(t_start) − dissipated (physics.md §8).

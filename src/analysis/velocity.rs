@@ -87,6 +87,7 @@ pub(super) fn every_nth_snapshot(v: &[f64], per: usize, step: usize) -> Vec<f64>
 pub(super) fn maxwell_boltzmann(
     a: &mut Analyzer,
     kt: Option<f64>,
+    scaled: bool,
 ) -> Result<(Vec<SpeciesMb>, Vec<SpeciesUntested>), StatsError> {
     let mut maxwell_boltzmann = Vec::new();
     let mut maxwell_boltzmann_untested = Vec::new();
@@ -162,6 +163,7 @@ pub(super) fn maxwell_boltzmann(
             snapshot_correlation: correlation,
             snapshot_step: step.min(a.snapshots_used.len()),
             kt,
+            scaled_to_snapshot_temperature: scaled,
             speed_histogram: HistogramReport::new(&t.histogram, |v| mb.speed_pdf(v)),
             vx_histogram: HistogramReport::new(&comp_hist(&a.vx[s])?, |v| mb.component_pdf(v)),
             vy_histogram: HistogramReport::new(&comp_hist(&a.vy[s])?, |v| mb.component_pdf(v)),

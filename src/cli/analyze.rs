@@ -173,7 +173,12 @@ pub fn text(r: &Report, args: &AnalyzeArgs, complete: bool) -> String {
             m.ks.p_value,
             m.ks_vx.p_value,
             m.ks_vy.p_value,
-            if m.passed { "consistent with MB" } else { "NOT Maxwell–Boltzmann" }
+            match (m.passed, m.scaled_to_snapshot_temperature) {
+                (true, false) => "consistent with MB",
+                (true, true) => "consistent with MB (each snapshot scaled by its thermal speed √(kT(t)/m))",
+                (false, false) => "NOT Maxwell–Boltzmann",
+                (false, true) => "NOT Maxwell–Boltzmann (each snapshot scaled by its thermal speed √(kT(t)/m))",
+            }
         );
     }
     for u in &r.maxwell_boltzmann_untested {
@@ -266,6 +271,22 @@ pub fn text(r: &Report, args: &AnalyzeArgs, complete: bool) -> String {
                 s,
                 "Haff's law  t0 = {:.4}, a2 = {:.4}; final kT measured {:.5}, predicted {:.5} (ratio {:.4})",
                 Num(h.t0), h.a2, Num(h.kt_final_measured), Num(h.kt_final_predicted), h.ratio
+            );
+        }
+        if let Some(a) = &i.sonine {
+            let _ = writeln!(
+                s,
+                "Sonine coefficient  a2 = ⟨(mv²)²⟩/(2⟨mv²⟩²) − 1 = {:.4} ± {:.4} over {} snapshots{}",
+                a.a2,
+                a.std_error,
+                a.snapshots,
+                match a.theory {
+                    Some(th) => format!(
+                        "; van Noije–Ernst {th:.4} ({} apart)",
+                        sigmas(a.a2 - th, a.std_error)
+                    ),
+                    None => String::new(),
+                }
             );
         }
         let series = &r.temperature.series;
