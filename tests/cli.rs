@@ -327,6 +327,52 @@ fn granular_cooling_reports_the_energy_budget_and_plots() {
         let svg = std::fs::read_to_string(dir.join(format!("figs/{name}.svg"))).unwrap();
         assert!(svg.contains("<svg"), "{name}");
     }
+    // Axes in the run's units; the cooling curve with Haff's law in the legend.
+    let svg = std::fs::read_to_string(dir.join("figs/temperature.svg")).unwrap();
+    for label in ["kT (energy)", "(time)", "Haff", "measured kT"] {
+        assert!(svg.contains(label), "{label}");
+    }
+    let svg = std::fs::read_to_string(dir.join("figs/speed_species0.svg")).unwrap();
+    assert!(svg.contains("(length/time)"));
+    let a2 = &r["inelastic"]["sonine"];
+    assert!(f(&a2["std_error"]) > 0.0 && f(&a2["theory"]) < 0.0, "{a2}");
+    assert_eq!(
+        r["maxwell_boltzmann"][0]["scaled_to_snapshot_temperature"],
+        true
+    );
+}
+
+/// A dense fluid (η = 0.68) analysed from its lattice start is reported as
+/// drifting, in the text and in the JSON, not as a converged Z.
+#[test]
+fn a_dense_fluid_analysed_from_its_start_is_reported_drifting() {
+    let dir = scratch("drift");
+    ok(&carom(
+        &dir,
+        &[
+            "run",
+            "--quiet",
+            "--out",
+            "d.mcap",
+            "--set",
+            "species.0.count=1000",
+            "--set",
+            "box.packing_fraction=0.68",
+            "--set",
+            "stop.duration=8",
+        ],
+    ));
+    let args = ["analyze", "d.mcap", "--equilibrate", "0", "--quiet"];
+    let out = carom(&dir, &args);
+    ok(&out);
+    let text = String::from_utf8_lossy(&out.stdout);
+    assert!(text.contains("drifting: first half Z = "), "{text}");
+    assert!(text.contains("--equilibrate"), "{text}");
+    let r = json_of(&carom(&dir, &[&args[..], &["--json"]].concat()));
+    let d = &r["pressure"]["drift"];
+    assert_eq!(d["drifting"], true, "{d}");
+    assert!(f(&d["second_half"]) > f(&d["first_half"]), "{d}");
+    assert!(f(&d["difference_std_errors"]) > 3.0, "{d}");
 }
 
 #[test]

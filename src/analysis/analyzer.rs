@@ -45,6 +45,10 @@ pub struct Analyzer {
     pub(super) vy: Vec<Vec<f64>>,
     pub(super) mb_kinetic: f64,
     pub(super) snapshots_used: Vec<f64>,
+    /// kT of each snapshot used.
+    pub(super) snapshot_kt: Vec<f64>,
+    /// Sonine coefficient a2 of each snapshot used (physics.md (8.5)).
+    pub(super) snapshot_a2: Vec<f64>,
     pub(super) snapshots_seen: usize,
     /// Whether `opts.every` was chosen here (from the collision rate or the memory
     /// bound) rather than asked for.
@@ -120,6 +124,8 @@ impl Analyzer {
             vy: vec![Vec::new(); ns],
             mb_kinetic: 0.0,
             snapshots_used: Vec::new(),
+            snapshot_kt: Vec::new(),
+            snapshot_a2: Vec::new(),
             snapshots_seen: 0,
             run,
         })
@@ -261,6 +267,9 @@ impl Analyzer {
             }
         }
         self.snapshots_used.push(t);
+        self.snapshot_kt.push(kt);
+        self.snapshot_a2
+            .push(inelastic::sonine_a2(&masses, species_of, vx, vy));
         self.mb_kinetic += k;
         for (&s, (&x, &y)) in species_of.iter().zip(vx.iter().zip(vy)) {
             let s = s as usize;
@@ -325,13 +334,20 @@ impl Analyzer {
             );
         let kt_used = temperature::snapshot_kt(&self);
         let temperature = temperature::report(&self, kt_used);
+        // A cooling gas is tested in its homogeneous cooling state: each
+        // snapshot's velocities scaled to the mean kT of the snapshots used.
+        if !elastic {
+            if let Some(kt) = kt_used {
+                inelastic::scale_to(&mut self, kt);
+            }
+        }
         let (maxwell_boltzmann, maxwell_boltzmann_untested) =
-            velocity::maxwell_boltzmann(&mut self, kt_used)?;
+            velocity::maxwell_boltzmann(&mut self, kt_used, !elastic)?;
         let kt_bins = self.kt_per_bin();
         let z_bins = pressure::z_per_bin(&self, &kt_bins);
         let omega_bins = collision_rate::omega_per_bin(&self);
         let pressure = pressure::report(&self, &z_bins, &kt_bins)?;
-        let collision_rate = collision_rate::report(&self, &omega_bins)?;
+        let collision_rate = collision_rate::report(&self, &omega_bins, elastic)?;
         let bins = [&z_bins[..], &omega_bins[..], &kt_bins[..]];
         let enskog = collision_rate::enskog(&self, elastic, pressure.as_ref(), bins)?;
         let inelastic = (!elastic).then(|| inelastic::report(&self));

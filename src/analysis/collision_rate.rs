@@ -8,7 +8,7 @@ use carom_core::observables::{collision_rate, has_walls};
 
 use super::analyzer::Analyzer;
 use super::report::{CollisionRateReport, EnskogReport, PressureReport};
-use super::series::blocked;
+use super::series::{blocked, drift};
 use super::stats::StatsError;
 
 /// ω of each time bin (logged pair collisions × stride, plus those from running
@@ -22,7 +22,11 @@ pub(super) fn omega_per_bin(a: &Analyzer) -> Vec<f64> {
 }
 
 /// The collision-rate report from the bins' ω.
-pub(super) fn report(a: &Analyzer, omega_bins: &[f64]) -> Result<CollisionRateReport, StatsError> {
+pub(super) fn report(
+    a: &Analyzer,
+    omega_bins: &[f64],
+    elastic: bool,
+) -> Result<CollisionRateReport, StatsError> {
     let est = blocked(omega_bins)?;
     Ok(CollisionRateReport {
         per_disc: est.mean,
@@ -31,6 +35,7 @@ pub(super) fn report(a: &Analyzer, omega_bins: &[f64]) -> Result<CollisionRateRe
         logged_wall_collisions: a.wall_total,
         collision_stride: a.run.collision_stride,
         window: [a.t_eq, a.run.t_end],
+        drift: if elastic { drift(omega_bins) } else { None },
     })
 }
 

@@ -27,8 +27,9 @@ pub use description::RunDescription;
 pub use from_log::{analyze_log, AnalysisError, ReadObserver};
 pub use options::{AnalysisOptions, CORRELATED_SPACING, DECORRELATION_COLLISIONS, MAX_VELOCITIES};
 pub use report::{
-    ChiSquareReport, CollisionRateReport, EnergyBudget, EnskogReport, HaffReport, HistogramReport,
-    InelasticReport, KsReport, PressureReport, Report, SpeciesInfo, SpeciesMb, SpeciesUntested,
-    TemperatureReport, WindowReport,
+    ChiSquareReport, CollisionRateReport, DriftReport, EnergyBudget, EnskogReport, HaffReport,
+    HistogramReport, InelasticReport, KsReport, PressureReport, Report, SonineReport, SpeciesInfo,
+    SpeciesMb, SpeciesUntested, TemperatureReport, WindowReport,
 };
-pub use velocity::{MAX_SNAPSHOT_CORRELATION, MB_P_THRESHOLD};
+pub use series::DRIFT_STD_ERRORS;
+pub use velocity::{MAX_SNAPSHOT_CORRELATION, MB_FAMILY_ALPHA, MB_TESTS_PER_SPECIES};

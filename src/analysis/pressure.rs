@@ -9,7 +9,7 @@ use carom_core::observables::{accessible_area, has_walls, pressure, virial_z, wa
 
 use super::analyzer::Analyzer;
 use super::report::PressureReport;
-use super::series::{blocked, coarse_series};
+use super::series::{blocked, coarse_series, drift};
 use super::stats::StatsError;
 
 /// Z of each time bin, with kT of each bin from `kt_bins`.
@@ -60,5 +60,6 @@ pub(super) fn report(
         block_time: est.block_len as f64 * dt,
         converged: est.converged,
         series: coarse_series(z_bins, a.t_eq, dt, 64),
+        drift: drift(z_bins),
     }))
 }

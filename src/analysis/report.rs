@@ -7,7 +7,7 @@ use serde::Serialize;
 
 use super::stats::{Histogram, KsTest};
 #[cfg(doc)]
-use super::{DECORRELATION_COLLISIONS, MAX_SNAPSHOT_CORRELATION};
+use super::{DECORRELATION_COLLISIONS, MAX_SNAPSHOT_CORRELATION, MB_FAMILY_ALPHA};
 
 /// Everything `carom analyze` reports. Serialised as one JSON object; units are
 /// the run's (length, time, mass; energies as kT).
@@ -205,6 +205,9 @@ pub struct SpeciesMb {
     pub snapshot_step: usize,
     /// kT of the reference distribution (energy), measured from the same snapshots.
     pub kt: f64,
+    /// Inelastic runs: each snapshot's velocities were scaled by √(kt/kT(t)) to
+    /// the common `kt` before testing (the homogeneous cooling state).
+    pub scaled_to_snapshot_temperature: bool,
     /// Speed histogram over [0, 4.5 √(kT/m)) with the MB speed pdf.
     pub speed_histogram: HistogramReport,
     /// v_x histogram over ±4.5 √(kT/m) with the Gaussian pdf.
@@ -219,7 +222,16 @@ pub struct SpeciesMb {
     pub ks_vx: KsReport,
     /// KS test of v_y against the Gaussian.
     pub ks_vy: KsReport,
-    /// Both speed tests have p ≥ 10⁻³.
+    /// The smallest p-value of this species' four tests (speed χ², speed KS, v_x
+    /// KS, v_y KS).
+    pub min_p_value: f64,
+    /// Tests made over all species (4 per species tested): the m of the
+    /// Bonferroni rule.
+    pub tests: usize,
+    /// α/m with α = [`MB_FAMILY_ALPHA`]: the p-value below which a test rejects.
+    pub p_threshold: f64,
+    /// `min_p_value ≥ p_threshold`: no test of this species rejects
+    /// Maxwell–Boltzmann at family-wise level α (physics.md §6).
     pub passed: bool,
 }
 
@@ -249,6 +261,27 @@ pub struct PressureReport {
     pub converged: bool,
     /// Z against time: [time, Z] averaged over ~64 consecutive intervals.
     pub series: Vec<[f64; 2]>,
+    /// Drift check of Z over the window; `null` when too short.
+    pub drift: Option<DriftReport>,
+}
+
+/// Drift check of a series reported as a mean with a blocked standard error: the
+/// means of the window's two halves (physics.md §5, drift). A drifting series has
+/// not reached its steady state: its mean and error mean little.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct DriftReport {
+    /// Mean over the first half of the window.
+    pub first_half: f64,
+    /// Its blocked standard error.
+    pub first_half_std_error: f64,
+    /// Mean over the second half of the window.
+    pub second_half: f64,
+    /// Its blocked standard error.
+    pub second_half_std_error: f64,
+    /// (second − first)/√(SE₁² + SE₂²).
+    pub difference_std_errors: f64,
+    /// |difference_std_errors| > 3.
+    pub drifting: bool,
 }
 
 /// Pair collision rate (physics.md §7).
@@ -266,6 +299,9 @@ pub struct CollisionRateReport {
     pub collision_stride: u64,
     /// [start, end] of the window the rate is measured over (time).
     pub window: [f64; 2],
+    /// Drift check of ω over the window; `null` for inelastic runs (ω ∝ √T
+    /// changes as they cool) or a window too short.
+    pub drift: Option<DriftReport>,
 }
 
 /// Enskog consistency check Z − 1 = (√π/4) ω τ0 (physics.md §7).
@@ -294,6 +330,27 @@ pub struct InelasticReport {
     pub energy: Option<EnergyBudget>,
     /// Haff's law check (normal restitution only).
     pub haff: Option<HaffReport>,
+    /// Sonine coefficient a2 of the velocities; `null` with fewer than two
+    /// snapshots used.
+    pub sonine: Option<SonineReport>,
+}
+
+/// The Sonine coefficient a2 = ⟨c⁴⟩/⟨c⁴⟩_MB − 1 = ⟨(m v²)²⟩/(2⟨m v²⟩²) − 1 of a
+/// cooling gas (physics.md (8.5)), per snapshot, averaged over the snapshots used.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct SonineReport {
+    /// Measured a2 (mean over the snapshots used).
+    pub a2: f64,
+    /// Its standard error.
+    pub std_error: f64,
+    /// Whether the error is blocked over the snapshots (≥ 16) or the plain error
+    /// of the mean.
+    pub std_error_blocked: bool,
+    /// Snapshots averaged.
+    pub snapshots: usize,
+    /// van Noije & Ernst's a2 for the run's e (physics.md (8.4)); `null` unless
+    /// normal restitution.
+    pub theory: Option<f64>,
 }
 
 /// E(t_end) = E(t_start) − dissipated (physics.md §8).

@@ -2,6 +2,7 @@
 //! standard error (the blocking analysis when it converges, else 16 blocks), and
 //! series thinned or coarsened to a few thousand points for the JSON and figures.
 
+use super::report::DriftReport;
 use super::stats::{block_average, blocking, StatsError};
 
 /// A blocked estimate: the automatic blocking analysis when it converges, else 16
@@ -61,4 +62,32 @@ pub(super) fn coarse_series(x: &[f64], t0: f64, dt: f64, parts: usize) -> Vec<[f
             [t, c.iter().sum::<f64>() / c.len() as f64]
         })
         .collect()
+}
+
+/// A series counts as drifting when the means of its two halves differ by more
+/// than this many combined standard errors (physics.md §5, drift).
+pub const DRIFT_STD_ERRORS: f64 = 3.0;
+
+/// The drift check of a per-bin series: the blocked means of its first and second
+/// halves and their difference in combined standard errors
+/// (m₂ − m₁)/√(s₁² + s₂²); `None` when a half is too short to block.
+pub(super) fn drift(x: &[f64]) -> Option<DriftReport> {
+    let (a, b) = x.split_at(x.len() / 2);
+    let (a, b) = (blocked(a).ok()?, blocked(b).ok()?);
+    let se = a.std_error.hypot(b.std_error);
+    let d = if se > 0.0 {
+        (b.mean - a.mean) / se
+    } else if b.mean == a.mean {
+        0.0
+    } else {
+        f64::INFINITY.copysign(b.mean - a.mean)
+    };
+    Some(DriftReport {
+        first_half: a.mean,
+        first_half_std_error: a.std_error,
+        second_half: b.mean,
+        second_half_std_error: b.std_error,
+        difference_std_errors: d,
+        drifting: d.abs() > DRIFT_STD_ERRORS,
+    })
 }

@@ -12,8 +12,14 @@ use super::stats::{ks_test, mb_speed_test, Histogram, StatsError};
 #[cfg(doc)]
 use super::{AnalysisOptions, DECORRELATION_COLLISIONS};
 
-/// p-value below which a Maxwell–Boltzmann test counts as failed (either test).
-pub const MB_P_THRESHOLD: f64 = 1e-3;
+/// Family-wise significance level of the Maxwell–Boltzmann verdict: every test
+/// made (per species the speed χ², the speed KS and the KS of v_x and of v_y) is
+/// counted, and a species is rejected when its smallest p-value is below
+/// α/m, m the number of tests made over all species (Bonferroni; physics.md §6).
+pub const MB_FAMILY_ALPHA: f64 = 0.01;
+
+/// Tests made per species for the Maxwell–Boltzmann verdict ([`MB_FAMILY_ALPHA`]).
+pub const MB_TESTS_PER_SPECIES: usize = 4;
 
 /// The largest correlation of a species' velocities between the snapshots its
 /// Maxwell–Boltzmann tests use. The default spacing ([`DECORRELATION_COLLISIONS`])
@@ -81,6 +87,7 @@ pub(super) fn every_nth_snapshot(v: &[f64], per: usize, step: usize) -> Vec<f64>
 pub(super) fn maxwell_boltzmann(
     a: &mut Analyzer,
     kt: Option<f64>,
+    scaled: bool,
 ) -> Result<(Vec<SpeciesMb>, Vec<SpeciesUntested>), StatsError> {
     let mut maxwell_boltzmann = Vec::new();
     let mut maxwell_boltzmann_untested = Vec::new();
@@ -139,7 +146,14 @@ pub(super) fn maxwell_boltzmann(
         };
         let ks_x = ks_test(&a.vx[s], |v| mb.component_cdf(v))?;
         let ks_y = ks_test(&a.vy[s], |v| mb.component_cdf(v))?;
-        let passed = t.chi_square.p_value >= MB_P_THRESHOLD && t.ks.p_value >= MB_P_THRESHOLD;
+        let min_p = [
+            t.chi_square.p_value,
+            t.ks.p_value,
+            ks_x.p_value,
+            ks_y.p_value,
+        ]
+        .into_iter()
+        .fold(f64::INFINITY, f64::min);
         maxwell_boltzmann.push(SpeciesMb {
             species: s,
             mass: sp.mass,
@@ -149,6 +163,7 @@ pub(super) fn maxwell_boltzmann(
             snapshot_correlation: correlation,
             snapshot_step: step.min(a.snapshots_used.len()),
             kt,
+            scaled_to_snapshot_temperature: scaled,
             speed_histogram: HistogramReport::new(&t.histogram, |v| mb.speed_pdf(v)),
             vx_histogram: HistogramReport::new(&comp_hist(&a.vx[s])?, |v| mb.component_pdf(v)),
             vy_histogram: HistogramReport::new(&comp_hist(&a.vy[s])?, |v| mb.component_pdf(v)),
@@ -161,8 +176,18 @@ pub(super) fn maxwell_boltzmann(
             ks: KsReport::from(&t.ks),
             ks_vx: KsReport::from(&ks_x),
             ks_vy: KsReport::from(&ks_y),
-            passed,
+            min_p_value: min_p,
+            tests: 0,
+            p_threshold: 0.0,
+            passed: false,
         });
+    }
+    // The verdict counts every test made over all species (Bonferroni).
+    let tests = MB_TESTS_PER_SPECIES * maxwell_boltzmann.len();
+    for m in &mut maxwell_boltzmann {
+        m.tests = tests;
+        m.p_threshold = MB_FAMILY_ALPHA / tests as f64;
+        m.passed = m.min_p_value >= m.p_threshold;
     }
     Ok((maxwell_boltzmann, maxwell_boltzmann_untested))
 }
@@ -269,5 +294,50 @@ mod tests {
         assert_eq!((h.snapshot_step, h.snapshots), (1, snapshots));
         assert!(h.snapshot_correlation.unwrap() > 0.999);
         assert!(!h.passed, "{h:?}");
+    }
+
+    /// Velocities whose speeds are exactly Rayleigh but whose v_x is never
+    /// negative (v_x → |v_x|, the speed unchanged): the speed tests pass, the v_x
+    /// test fails, and the verdict counts it.
+    #[test]
+    fn a_failed_component_test_fails_the_verdict() {
+        use rand::SeedableRng;
+        use rand_distr::{Distribution, StandardNormal};
+        let n = 2000;
+        let mut r = run();
+        r.species = vec![Species::reference(n)];
+        r.sim_box = SimBox::periodic(100.0, 100.0);
+        let mut rng = rand_pcg::Pcg64::seed_from_u64(11);
+        let species = vec![0u16; n];
+        let verdict = |fold: bool, rng: &mut rand_pcg::Pcg64| {
+            let opts = AnalysisOptions {
+                equilibrate: Some(0.0),
+                every: Some(0.0),
+                ..Default::default()
+            };
+            let mut a = Analyzer::new(r.clone(), opts).unwrap();
+            for k in 0..5 {
+                let mut g = || -> f64 { StandardNormal.sample(rng) };
+                let vx: Vec<f64> = (0..n)
+                    .map(|_| g())
+                    .map(|x| if fold { x.abs() } else { x })
+                    .collect();
+                let vy: Vec<f64> = (0..n).map(|_| g()).collect();
+                a.snapshot(k as f64, &species, &vx, &vy).unwrap();
+            }
+            a.finish().unwrap().maxwell_boltzmann.remove(0)
+        };
+        let good = verdict(false, &mut rng);
+        assert!(good.passed, "{good:?}");
+        assert_eq!(good.tests, 4);
+        assert!((good.p_threshold - 0.01 / 4.0).abs() < 1e-15);
+        let bad = verdict(true, &mut rng);
+        assert!(
+            bad.chi_square.p_value > 0.01 && bad.ks.p_value > 0.01,
+            "{bad:?}"
+        );
+        assert!(bad.ks_vx.p_value < 1e-6, "{:?}", bad.ks_vx);
+        assert!(!bad.passed);
+        assert_eq!(bad.min_p_value, bad.ks_vx.p_value);
     }
 }

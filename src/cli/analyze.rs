@@ -148,7 +148,13 @@ pub fn text(r: &Report, args: &AnalyzeArgs, complete: bool) -> String {
     } else {
         let _ = writeln!(
             s,
-            "Maxwell–Boltzmann  (kT measured from the same snapshots: χ² loses one dof, KS p is conservative)"
+            "Maxwell–Boltzmann  (kT measured from the same snapshots: χ² loses one dof, KS p is conservative; \
+             verdict: Bonferroni over the {} tests made (speed χ², speed KS, vx KS, vy KS per species), \
+             a species is rejected when its smallest p < α/{} = {:.2e}, α = {})",
+            r.maxwell_boltzmann.first().map_or(0, |m| m.tests),
+            r.maxwell_boltzmann.first().map_or(0, |m| m.tests),
+            r.maxwell_boltzmann.first().map_or(0.0, |m| m.p_threshold),
+            carom::analysis::MB_FAMILY_ALPHA
         );
     }
     for m in &r.maxwell_boltzmann {
@@ -167,7 +173,12 @@ pub fn text(r: &Report, args: &AnalyzeArgs, complete: bool) -> String {
             m.ks.p_value,
             m.ks_vx.p_value,
             m.ks_vy.p_value,
-            if m.passed { "consistent with MB" } else { "NOT Maxwell–Boltzmann" }
+            match (m.passed, m.scaled_to_snapshot_temperature) {
+                (true, false) => "consistent with MB",
+                (true, true) => "consistent with MB (each snapshot scaled by its thermal speed √(kT(t)/m))",
+                (false, false) => "NOT Maxwell–Boltzmann",
+                (false, true) => "NOT Maxwell–Boltzmann (each snapshot scaled by its thermal speed √(kT(t)/m))",
+            }
         );
     }
     for u in &r.maxwell_boltzmann_untested {
@@ -190,9 +201,28 @@ pub fn text(r: &Report, args: &AnalyzeArgs, complete: bool) -> String {
                 Num(p.area),
                 p.blocks,
                 Num(p.block_time),
-                if p.converged { "" } else { "; blocking did not converge: run longer" }
+                match (p.converged, p.drift.as_ref().is_some_and(|d| d.drifting)) {
+                    (_, true) => "; DRIFTING, see below",
+                    (true, false) => "",
+                    (false, false) => "; blocking did not converge: run longer",
+                }
             );
             let _ = writeln!(s, "  estimator: {}", p.estimator);
+            if let Some(d) = p.drift.as_ref().filter(|d| d.drifting) {
+                let w = &r.window;
+                let _ = writeln!(
+                    s,
+                    "  drifting: first half Z = {:.5} ± {:.5}, second half {:.5} ± {:.5} ({:.1} standard errors apart): \
+                     not in a steady state, the mean and its error mean little; equilibrate longer with \
+                     --equilibrate T (e.g. {:.4}) or run longer",
+                    d.first_half,
+                    d.first_half_std_error,
+                    d.second_half,
+                    d.second_half_std_error,
+                    d.difference_std_errors,
+                    Num(0.5 * (w.equilibrate + w.t_end))
+                );
+            }
         }
         None => {
             let _ = writeln!(s, "pressure  not available (no temperature in the log)");
@@ -204,6 +234,18 @@ pub fn text(r: &Report, args: &AnalyzeArgs, complete: bool) -> String {
         "collision rate  ω = {:.5} ± {:.5} pair collisions per disc per unit time ({} pair, {} wall collisions logged, every {})",
         Num(c.per_disc), Num(c.std_error), c.logged_pair_collisions, c.logged_wall_collisions, c.collision_stride
     );
+    if let Some(d) = c.drift.as_ref().filter(|d| d.drifting) {
+        let _ = writeln!(
+            s,
+            "  drifting: first half ω = {:.5} ± {:.5}, second half {:.5} ± {:.5} ({:.1} standard errors apart); \
+             equilibrate longer with --equilibrate T",
+            Num(d.first_half),
+            Num(d.first_half_std_error),
+            Num(d.second_half),
+            Num(d.second_half_std_error),
+            d.difference_std_errors
+        );
+    }
     if let Some(e) = &r.enskog {
         let _ = writeln!(
             s,
@@ -229,6 +271,22 @@ pub fn text(r: &Report, args: &AnalyzeArgs, complete: bool) -> String {
                 s,
                 "Haff's law  t0 = {:.4}, a2 = {:.4}; final kT measured {:.5}, predicted {:.5} (ratio {:.4})",
                 Num(h.t0), h.a2, Num(h.kt_final_measured), Num(h.kt_final_predicted), h.ratio
+            );
+        }
+        if let Some(a) = &i.sonine {
+            let _ = writeln!(
+                s,
+                "Sonine coefficient  a2 = ⟨(mv²)²⟩/(2⟨mv²⟩²) − 1 = {:.4} ± {:.4} over {} snapshots{}",
+                a.a2,
+                a.std_error,
+                a.snapshots,
+                match a.theory {
+                    Some(th) => format!(
+                        "; van Noije–Ernst {th:.4} ({} apart)",
+                        sigmas(a.a2 - th, a.std_error)
+                    ),
+                    None => String::new(),
+                }
             );
         }
         let series = &r.temperature.series;

@@ -3,8 +3,10 @@
 //!
 //! Files: `speed_species{k}` (speed histogram with the MB pdf),
 //! `components_species{k}` (v_x and v_y histograms with the Gaussian),
-//! `temperature` (kT against time), `pressure` (Z against time with the mean and
-//! one standard error).
+//! `temperature` (kT against time; for a cooling run on log–log axes against the
+//! time since the first record, with Haff's law), `pressure` (Z against time with
+//! the mean and one standard error, and the halves' means when it drifts). Axes are
+//! in the run's units.
 
 use std::ops::Range;
 use std::path::Path;
@@ -212,7 +214,7 @@ fn draw_speed<DB: DrawingBackend>(root: &DrawingArea<DB, Shift>, m: &SpeciesMb) 
         "species {} (m = {}): speeds, χ² p = {:.3}, KS p = {:.3}",
         m.species, m.mass, m.chi_square.p_value, m.ks.p_value
     );
-    let axis = ("speed v", "probability density");
+    let axis = ("speed v (length/time)", "probability density (time/length)");
     let mut chart = axes(root, &caption, axis, 0.0..x_max, 0.0..y_max)?;
     histogram_series(&mut chart, h, BLUE, &format!("{} speeds", m.samples))?;
     theory_line(
@@ -240,7 +242,10 @@ fn draw_components<DB: DrawingBackend>(
         "species {}: velocity components, KS p(vx) = {:.3}, p(vy) = {:.3}",
         m.species, m.ks_vx.p_value, m.ks_vy.p_value
     );
-    let axis = ("velocity component", "probability density");
+    let axis = (
+        "velocity component vx, vy (length/time)",
+        "probability density (time/length)",
+    );
     let mut chart = axes(root, &caption, axis, x_lo..x_hi, 0.0..y_max)?;
     histogram_series(&mut chart, hx, BLUE, "vx")?;
     histogram_series(&mut chart, hy, RED, "vy")?;
@@ -257,26 +262,79 @@ fn draw_temperature<DB: DrawingBackend>(
     r: &Report,
 ) -> DrawResult<DB> {
     let s = &r.temperature.series;
+    if let Some(h) = r.inelastic.as_ref().and_then(|i| i.haff.as_ref()) {
+        return draw_cooling(root, s, h);
+    }
     let (x0, x1) = range(s.iter().map(|p| p[0]));
     let (y0, y1) = range(s.iter().map(|p| p[1]).chain([0.0]));
     let caption = "temperature kT = 2K/f against time";
-    let mut chart = axes(root, caption, ("time", "kT"), x0..x1, y0..y1)?;
-    chart.draw_series(LineSeries::new(
-        s.iter().map(|p| (p[0], p[1])),
-        BLUE.stroke_width(2),
-    ))?;
-    if let Some(h) = r.inelastic.as_ref().and_then(|i| i.haff.as_ref()) {
-        let (t0, kt0) = (s[0][0], s[0][1]);
-        let haff = s
-            .iter()
-            .map(|p| (p[0], kt0 / (1.0 + (p[0] - t0) / h.t0).powi(2)));
-        chart
-            .draw_series(LineSeries::new(haff, BLACK.stroke_width(1)))?
-            .label("Haff's law")
-            .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 15, y)], BLACK));
-        legend(&mut chart)?;
-    }
-    Ok(())
+    let axis = ("time t (time)", "kT (energy)");
+    let mut chart = axes(root, caption, axis, x0..x1, y0..y1)?;
+    chart
+        .draw_series(LineSeries::new(
+            s.iter().map(|p| (p[0], p[1])),
+            BLUE.stroke_width(2),
+        ))?
+        .label("measured kT")
+        .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 15, y)], BLUE.stroke_width(2)));
+    legend(&mut chart)
+}
+
+/// A cooling run's kT against the time since its first record on log–log axes,
+/// with Haff's law T0/(1 + t/t0)² (physics.md (8.2)): flat for t ≪ t0, t⁻² after.
+fn draw_cooling<DB: DrawingBackend>(
+    root: &DrawingArea<DB, Shift>,
+    s: &[[f64; 2]],
+    h: &carom::analysis::HaffReport,
+) -> DrawResult<DB> {
+    let (t0, kt0) = (s[0][0], s[0][1]);
+    let pts: Vec<(f64, f64)> = s
+        .iter()
+        .map(|p| (p[0] - t0, p[1]))
+        .filter(|p| p.0 > 0.0 && p.1 > 0.0)
+        .collect();
+    let haff = |t: f64| kt0 / (1.0 + t / h.t0).powi(2);
+    let (Some(first), Some(last)) = (pts.first(), pts.last()) else {
+        return Ok(());
+    };
+    let (x0, x1) = (first.0, last.0.max(first.0 * 1.0001));
+    let ys = pts.iter().map(|p| p.1).chain([haff(x0), haff(x1)]);
+    let (y0, y1) = ys.fold((f64::INFINITY, 0.0f64), |(a, b), v| (a.min(v), b.max(v)));
+    let mut chart = ChartBuilder::on(root)
+        .caption(
+            format!("cooling: kT against time, Haff's law t0 = {:.4}", h.t0),
+            ("sans-serif", 22),
+        )
+        .margin(15)
+        .x_label_area_size(45)
+        .y_label_area_size(70)
+        .build_cartesian_2d((x0..x1).log_scale(), (0.8 * y0..1.25 * y1).log_scale())?;
+    chart
+        .configure_mesh()
+        .x_desc("time since the first record t − t_start (time)")
+        .y_desc("kT (energy)")
+        .x_label_formatter(&|v| format!("{v:.3}"))
+        .y_label_formatter(&|v| format!("{v:.3}"))
+        .draw()?;
+    chart
+        .draw_series(LineSeries::new(pts.iter().copied(), BLUE.stroke_width(2)))?
+        .label("measured kT")
+        .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 15, y)], BLUE.stroke_width(2)));
+    let n = 200;
+    let curve = (0..=n).map(|k| {
+        let t = x0 * (x1 / x0).powf(k as f64 / n as f64);
+        (t, haff(t))
+    });
+    chart
+        .draw_series(DashedLineSeries::new(curve, 8, 5, BLACK.stroke_width(2)))?
+        .label(format!("Haff's law kT0/(1 + t/t0)², t0 = {:.4}", h.t0))
+        .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 15, y)], BLACK.stroke_width(2)));
+    chart
+        .configure_series_labels()
+        .position(SeriesLabelPosition::LowerLeft)
+        .background_style(WHITE.mix(0.8))
+        .border_style(BLACK)
+        .draw()
 }
 
 fn draw_pressure<DB: DrawingBackend>(root: &DrawingArea<DB, Shift>, r: &Report) -> DrawResult<DB> {
@@ -284,23 +342,52 @@ fn draw_pressure<DB: DrawingBackend>(root: &DrawingArea<DB, Shift>, r: &Report) 
     let s = &p.series;
     let (x0, x1) = range(s.iter().map(|q| q[0]));
     let (y0, y1) = range(s.iter().map(|q| q[1]));
-    let caption = format!("Z = βPA/N = {:.4} ± {:.4}", p.z, p.z_std_error);
-    let mut chart = axes(root, &caption, ("time", "Z"), x0..x1, y0..y1)?;
+    let drifting = p.drift.as_ref().filter(|d| d.drifting);
+    let caption = match drifting {
+        Some(d) => format!(
+            "Z = βPA/N DRIFTING: halves {:.4} and {:.4} ({:.1} SE apart)",
+            d.first_half, d.second_half, d.difference_std_errors
+        ),
+        None => format!("Z = βPA/N = {:.4} ± {:.4}", p.z, p.z_std_error),
+    };
+    let axis = ("time t (time)", "Z = βPA/N (dimensionless)");
+    let mut chart = axes(root, &caption, axis, x0..x1, y0..y1)?;
     chart.draw_series(std::iter::once(Rectangle::new(
         [(x0, p.z - p.z_std_error), (x1, p.z + p.z_std_error)],
         GREEN.mix(0.3).filled(),
     )))?;
-    chart.draw_series(LineSeries::new(
-        [(x0, p.z), (x1, p.z)],
-        GREEN.stroke_width(2),
-    ))?;
-    chart.draw_series(LineSeries::new(
-        s.iter().map(|q| (q[0], q[1])),
-        BLUE.stroke_width(1),
-    ))?;
+    chart
+        .draw_series(LineSeries::new(
+            [(x0, p.z), (x1, p.z)],
+            GREEN.stroke_width(2),
+        ))?
+        .label("mean ± one standard error")
+        .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 15, y)], GREEN.stroke_width(2)));
+    if let Some(d) = drifting {
+        let mid = 0.5 * (s[0][0] + s[s.len() - 1][0]);
+        let halves = [
+            vec![(x0, d.first_half), (mid, d.first_half)],
+            vec![(mid, d.second_half), (x1, d.second_half)],
+        ];
+        let mut drawn = None;
+        for h in halves {
+            drawn = Some(chart.draw_series(LineSeries::new(h, RED.stroke_width(2)))?);
+        }
+        if let Some(d) = drawn {
+            d.label("means of the two halves (drift)")
+                .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 15, y)], RED.stroke_width(2)));
+        }
+    }
+    chart
+        .draw_series(LineSeries::new(
+            s.iter().map(|q| (q[0], q[1])),
+            BLUE.stroke_width(1),
+        ))?
+        .label("Z per interval")
+        .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 15, y)], BLUE));
     chart.draw_series(
         s.iter()
             .map(|q| Circle::new((q[0], q[1]), 3, BLUE.filled())),
     )?;
-    Ok(())
+    legend(&mut chart)
 }
