@@ -216,7 +216,8 @@ impl LogWriter {
     }
 
     /// Take back the message buffers the writer thread is done with, to encode
-    /// the next large message into.
+    /// the next large message into (the largest is kept, the rest freed). Called
+    /// before every message, so that the buffers coming back never pile up.
     fn reclaim_bytes(&mut self) {
         if let Backend::Thread { recycled_bytes, .. } = &self.backend {
             while let Ok(b) = recycled_bytes.try_recv() {
@@ -227,6 +228,7 @@ impl LogWriter {
 
     fn send_message(&mut self, ch: usize, t: f64, data: Vec<u8>) -> Result<(), WriteError> {
         self.write_batch()?;
+        self.reclaim_bytes();
         self.stats.largest_message = self.stats.largest_message.max(data.len() as u64);
         let sequence = self.take_sequence(ch);
         let t = log_time_ns(t);
@@ -328,12 +330,18 @@ impl LogWriter {
     ) -> Result<(), WriteError> {
         self.write_batch()?;
         self.stats.messages[ch] += 1;
+        // Into a buffer the writer thread gave back: a copied prefix of any length
+        // holds only the few buffers in flight.
+        self.reclaim_bytes();
+        let mut buf = self.cdr.take_bytes();
+        buf.clear();
+        buf.extend_from_slice(data);
         self.send(Cmd::Message {
             ch,
             sequence,
             log_time,
             publish_time,
-            data: data.to_vec(),
+            data: buf,
         })
     }
 
