@@ -10,7 +10,6 @@
 
 use std::ops::Range;
 use std::path::Path;
-use std::sync::Once;
 
 use carom::analysis::{HistogramReport, Report, SpeciesMb};
 use plotters::coord::types::RangedCoordf64;
@@ -21,18 +20,6 @@ use plotters_backend::DrawingErrorKind;
 use super::CliError;
 
 const SIZE: (u32, u32) = (900, 600);
-
-fn register_font() {
-    static ONCE: Once = Once::new();
-    ONCE.call_once(|| {
-        // The bytes are a valid font shipped by the `dejavu` crate.
-        let _ = plotters::style::register_font(
-            "sans-serif",
-            FontStyle::Normal,
-            dejavu::sans::regular(),
-        );
-    });
-}
 
 type DrawResult<DB> = Result<(), DrawingAreaErrorKind<<DB as DrawingBackend>::ErrorType>>;
 
@@ -97,7 +84,7 @@ pub fn write_all(report: &Report, dir: &Path) -> Result<usize, CliError> {
         context: format!("cannot create {}", dir.display()),
         source,
     })?;
-    register_font();
+    carom::render::register_font();
     let mut n = 0;
     for m in &report.maxwell_boltzmann {
         let name = format!("speed_species{}", m.species);

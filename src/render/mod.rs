@@ -50,8 +50,9 @@ pub fn colouring_for(s: &Snapshot, by: ColourBy) -> Colouring {
     }
 }
 
-/// Register the embedded font once.
-fn register_font() {
+/// Register the embedded font (DejaVu Sans as "sans-serif") with plotters, once:
+/// every figure carom draws uses it.
+pub fn register_font() {
     static ONCE: Once = Once::new();
     ONCE.call_once(|| {
         // The bytes are a valid font shipped by the `dejavu` crate.

@@ -253,9 +253,11 @@ impl CollisionBatch {
         self.impulse_y.clear();
     }
 
+    /// Append one collision from its fields (the one place a full batch grows;
+    /// the replay of compact records uses it too).
     #[allow(clippy::too_many_arguments)]
     #[inline]
-    fn push_raw(
+    pub(crate) fn push_raw(
         &mut self,
         time: f64,
         kind: u8,

@@ -186,22 +186,19 @@ fn push(
     energy_lost: f64,
     virial: f64,
 ) {
-    out.time.push(time);
-    out.kind.push(kind);
-    out.i.push(i);
-    out.j.push(j);
-    out.nx.push(n.x);
-    out.ny.push(n.y);
-    out.vix_before.push(v[0].x);
-    out.viy_before.push(v[0].y);
-    out.vjx_before.push(v[1].x);
-    out.vjy_before.push(v[1].y);
-    out.vix_after.push(v[2].x);
-    out.viy_after.push(v[2].y);
-    out.vjx_after.push(v[3].x);
-    out.vjy_after.push(v[3].y);
-    out.energy_lost.push(energy_lost);
-    out.virial.push(virial);
+    out.push_raw(
+        time,
+        kind,
+        i,
+        j,
+        n,
+        v[0],
+        v[1],
+        v[2],
+        v[3],
+        energy_lost,
+        virial,
+    );
 }
 
 /// Give the full batch the compact one's impulses (records then carry Δp_i).
