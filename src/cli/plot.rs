@@ -15,7 +15,6 @@ use carom::analysis::{HistogramReport, Report, SpeciesMb};
 use plotters::coord::types::RangedCoordf64;
 use plotters::coord::Shift;
 use plotters::prelude::*;
-use plotters_backend::DrawingErrorKind;
 
 use super::CliError;
 
@@ -28,23 +27,8 @@ fn plot_err<E: std::error::Error + Send + Sync + 'static>(
     path: &Path,
     e: DrawingAreaErrorKind<E>,
 ) -> CliError {
-    let reason = match &e {
-        DrawingAreaErrorKind::BackendError(DrawingErrorKind::DrawingError(b)) => backend_reason(b),
-        other => other.to_string(),
-    };
+    let reason = carom::render::drawing_error_reason(&e);
     CliError::Plot(format!("cannot write {}: {reason}", path.display()))
-}
-
-/// The reason of a backend's error in words: the bitmap backend prints its errors
-/// as Rust debug text, so its I/O and encoding errors are unwrapped.
-fn backend_reason(e: &(dyn std::error::Error + 'static)) -> String {
-    type B = <BitMapBackend<'static> as DrawingBackend>::ErrorType;
-    match e.downcast_ref::<B>() {
-        Some(B::IOError(io)) => io.to_string(),
-        Some(B::ImageError(image)) => image.to_string(),
-        Some(B::InvalidBuffer) => "invalid pixel buffer".to_owned(),
-        _ => e.to_string(),
-    }
 }
 
 /// Draw one figure with `draw` into `dir/name.png` and `dir/name.svg`. A failed

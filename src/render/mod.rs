@@ -70,13 +70,21 @@ fn write_error<E: std::error::Error + Send + Sync + 'static>(
     path: &Path,
     e: DrawingAreaErrorKind<E>,
 ) -> FrameError {
-    let reason = match &e {
-        DrawingAreaErrorKind::BackendError(DrawingErrorKind::DrawingError(b)) => backend_reason(b),
-        other => other.to_string(),
-    };
+    let reason = drawing_error_reason(&e);
     FrameError::Write {
         file: path.display().to_string(),
         reason,
+    }
+}
+
+/// Why plotters could not draw or write a picture, in words (the operating
+/// system's reason for a write error); every figure carom writes reports this.
+pub fn drawing_error_reason<E: std::error::Error + Send + Sync + 'static>(
+    e: &DrawingAreaErrorKind<E>,
+) -> String {
+    match e {
+        DrawingAreaErrorKind::BackendError(DrawingErrorKind::DrawingError(b)) => backend_reason(b),
+        other => other.to_string(),
     }
 }
 

@@ -31,4 +31,6 @@ pub use model::{
 };
 
 #[cfg(test)]
+mod schema_tests;
+#[cfg(test)]
 mod tests;
