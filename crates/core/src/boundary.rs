@@ -156,11 +156,14 @@ pub fn wall_time(x: f64, v: f64, a: f64, l: f64) -> Option<(f64, WallSide)> {
     }
 }
 
-/// Normal velocity after a wall collision: −e_w v (physics.md §4b applied to an
-/// infinitely heavy wall). Returns the new velocity component.
+/// Momentum a wall of restitution e_w gives a disc of mass `m` whose normal
+/// velocity is `v`: Δp = −(1 + e_w) m v (physics.md §4b applied to an infinitely
+/// heavy wall), so that v + Δp/m ([`crate::collision::apply_wall_impulse`]) is
+/// −e_w v. Taken as ((−(1 + e_w) v) m), so that Δp/m gives back −(1 + e_w) v in
+/// nearly every case and an elastic wall reverses v exactly.
 #[inline]
-pub fn wall_reflect(v: f64, restitution: f64) -> f64 {
-    -restitution * v
+pub fn wall_impulse(v: f64, m: f64, restitution: f64) -> f64 {
+    -(1.0 + restitution) * v * m
 }
 
 #[cfg(test)]

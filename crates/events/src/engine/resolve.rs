@@ -4,8 +4,8 @@
 //! A pair collision applies the configured rule (physics.md §3–4) to the contact
 //! vector r_j − r_i, or the elastic rule when either disc collided less than t_c
 //! ago (the TC model, §4); its virial r_ij·Δp_i (§5) goes to the running totals. A
-//! wall gives Δp_k = −(1+e) m v_k, so v_k ← v_k + Δp_k/m (= −e v_k up to rounding). A velocity change moves the
-//! path's origin so that r0 + v t still passes through the disc's position now, and
+//! wall gives Δp_k = −(1+e) m v_k, so v_k ← v_k + Δp_k/m (= −e v_k up to
+//! rounding). A velocity change moves the path's origin so that r0 + v t still passes through the disc's position now, and
 //! bumps the disc's collision counter, which makes its partners' predictions
 //! obsolete. A crossing moves the disc into the next cell (wrapping by a box length
 //! on a periodic axis) and predicts again. Every velocity change is applied from an
@@ -16,6 +16,7 @@
 use super::body::{origin_after, Face, Image};
 use super::Engine;
 use crate::event::{PairCollision, WallCollision};
+use carom_core::boundary::wall_impulse;
 use carom_core::collision::{apply_impulse, apply_wall_impulse, reduced_mass, resolve};
 use carom_core::{Axis, Boundary, DVec2, Restitution, WallSide};
 
@@ -209,11 +210,8 @@ impl Engine {
         let m = self.mass(i);
         let before = self.bodies[i].v;
         let mut after = before;
-        // The wall gives Δp = −(1 + e) m v_k, applied as v_k + Δp/m (the
-        // arithmetic a reader of the log repeats, [`apply_wall_impulse`]). The
-        // product is taken as ((−(1 + e) v_k) m) so that Δp/m gives back −(1 + e) v_k
-        // exactly in nearly every case, and an elastic wall then v_k' = −v_k.
-        let dp = -(1.0 + e) * before[k] * m;
+        // Applied as v_k + Δp/m, the arithmetic a reader of the log repeats.
+        let dp = wall_impulse(before[k], m, e);
         after[k] = apply_wall_impulse(before[k], m, dp);
         self.bodies[i].set_velocity(after, now);
         self.keep_origin_near([i]);
