@@ -11,10 +11,12 @@
 
 mod analyzer;
 mod collision_rate;
+mod contact;
 mod description;
 mod from_log;
 mod inelastic;
 mod options;
+mod pair_correlation;
 mod pressure;
 mod report;
 mod series;
@@ -23,9 +25,13 @@ mod temperature;
 mod velocity;
 
 pub use analyzer::Analyzer;
+pub use contact::{
+    ContactTheoremReport, ContactValue, PairCorrelationReport, PairReport, CONTACT_FIT_SIGMA,
+};
 pub use description::RunDescription;
 pub use from_log::{analyze_log, AnalysisError, ReadObserver};
 pub use options::{AnalysisOptions, CORRELATED_SPACING, DECORRELATION_COLLISIONS, MAX_VELOCITIES};
+pub use pair_correlation::{BIN_WIDTH_SIGMA, BLOCKS as PAIR_CORRELATION_BLOCKS, R_MAX_SIGMA};
 pub use report::{
     ChiSquareReport, CollisionRateReport, DriftReport, EnergyBudget, EnskogReport, HaffReport,
     HistogramReport, InelasticReport, KsReport, PressureReport, Report, SonineReport, SpeciesInfo,
