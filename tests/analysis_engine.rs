@@ -479,7 +479,7 @@ fn the_default_spacing_keeps_at_most_the_velocities_allowed() {
     assert_eq!(asked.maxwell_boltzmann[0].snapshots, 28);
 }
 
-/// g(r) of the hard-disc fluid at η = 0.3 (physics.md §9): zero inside contact,
+/// g(r) of the hard-disc fluid at η = 0.3 (physics.md §10): zero inside contact,
 /// the contact value matching (Z − 1)/(2η) with Z(0.3) = 2.0633 (physics.md §7),
 /// and the contact theorem agreeing with the collision-virial Z.
 #[test]
@@ -543,7 +543,7 @@ fn pair_correlation_at_eta_0_3_and_contact_theorem() {
 
 /// Two species of identical discs: g_00, g_01 and g_11 are each the fluid's g
 /// (labels drawn at random), so they agree with one another within errors, and
-/// the mixture contact theorem (9.3) reduces to the one-species one.
+/// the mixture contact theorem (10.3) reduces to the one-species one.
 #[test]
 fn identical_species_mixture_has_equal_pair_correlations() {
     let mut spec = fluid(1024, 0.3, 5, Velocities::MaxwellBoltzmann);

@@ -57,7 +57,7 @@ pub struct Analyzer {
     /// Whether the memory bound set `opts.every` (spacing the snapshots further
     /// apart than the collision rate asks).
     pub(super) every_from_budget: bool,
-    /// Pair-distance histograms per time block (physics.md §9).
+    /// Pair-distance histograms per time block (physics.md §10).
     pub(super) pair_correlation: PairCorrelation,
 }
 

@@ -1,7 +1,7 @@
 //! The pair-correlation report: g_ab(r) with block error bars, the contact value
 //! g_ab(σ_ab⁺) from a straight-line least-squares fit to the bins lying wholly in
-//! [σ_ab, σ_ab + 0.1 σ_ab] extrapolated to σ_ab (physics.md §9), and the contact
-//! theorem (9.3) Z = 1 + (π/2) n Σ_ab x_a x_b σ_ab² g_ab(σ_ab⁺) next to the
+//! [σ_ab, σ_ab + 0.1 σ_ab] extrapolated to σ_ab (physics.md §10), and the contact
+//! theorem (10.3) Z = 1 + (π/2) n Σ_ab x_a x_b σ_ab² g_ab(σ_ab⁺) next to the
 //! collision-virial Z, the difference in standard errors (periodic elastic runs
 //! only: with walls the wall term enters the pressure, and inelastic runs have no
 //! equilibrium g). Each estimate is made per time block; its error is the
@@ -15,7 +15,7 @@ use super::report::PressureReport;
 /// Width of the contact fit in units of σ_ab.
 pub const CONTACT_FIT_SIGMA: f64 = 0.1;
 
-/// g(r) per species pair (physics.md §9).
+/// g(r) per species pair (physics.md §10).
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct PairCorrelationReport {
     /// Bin centres (length).
@@ -63,7 +63,7 @@ pub struct ContactValue {
     pub fit_bins: usize,
 }
 
-/// The contact theorem (physics.md (9.3)) against the collision virial.
+/// The contact theorem (physics.md (10.3)) against the collision virial.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct ContactTheoremReport {
     /// Z from the structure, 1 + (π/2) n Σ_ab x_a x_b σ_ab² g_ab(σ_ab⁺).

@@ -1,13 +1,13 @@
-//! The pair correlation g_ab(r) per species pair (physics.md §9), streamed over
+//! The pair correlation g_ab(r) per species pair (physics.md §10), streamed over
 //! snapshots: each snapshot's pair distances (minimum image along periodic axes,
 //! a cell list so that one snapshot costs O(N)) go into a histogram of one of
 //! [`BLOCKS`] equal time blocks, so memory is independent of the number of
-//! snapshots. g is the count over the exact ideal-gas count (9.1):
+//! snapshots. g is the count over the exact ideal-gas count (10.1):
 //! N_a N_b' P_ab(shell), with b' = N_b − δ_ab (unordered pairs: halved when
 //! a = b) and P_ab the probability that two independent uniform centres in their
 //! reachable regions lie a distance in the shell apart: π(r₂² − r₁²)/A in a
 //! periodic box, a deterministic numerical integral of the product of the
-//! per-axis densities of the separation (9.2) with walls. Error bars are the
+//! per-axis densities of the separation (10.2) with walls. Error bars are the
 //! standard error of the block means.
 
 use carom_core::{Boundary, SimBox, Species};
@@ -206,7 +206,7 @@ impl PairCorrelation {
     }
 
     /// Expected count of unordered (a, b) pairs per snapshot in each bin for an
-    /// ideal gas (9.1).
+    /// ideal gas (10.1).
     pub fn ideal_counts(&self, a: usize, b: usize) -> Vec<f64> {
         let (na, nb) = (self.species[a].count as f64, self.species[b].count as f64);
         let pairs = if a == b {
@@ -223,7 +223,7 @@ impl PairCorrelation {
     }
 
     /// Probability that independent uniform centres of species a and b in their
-    /// reachable regions lie between r1 and r2 apart (9.2).
+    /// reachable regions lie between r1 and r2 apart (10.2).
     pub fn shell_probability(&self, a: usize, b: usize, r1: f64, r2: f64) -> f64 {
         let sb = &self.sim_box;
         if sb.boundary.iter().all(|b| b.is_periodic()) {

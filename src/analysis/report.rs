@@ -45,7 +45,7 @@ pub struct Report {
     /// Inelastic runs only: cooling and energy budget.
     pub inelastic: Option<InelasticReport>,
     /// Pair correlation g(r), contact values and the contact theorem
-    /// (physics.md §9); `null` without snapshots after the equilibration time.
+    /// (physics.md §10); `null` without snapshots after the equilibration time.
     pub pair_correlation: Option<PairCorrelationReport>,
 }
 
