@@ -1,6 +1,6 @@
 //! The pair-correlation report: g_ab(r) with block error bars, the contact value
-//! g_ab(σ_ab⁺) from a straight-line least-squares fit to the bins lying wholly in
-//! [σ_ab, σ_ab + 0.1 σ_ab] extrapolated to σ_ab (physics.md §10), and the contact
+//! g_ab(σ_ab⁺) from a least-squares straight line in ln g through the bins lying
+//! wholly in [σ_ab, σ_ab + 0.1 σ_ab], extrapolated to σ_ab (physics.md §10), and the contact
 //! theorem (10.3) Z = 1 + (π/2) n Σ_ab x_a x_b σ_ab² g_ab(σ_ab⁺) next to the
 //! collision-virial Z, the difference in standard errors (periodic elastic runs
 //! only: with walls the wall term enters the pressure, and inelastic runs have no
@@ -55,7 +55,7 @@ pub struct PairReport {
 /// The contact value with its error.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct ContactValue {
-    /// g(σ⁺) extrapolated from the linear fit over [σ, σ + 0.1 σ].
+    /// g(σ⁺) extrapolated from the straight line in ln g over [σ, σ + 0.1 σ].
     pub value: f64,
     /// Its standard error (spread of the per-block fits).
     pub std_error: f64,
@@ -78,6 +78,14 @@ pub struct ContactTheoremReport {
     pub difference: f64,
     /// The difference over √(SE_s² + SE_v²) (the two treated as independent).
     pub difference_std_errors: f64,
+}
+
+/// g(σ⁺) from the bins (x, g): exp of the least-squares line through (x, ln g)
+/// at `x0` (g near contact falls roughly exponentially; a straight line in g
+/// itself would miss its curvature).
+fn contact_at(x: &[f64], g: &[f64], x0: f64) -> f64 {
+    let lg: Vec<f64> = g.iter().map(|v| v.ln()).collect();
+    line_at(x, &lg, x0).exp()
 }
 
 /// Intercept at `x0` of the least-squares line through (x, y).
@@ -133,9 +141,9 @@ pub(super) fn report(
             let xs: Vec<f64> = fit.iter().map(|&k| r[k]).collect();
             let per_block: Vec<f64> = blocks
                 .iter()
-                .map(|g| line_at(&xs, &fit.iter().map(|&k| g[k]).collect::<Vec<_>>(), sigma))
+                .map(|g| contact_at(&xs, &fit.iter().map(|&k| g[k]).collect::<Vec<_>>(), sigma))
                 .collect();
-            let value = line_at(
+            let value = contact_at(
                 &xs,
                 &fit.iter().map(|&k| pooled[k]).collect::<Vec<_>>(),
                 sigma,
@@ -228,5 +236,7 @@ mod tests {
         let x = [1.01, 1.03, 1.05, 1.07, 1.09];
         let y: Vec<f64> = x.iter().map(|v| 4.0 - 2.5 * (v - 1.0)).collect();
         assert!((line_at(&x, &y, 1.0) - 4.0).abs() < 1e-12);
+        let g: Vec<f64> = x.iter().map(|v| 3.0 * (-2.0 * (v - 1.0)).exp()).collect();
+        assert!((contact_at(&x, &g, 1.0) - 3.0).abs() < 1e-12);
     }
 }

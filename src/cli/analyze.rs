@@ -269,7 +269,7 @@ pub fn text(r: &Report, args: &AnalyzeArgs, complete: bool) -> String {
                 Some(c) => {
                     let _ = writeln!(
                         s,
-                        "  species {}–{}: contact value g(σ⁺) = {:.4} ± {:.4} at σ = {:.4} (linear fit over {} bins)",
+                        "  species {}–{}: contact value g(σ⁺) = {:.4} ± {:.4} at σ = {:.4} (fit of ln g over {} bins)",
                         p.a, p.b, Num(c.value), Num(c.std_error), p.sigma, c.fit_bins
                     );
                 }
