@@ -139,64 +139,68 @@ impl PairCorrelation {
         let ns = self.species.len();
         let r2max = self.r_max * self.r_max;
         let inv_dr = 1.0 / self.dr;
+        let nbins = self.nbins;
         let hist = &mut self.counts[blk];
-        let neighbours = |c: usize, nc: usize, p: bool| -> Vec<usize> {
-            let mut v: Vec<usize> = if nc == 1 {
-                vec![0]
+        let (hx, hy) = (0.5 * lx, 0.5 * ly);
+        // Half stencil: the own cell (pairs i < j) and four neighbours, so each
+        // pair of neighbouring cells is visited once; an axis with one cell has
+        // no neighbours along it, a walled axis none beyond its ends.
+        const HALF: [(i64, i64); 5] = [(0, 0), (1, 0), (-1, 1), (0, 1), (1, 1)];
+        let wrap = |k: i64, nc: usize, p: bool| -> Option<usize> {
+            if p {
+                Some(k.rem_euclid(nc as i64) as usize)
             } else {
-                [-1i64, 0, 1]
-                    .iter()
-                    .filter_map(|d| {
-                        let k = c as i64 + d;
-                        if p {
-                            Some(k.rem_euclid(nc as i64) as usize)
-                        } else {
-                            (0..nc as i64).contains(&k).then_some(k as usize)
-                        }
-                    })
-                    .collect()
-            };
-            v.sort_unstable();
-            v.dedup();
-            v
+                (0..nc as i64).contains(&k).then_some(k as usize)
+            }
+        };
+        let mut visit = |i: usize, j: usize| {
+            let mut dx = x[j] - x[i];
+            let mut dy = y[j] - y[i];
+            if per[0] {
+                if dx > hx {
+                    dx -= lx;
+                } else if dx < -hx {
+                    dx += lx;
+                }
+            }
+            if per[1] {
+                if dy > hy {
+                    dy -= ly;
+                } else if dy < -hy {
+                    dy += ly;
+                }
+            }
+            let r2 = dx * dx + dy * dy;
+            if r2 < r2max {
+                let k = ((r2.sqrt() * inv_dr) as usize).min(nbins - 1);
+                let p = pair_index(species_of[i] as usize, species_of[j] as usize, ns);
+                hist[p][k] += 1;
+            }
         };
         for gy in 0..cy {
-            let ny = neighbours(gy, cy, per[1]);
             for gx in 0..cx {
-                let nx = neighbours(gx, cx, per[0]);
                 let c = gy * cx + gx;
                 let own = &self.order[self.starts[c] as usize..self.starts[c + 1] as usize];
-                for &yy in &ny {
-                    for &xx in &nx {
-                        let d = yy * cx + xx;
-                        let other =
-                            &self.order[self.starts[d] as usize..self.starts[d + 1] as usize];
-                        for &i in own {
-                            let i = i as usize;
-                            for &j in other {
-                                let j = j as usize;
-                                if j <= i {
-                                    continue;
-                                }
-                                let mut dx = x[j] - x[i];
-                                let mut dy = y[j] - y[i];
-                                if per[0] {
-                                    dx -= lx * (dx / lx).round();
-                                }
-                                if per[1] {
-                                    dy -= ly * (dy / ly).round();
-                                }
-                                let r2 = dx * dx + dy * dy;
-                                if r2 < r2max {
-                                    let k = ((r2.sqrt() * inv_dr) as usize).min(self.nbins - 1);
-                                    let p = pair_index(
-                                        species_of[i] as usize,
-                                        species_of[j] as usize,
-                                        ns,
-                                    );
-                                    hist[p][k] += 1;
-                                }
-                            }
+                for (a, &i) in own.iter().enumerate() {
+                    for &j in &own[a + 1..] {
+                        visit(i as usize, j as usize);
+                    }
+                }
+                for &(ox, oy) in &HALF[1..] {
+                    if (ox != 0 && cx == 1) || (oy != 0 && cy == 1) {
+                        continue;
+                    }
+                    let (Some(nx), Some(ny)) = (
+                        wrap(gx as i64 + ox, cx, per[0]),
+                        wrap(gy as i64 + oy, cy, per[1]),
+                    ) else {
+                        continue;
+                    };
+                    let d = ny * cx + nx;
+                    let other = &self.order[self.starts[d] as usize..self.starts[d + 1] as usize];
+                    for &i in own {
+                        for &j in other {
+                            visit(i as usize, j as usize);
                         }
                     }
                 }
@@ -402,6 +406,44 @@ mod tests {
                 (num / exact - 1.0).abs() < 1e-5,
                 "{r1}..{r2}: {num} vs {exact}"
             );
+        }
+    }
+
+    /// The cell list counts exactly the pairs a brute-force O(N²) loop counts,
+    /// for boxes with 1 to 5 cells per axis, periodic and walled.
+    #[test]
+    fn cell_list_counts_every_pair_once() {
+        let mut rng = Pcg64::seed_from_u64(3);
+        for (lx, ly) in [(12.0, 9.0), (25.0, 31.0), (41.0, 52.0), (20.0, 55.0)] {
+            for sb in [SimBox::periodic(lx, ly), SimBox::walled(lx, ly, 1.0)] {
+                let sp = vec![Species::reference(150), Species::scaled(90, 1.4)];
+                let mut pc = PairCorrelation::new(&sp, &sb, 0.0, 1.0);
+                let (x, y) = uniform(240, [0.7; 2], [lx - 0.7, ly - 0.7], &mut rng);
+                let s: Vec<u16> = (0..240).map(|i| (i >= 150) as u16).collect();
+                pc.add(0.5, &s, &x, &y);
+                let mut brute = vec![vec![0u64; pc.nbins]; 3];
+                for i in 0..240 {
+                    for j in i + 1..240 {
+                        let mut d = [x[j] - x[i], y[j] - y[i]];
+                        for (k, l) in [lx, ly].iter().enumerate() {
+                            if sb.boundary[k].is_periodic() {
+                                d[k] -= l * (d[k] / l).round();
+                            }
+                        }
+                        let r = d[0].hypot(d[1]);
+                        if r < pc.r_max {
+                            let b = ((r / pc.dr) as usize).min(pc.nbins - 1);
+                            brute[pair_index(s[i] as usize, s[j] as usize, 2)][b] += 1;
+                        }
+                    }
+                }
+                let blk = pc
+                    .counts
+                    .iter()
+                    .position(|c| c[0].iter().any(|&v| v > 0))
+                    .unwrap();
+                assert_eq!(pc.counts[blk], brute, "{lx} x {ly} {:?}", sb.boundary);
+            }
         }
     }
 
