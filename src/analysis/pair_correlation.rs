@@ -98,7 +98,7 @@ impl PairCorrelation {
     /// Add the pair distances of one snapshot at time `t` (ignored outside the
     /// window). `species_of`, `x`, `y` have one entry per disc.
     pub fn add(&mut self, t: f64, species_of: &[u16], x: &[f64], y: &[f64]) {
-        if t < self.t0 || !(self.block_time > 0.0) {
+        if t < self.t0 || self.block_time.is_nan() || self.block_time <= 0.0 {
             return;
         }
         let blk = (((t - self.t0) / self.block_time) as usize).min(BLOCKS - 1);
