@@ -2,7 +2,7 @@
 //! snapshots: each snapshot's pair distances (minimum image along periodic axes,
 //! a cell list so that one snapshot costs O(N)) go into a histogram of one of
 //! [`BLOCKS`] equal time blocks, so memory is independent of the number of
-//! snapshots. g is the count over the exact ideal-gas count (10.1):
+//! snapshots (rows of cells on all cores, rayon). g is the count over the exact ideal-gas count (10.1):
 //! N_a N_b' P_ab(shell), with b' = N_b − δ_ab (unordered pairs: halved when
 //! a = b) and P_ab the probability that two independent uniform centres in their
 //! reachable regions lie a distance in the shell apart: π(r₂² − r₁²)/A in a
@@ -11,6 +11,7 @@
 //! standard error of the block means.
 
 use carom_core::{Boundary, SimBox, Species};
+use rayon::prelude::*;
 
 /// Number of equal time blocks over the window (error bars from their spread).
 pub const BLOCKS: usize = 16;
@@ -140,7 +141,6 @@ impl PairCorrelation {
         let r2max = self.r_max * self.r_max;
         let inv_dr = 1.0 / self.dr;
         let nbins = self.nbins;
-        let hist = &mut self.counts[blk];
         let (hx, hy) = (0.5 * lx, 0.5 * ly);
         // Half stencil: the own cell (pairs i < j) and four neighbours, so each
         // pair of neighbouring cells is visited once; an axis with one cell has
@@ -153,7 +153,7 @@ impl PairCorrelation {
                 (0..nc as i64).contains(&k).then_some(k as usize)
             }
         };
-        let mut visit = |i: usize, j: usize| {
+        let visit = |hist: &mut [Vec<u64>], i: usize, j: usize| {
             let mut dx = x[j] - x[i];
             let mut dy = y[j] - y[i];
             if per[0] {
@@ -177,13 +177,14 @@ impl PairCorrelation {
                 hist[p][k] += 1;
             }
         };
-        for gy in 0..cy {
+        let (order, starts) = (&self.order, &self.starts);
+        let cell = |c: usize| &order[starts[c] as usize..starts[c + 1] as usize];
+        let row = |hist: &mut [Vec<u64>], gy: usize| {
             for gx in 0..cx {
-                let c = gy * cx + gx;
-                let own = &self.order[self.starts[c] as usize..self.starts[c + 1] as usize];
+                let own = cell(gy * cx + gx);
                 for (a, &i) in own.iter().enumerate() {
                     for &j in &own[a + 1..] {
-                        visit(i as usize, j as usize);
+                        visit(hist, i as usize, j as usize);
                     }
                 }
                 for &(ox, oy) in &HALF[1..] {
@@ -196,14 +197,36 @@ impl PairCorrelation {
                     ) else {
                         continue;
                     };
-                    let d = ny * cx + nx;
-                    let other = &self.order[self.starts[d] as usize..self.starts[d + 1] as usize];
+                    let other = cell(ny * cx + nx);
                     for &i in own {
                         for &j in other {
-                            visit(i as usize, j as usize);
+                            visit(hist, i as usize, j as usize);
                         }
                     }
                 }
+            }
+        };
+        // Rows of cells in parallel, each thread into its own histogram; integer
+        // counts, so the sum is the same in any order (deterministic).
+        let np = self.counts[blk].len();
+        let zero = || vec![vec![0u64; nbins]; np];
+        let local = (0..cy)
+            .into_par_iter()
+            .fold(zero, |mut h, gy| {
+                row(&mut h, gy);
+                h
+            })
+            .reduce(zero, |mut a, b| {
+                for (x, y) in a.iter_mut().zip(&b) {
+                    for (u, v) in x.iter_mut().zip(y) {
+                        *u += v;
+                    }
+                }
+                a
+            });
+        for (x, y) in self.counts[blk].iter_mut().zip(&local) {
+            for (u, v) in x.iter_mut().zip(y) {
+                *u += v;
             }
         }
         self.snapshots[blk] += 1;
