@@ -64,6 +64,9 @@ fn analyse_with_rate(
                 let vy: Vec<f64> = s.velocities.iter().map(|v| v.y).collect();
                 a.thermo(time, s.kinetic_energy(), Some(lost));
                 a.snapshot(time, &s.species_of, &vx, &vy).unwrap();
+                let px: Vec<f64> = s.positions.iter().map(|p| p.x).collect();
+                let py: Vec<f64> = s.positions.iter().map(|p| p.y).collect();
+                a.positions(time, &s.species_of, &px, &py).unwrap();
                 if tag == steps {
                     break;
                 }
@@ -474,4 +477,116 @@ fn the_default_spacing_keeps_at_most_the_velocities_allowed() {
     );
     assert!(!asked.window.every_default && !asked.window.every_from_budget);
     assert_eq!(asked.maxwell_boltzmann[0].snapshots, 28);
+}
+
+/// g(r) of the hard-disc fluid at η = 0.3 (physics.md §10): zero inside contact,
+/// the contact value matching (Z − 1)/(2η) with Z(0.3) = 2.0633 (physics.md §7),
+/// and the contact theorem agreeing with the collision-virial Z.
+#[test]
+fn pair_correlation_at_eta_0_3_and_contact_theorem() {
+    let opts = AnalysisOptions {
+        equilibrate: Some(20.0),
+        ..Default::default()
+    };
+    let r = analyse(
+        fluid(1024, 0.3, 11, Velocities::MaxwellBoltzmann),
+        EngineParams::default(),
+        220.0,
+        2.0,
+        opts,
+    );
+    let pc = r.pair_correlation.as_ref().expect("g(r)");
+    assert_eq!(pc.pairs.len(), 1);
+    assert!(
+        pc.snapshots >= 99 && pc.snapshots <= 101,
+        "{}",
+        pc.snapshots
+    );
+    let p = &pc.pairs[0];
+    assert!((p.sigma - 1.0).abs() < 1e-12);
+    // No overlaps: g = 0 below contact (bins wholly inside σ).
+    for (k, &r_k) in pc.r.iter().enumerate() {
+        if r_k + 0.5 * pc.bin_width <= p.sigma - 1e-9 {
+            assert_eq!(p.g[k], 0.0, "g({r_k}) = {}", p.g[k]);
+        }
+    }
+    // Far from contact g → 1 (beyond 5σ, within 1 %).
+    let far: Vec<f64> =
+        pc.r.iter()
+            .zip(&p.g)
+            .filter(|(r, _)| **r > 5.0)
+            .map(|(_, g)| *g)
+            .collect();
+    let mean_far = far.iter().sum::<f64>() / far.len() as f64;
+    assert!((mean_far - 1.0).abs() < 0.01, "{mean_far}");
+    // Contact value against the equation of state: (Z − 1)/(2η) = 1.7722 ± 0.0033.
+    let c = p.contact.as_ref().expect("a contact value");
+    let expected = (2.0633 - 1.0) / (2.0 * 0.3);
+    let tol = 4.0 * (c.std_error.powi(2) + (0.0020f64 / 0.6).powi(2)).sqrt();
+    assert!(
+        (c.value - expected).abs() < tol,
+        "g(σ+) = {} ± {} vs {expected}",
+        c.value,
+        c.std_error
+    );
+    assert!(c.std_error > 1e-4 && c.std_error < 0.05, "{c:?}");
+    eprintln!("g(σ+) = {} ± {}", c.value, c.std_error);
+    // Contact theorem against the collision virial, within 4 standard errors.
+    let ct = pc
+        .contact_theorem
+        .as_ref()
+        .expect("a contact-theorem check");
+    eprintln!("{ct:?}");
+    assert!(ct.difference_std_errors.abs() < 4.0, "{ct:?}");
+    assert_eq!(ct.z_virial, r.pressure.as_ref().unwrap().z);
+}
+
+/// Two species of identical discs: g_00, g_01 and g_11 are each the fluid's g
+/// (labels drawn at random), so they agree with one another within errors, and
+/// the mixture contact theorem (10.3) reduces to the one-species one.
+#[test]
+fn identical_species_mixture_has_equal_pair_correlations() {
+    let mut spec = fluid(1024, 0.3, 5, Velocities::MaxwellBoltzmann);
+    spec.species = vec![Species::reference(400), Species::reference(624)];
+    let opts = AnalysisOptions {
+        equilibrate: Some(10.0),
+        ..Default::default()
+    };
+    let r = analyse(spec, EngineParams::default(), 110.0, 1.0, opts);
+    let pc = r.pair_correlation.as_ref().expect("g(r)");
+    assert_eq!(
+        pc.pairs.iter().map(|p| (p.a, p.b)).collect::<Vec<_>>(),
+        vec![(0, 0), (0, 1), (1, 1)]
+    );
+    let contacts: Vec<_> = pc
+        .pairs
+        .iter()
+        .map(|p| p.contact.clone().unwrap())
+        .collect();
+    for i in 0..3 {
+        for j in i + 1..3 {
+            let (a, b) = (&contacts[i], &contacts[j]);
+            let se = a.std_error.hypot(b.std_error);
+            assert!((a.value - b.value).abs() < 4.0 * se, "{a:?} {b:?}");
+        }
+    }
+    // Over the first shells (σ to 3σ, coarse bins of 0.1σ) the three g agree.
+    for lo in (50..150).step_by(5) {
+        let avg = |p: &carom::analysis::PairReport| p.g[lo..lo + 5].iter().sum::<f64>() / 5.0;
+        let se = |p: &carom::analysis::PairReport| {
+            (p.std_error[lo..lo + 5].iter().map(|e| e * e).sum::<f64>()).sqrt() / 5.0
+        };
+        let (g00, g01, g11) = (avg(&pc.pairs[0]), avg(&pc.pairs[1]), avg(&pc.pairs[2]));
+        let s = se(&pc.pairs[0]).max(se(&pc.pairs[1])).max(se(&pc.pairs[2]));
+        assert!(
+            (g00 - g01).abs() < 5.0 * s * 2f64.sqrt() && (g11 - g01).abs() < 5.0 * s * 2f64.sqrt(),
+            "r = {}: {g00} {g01} {g11} (se {s})",
+            pc.r[lo]
+        );
+    }
+    let ct = pc
+        .contact_theorem
+        .as_ref()
+        .expect("a contact-theorem check");
+    assert!(ct.difference_std_errors.abs() < 4.0, "{ct:?}");
 }

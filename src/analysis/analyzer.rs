@@ -10,9 +10,10 @@
 use carom_core::observables::{degrees_of_freedom, packing_fraction, temperature};
 
 use super::options::{budget_spacing, AnalysisOptions, DECORRELATION_COLLISIONS};
+use super::pair_correlation::PairCorrelation;
 use super::report::{Report, SpeciesInfo, WindowReport};
 use super::stats::StatsError;
-use super::{collision_rate, inelastic, pressure, temperature, velocity, RunDescription};
+use super::{collision_rate, contact, inelastic, pressure, temperature, velocity, RunDescription};
 
 #[derive(Debug, Clone, Copy, Default)]
 pub(super) struct TimeBin {
@@ -56,6 +57,8 @@ pub struct Analyzer {
     /// Whether the memory bound set `opts.every` (spacing the snapshots further
     /// apart than the collision rate asks).
     pub(super) every_from_budget: bool,
+    /// Pair-distance histograms per time block (physics.md §10).
+    pub(super) pair_correlation: PairCorrelation,
 }
 
 impl Analyzer {
@@ -107,6 +110,7 @@ impl Analyzer {
             }
         };
         Ok(Analyzer {
+            pair_correlation: PairCorrelation::new(&run.species, &run.sim_box, t_eq, run.t_end),
             every_default,
             every_from_budget,
             bin_width: (run.t_end - t_eq) / nbins as f64,
@@ -280,6 +284,45 @@ impl Analyzer {
         Ok(())
     }
 
+    /// The positions of a snapshot at time `t` (species index and centre of every
+    /// disc, length): their pair distances go into g(r) when `t` is after the
+    /// equilibration time (every such snapshot, independent of `every`).
+    ///
+    /// Errors when the slices differ in length or a species index is not one of
+    /// the run's species.
+    pub fn positions(
+        &mut self,
+        t: f64,
+        species_of: &[u16],
+        x: &[f64],
+        y: &[f64],
+    ) -> Result<(), StatsError> {
+        if species_of.len() != x.len() || x.len() != y.len() {
+            return Err(StatsError::InvalidArgument(format!(
+                "snapshot at t = {t}: {} species indices, {} x, {} y",
+                species_of.len(),
+                x.len(),
+                y.len()
+            )));
+        }
+        if let Some(&bad) = species_of
+            .iter()
+            .find(|&&s| s as usize >= self.run.species.len())
+        {
+            return Err(StatsError::InvalidArgument(format!(
+                "snapshot at t = {t}: species index {bad}, but the run has {} species",
+                self.run.species.len()
+            )));
+        }
+        let span = self.run.t_end - self.run.t_start;
+        if t < self.t_eq - 1e-12 * self.t_eq.abs().max(span) {
+            return Ok(());
+        }
+        self.pair_correlation
+            .add(t.max(self.t_eq), species_of, x, y);
+        Ok(())
+    }
+
     /// Record kT at `t`, once per time (a thermo record and a snapshot at the
     /// same time give one point).
     fn push_kt(&mut self, t: f64, kt: f64) {
@@ -351,6 +394,12 @@ impl Analyzer {
         let bins = [&z_bins[..], &omega_bins[..], &kt_bins[..]];
         let enskog = collision_rate::enskog(&self, elastic, pressure.as_ref(), bins)?;
         let inelastic = (!elastic).then(|| inelastic::report(&self));
+        let periodic = self.run.sim_box.boundary.iter().all(|b| b.is_periodic());
+        let pair_correlation = contact::report(
+            &self.pair_correlation,
+            elastic && periodic,
+            pressure.as_ref(),
+        );
         let run = &self.run;
         Ok(Report {
             n: run.n(),
@@ -375,6 +424,7 @@ impl Analyzer {
             collision_rate,
             enskog,
             inelastic,
+            pair_correlation,
         })
     }
 

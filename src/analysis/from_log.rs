@@ -165,6 +165,11 @@ impl Feed {
                 self.vx.extend(s.velocities.iter().map(|v: &DVec2| v.x));
                 self.vy.extend(s.velocities.iter().map(|v: &DVec2| v.y));
                 a.snapshot(s.time, &s.species, &self.vx, &self.vy)?;
+                self.vx.clear();
+                self.vy.clear();
+                self.vx.extend(s.positions.iter().map(|p: &DVec2| p.x));
+                self.vy.extend(s.positions.iter().map(|p: &DVec2| p.y));
+                a.positions(s.time, &s.species, &self.vx, &self.vy)?;
             }
             LogMessage::Thermo(t) => {
                 a.thermo(t.time, t.kinetic_energy, Some(t.energy_lost));

@@ -1,20 +1,23 @@
 //! Analysis of carom runs: what `carom analyze` measures, in one streaming pass
 //! over a run's events, checked against theory with statistics independent of the
-//! engine (physics.md §5–§8).
+//! engine (physics.md §5–§8, §10).
 //!
 //! [`analyze_log`] reads a log (`describe`s its run once, then feeds every
 //! message to an [`Analyzer`]); the tests feed an [`Analyzer`] straight from the
 //! engine. [`Analyzer::finish`] makes one report per observable: temperature,
 //! the velocity distribution against Maxwell–Boltzmann, pressure and Z, the
 //! collision rate and the Enskog check, and for inelastic runs the energy budget
-//! and Haff's law. [`stats`] holds the statistics (histograms, χ², KS, blocking).
+//! and Haff's law; from the snapshots' positions the pair correlation g_ab(r),
+//! its contact values and the contact theorem. [`stats`] holds the statistics (histograms, χ², KS, blocking).
 
 mod analyzer;
 mod collision_rate;
+mod contact;
 mod description;
 mod from_log;
 mod inelastic;
 mod options;
+mod pair_correlation;
 mod pressure;
 mod report;
 mod series;
@@ -23,9 +26,13 @@ mod temperature;
 mod velocity;
 
 pub use analyzer::Analyzer;
+pub use contact::{
+    ContactTheoremReport, ContactValue, PairCorrelationReport, PairReport, CONTACT_FIT_SIGMA,
+};
 pub use description::RunDescription;
 pub use from_log::{analyze_log, AnalysisError, ReadObserver};
 pub use options::{AnalysisOptions, CORRELATED_SPACING, DECORRELATION_COLLISIONS, MAX_VELOCITIES};
+pub use pair_correlation::{BIN_WIDTH_SIGMA, BLOCKS as PAIR_CORRELATION_BLOCKS, R_MAX_SIGMA};
 pub use report::{
     ChiSquareReport, CollisionRateReport, DriftReport, EnergyBudget, EnskogReport, HaffReport,
     HistogramReport, InelasticReport, KsReport, PressureReport, Report, SonineReport, SpeciesInfo,

@@ -5,6 +5,7 @@
 
 use serde::Serialize;
 
+use super::contact::PairCorrelationReport;
 use super::stats::{Histogram, KsTest};
 #[cfg(doc)]
 use super::{DECORRELATION_COLLISIONS, MAX_SNAPSHOT_CORRELATION, MB_FAMILY_ALPHA};
@@ -43,6 +44,9 @@ pub struct Report {
     pub enskog: Option<EnskogReport>,
     /// Inelastic runs only: cooling and energy budget.
     pub inelastic: Option<InelasticReport>,
+    /// Pair correlation g(r), contact values and the contact theorem
+    /// (physics.md §10); `null` without snapshots after the equilibration time.
+    pub pair_correlation: Option<PairCorrelationReport>,
 }
 
 /// One species of the run.

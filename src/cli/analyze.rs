@@ -258,6 +258,38 @@ pub fn text(r: &Report, args: &AnalyzeArgs, complete: bool) -> String {
             sigmas(e.difference, e.difference_std_error)
         );
     }
+    if let Some(pc) = &r.pair_correlation {
+        let _ = writeln!(
+            s,
+            "pair correlation  g(r) to r = {:.4} in bins of {:.4} from {} snapshots in {} time blocks (physics.md §10)",
+            pc.r_max, pc.bin_width, pc.snapshots, pc.blocks
+        );
+        for p in &pc.pairs {
+            match &p.contact {
+                Some(c) => {
+                    let _ = writeln!(
+                        s,
+                        "  species {}–{}: contact value g(σ⁺) = {:.4} ± {:.4} at σ = {:.4} (fit of ln g over {} bins)",
+                        p.a, p.b, Num(c.value), Num(c.std_error), p.sigma, c.fit_bins
+                    );
+                }
+                None => {
+                    let _ = writeln!(
+                        s,
+                        "  species {}–{}: no contact value (no bin within [σ, 1.1 σ])",
+                        p.a, p.b
+                    );
+                }
+            }
+        }
+        if let Some(c) = &pc.contact_theorem {
+            let _ = writeln!(
+                s,
+                "contact theorem  Z = 1 + (π/2) n Σ x_a x_b σ_ab² g_ab(σ_ab⁺) = {:.5} ± {:.5}, virial Z = {:.5} ± {:.5}; difference {:.5} ({:.1} standard errors)",
+                Num(c.z_structure), Num(c.z_structure_std_error), Num(c.z_virial), Num(c.z_virial_std_error), c.difference, c.difference_std_errors
+            );
+        }
+    }
     if let Some(i) = &r.inelastic {
         if let Some(e) = &i.energy {
             let _ = writeln!(

@@ -5,7 +5,8 @@
 //! `components_species{k}` (v_x and v_y histograms with the Gaussian),
 //! `temperature` (kT against time; for a cooling run on log–log axes against the
 //! time since the first record, with Haff's law), `pressure` (Z against time with
-//! the mean and one standard error, and the halves' means when it drifts). Axes are
+//! the mean and one standard error, and the halves' means when it drifts),
+//! `pair_correlation` (g_ab(r) per species pair with its contact value). Axes are
 //! in the run's units.
 
 use std::ops::Range;
@@ -87,6 +88,16 @@ pub fn write_all(report: &Report, dir: &Path) -> Result<usize, CliError> {
         .is_some_and(|p| p.series.len() >= 2)
     {
         both!(dir, "pressure", |root| draw_pressure(root, report));
+        n += 1;
+    }
+    if report
+        .pair_correlation
+        .as_ref()
+        .is_some_and(|p| !p.pairs.is_empty())
+    {
+        both!(dir, "pair_correlation", |root| draw_pair_correlation(
+            root, report
+        ));
         n += 1;
     }
     Ok(n)
@@ -360,5 +371,51 @@ fn draw_pressure<DB: DrawingBackend>(root: &DrawingArea<DB, Shift>, r: &Report) 
         s.iter()
             .map(|q| Circle::new((q[0], q[1]), 3, BLUE.filled())),
     )?;
+    legend(&mut chart)
+}
+
+/// g_ab(r) of every species pair, the contact value g(σ⁺) as a dot at σ_ab.
+fn draw_pair_correlation<DB: DrawingBackend>(
+    root: &DrawingArea<DB, Shift>,
+    r: &Report,
+) -> DrawResult<DB> {
+    let pc = r.pair_correlation.as_ref().expect("checked by the caller");
+    let x1 = pc.r_max;
+    let y1 = top(pc.pairs.iter().flat_map(|p| p.g.iter().copied()));
+    let caption = match &pc.contact_theorem {
+        Some(c) => format!(
+            "g(r): contact theorem Z = {:.4} ± {:.4}, virial Z = {:.4} ± {:.4}",
+            c.z_structure, c.z_structure_std_error, c.z_virial, c.z_virial_std_error
+        ),
+        None => format!("pair correlation g(r), {} snapshots", pc.snapshots),
+    };
+    let axis = (
+        "distance r (length)",
+        "pair correlation g(r) (dimensionless)",
+    );
+    let mut chart = axes(root, &caption, axis, 0.0..x1, 0.0..y1)?;
+    chart.draw_series(LineSeries::new([(0.0, 1.0), (x1, 1.0)], BLACK.mix(0.4)))?;
+    for (k, p) in pc.pairs.iter().enumerate() {
+        let colour = Palette99::pick(k).to_rgba();
+        chart
+            .draw_series(LineSeries::new(
+                pc.r.iter()
+                    .zip(&p.g)
+                    .filter(|(_, g)| g.is_finite())
+                    .map(|(&r, &g)| (r, g)),
+                colour.stroke_width(2),
+            ))?
+            .label(format!("species {}–{}", p.a, p.b))
+            .legend(move |(x, y)| {
+                PathElement::new(vec![(x, y), (x + 15, y)], colour.stroke_width(2))
+            });
+        if let Some(c) = &p.contact {
+            chart.draw_series(std::iter::once(Circle::new(
+                (p.sigma, c.value),
+                4,
+                colour.filled(),
+            )))?;
+        }
+    }
     legend(&mut chart)
 }

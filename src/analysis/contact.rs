@@ -1,0 +1,242 @@
+//! The pair-correlation report: g_ab(r) with block error bars, the contact value
+//! g_ab(σ_ab⁺) from a least-squares straight line in ln g through the bins lying
+//! wholly in [σ_ab, σ_ab + 0.1 σ_ab], extrapolated to σ_ab (physics.md §10), and the contact
+//! theorem (10.3) Z = 1 + (π/2) n Σ_ab x_a x_b σ_ab² g_ab(σ_ab⁺) next to the
+//! collision-virial Z, the difference in standard errors (periodic elastic runs
+//! only: with walls the wall term enters the pressure, and inelastic runs have no
+//! equilibrium g). Each estimate is made per time block; its error is the
+//! standard error of the block values.
+
+use serde::Serialize;
+
+use super::pair_correlation::{mean_se, pairs, PairCorrelation, BLOCKS};
+use super::report::PressureReport;
+
+/// Width of the contact fit in units of σ_ab.
+pub const CONTACT_FIT_SIGMA: f64 = 0.1;
+
+/// g(r) per species pair (physics.md §10).
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct PairCorrelationReport {
+    /// Bin centres (length).
+    pub r: Vec<f64>,
+    /// Bin width (length): σ_min/50.
+    pub bin_width: f64,
+    /// Largest r (length): 10 σ_max, at most half a periodic edge.
+    pub r_max: f64,
+    /// Snapshots used (all after the equilibration time).
+    pub snapshots: u64,
+    /// Time blocks with snapshots (the error bars' spread).
+    pub blocks: usize,
+    /// One entry per species pair a ≤ b present in the run.
+    pub pairs: Vec<PairReport>,
+    /// The contact theorem against the virial Z; `null` unless periodic, elastic,
+    /// with a pressure.
+    pub contact_theorem: Option<ContactTheoremReport>,
+}
+
+/// g_ab(r) of one species pair.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct PairReport {
+    /// Species indices a ≤ b.
+    pub a: usize,
+    /// Second species index.
+    pub b: usize,
+    /// Contact distance σ_ab = r_a + r_b (length).
+    pub sigma: f64,
+    /// g at each bin centre, pooled over all snapshots.
+    pub g: Vec<f64>,
+    /// Standard error of g from the spread of the time blocks.
+    pub std_error: Vec<f64>,
+    /// Contact value g_ab(σ_ab⁺); `null` when no bin lies in the fit range.
+    pub contact: Option<ContactValue>,
+}
+
+/// The contact value with its error.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct ContactValue {
+    /// g(σ⁺) extrapolated from the straight line in ln g over [σ, σ + 0.1 σ].
+    pub value: f64,
+    /// Its standard error (spread of the per-block fits).
+    pub std_error: f64,
+    /// Number of bins in the fit.
+    pub fit_bins: usize,
+}
+
+/// The contact theorem (physics.md (10.3)) against the collision virial.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct ContactTheoremReport {
+    /// Z from the structure, 1 + (π/2) n Σ_ab x_a x_b σ_ab² g_ab(σ_ab⁺).
+    pub z_structure: f64,
+    /// Its standard error.
+    pub z_structure_std_error: f64,
+    /// Z from the collision virial (the pressure report).
+    pub z_virial: f64,
+    /// Its standard error.
+    pub z_virial_std_error: f64,
+    /// z_structure − z_virial.
+    pub difference: f64,
+    /// The difference over √(SE_s² + SE_v²) (the two treated as independent).
+    pub difference_std_errors: f64,
+}
+
+/// g(σ⁺) from the bins (x, g): exp of the least-squares line through (x, ln g)
+/// at `x0` (g near contact falls roughly exponentially; a straight line in g
+/// itself would miss its curvature).
+fn contact_at(x: &[f64], g: &[f64], x0: f64) -> f64 {
+    let lg: Vec<f64> = g.iter().map(|v| v.ln()).collect();
+    line_at(x, &lg, x0).exp()
+}
+
+/// Intercept at `x0` of the least-squares line through (x, y).
+fn line_at(x: &[f64], y: &[f64], x0: f64) -> f64 {
+    let n = x.len() as f64;
+    if x.len() == 1 {
+        return y[0];
+    }
+    let (mx, my) = (x.iter().sum::<f64>() / n, y.iter().sum::<f64>() / n);
+    let sxx: f64 = x.iter().map(|v| (v - mx).powi(2)).sum();
+    let sxy: f64 = x.iter().zip(y).map(|(a, b)| (a - mx) * (b - my)).sum();
+    my + sxy / sxx * (x0 - mx)
+}
+
+/// The report from the accumulator; `elastic_periodic` and `pressure` decide the
+/// contact theorem.
+pub(super) fn report(
+    pc: &PairCorrelation,
+    elastic_periodic: bool,
+    pressure: Option<&PressureReport>,
+) -> Option<PairCorrelationReport> {
+    if pc.snapshot_count() == 0 {
+        return None;
+    }
+    let ns = pc.species.len();
+    let r = pc.r();
+    let used: Vec<usize> = (0..BLOCKS).filter(|&k| pc.snapshots[k] > 0).collect();
+    let mut out = Vec::new();
+    // Per block: Σ over ordered pairs of x_a x_b σ² g(σ⁺).
+    let mut block_sum = vec![0.0; used.len()];
+    let mut all_contacts = true;
+    let n_total: usize = pc.species.iter().map(|s| s.count).sum();
+    for (a, b) in pairs(ns) {
+        let (sa, sb) = (&pc.species[a], &pc.species[b]);
+        if sa.count == 0 || sb.count == 0 || (a == b && sa.count < 2) {
+            continue;
+        }
+        let sigma = sa.radius + sb.radius;
+        let (blocks, pooled) = pc.g(a, b);
+        let blocks: Vec<Vec<f64>> = blocks.into_iter().flatten().collect();
+        let std_error = (0..pc.nbins)
+            .map(|k| mean_se(&blocks.iter().map(|g| g[k]).collect::<Vec<_>>()).1)
+            .collect();
+        // Bins wholly in [σ, σ(1 + 0.1)] (edges with a relative tolerance).
+        let tol = 1e-9 * sigma;
+        let fit: Vec<usize> = (0..pc.nbins)
+            .filter(|&k| {
+                let (lo, hi) = (k as f64 * pc.dr, (k + 1) as f64 * pc.dr);
+                lo >= sigma - tol && hi <= sigma * (1.0 + CONTACT_FIT_SIGMA) + tol
+            })
+            .collect();
+        let contact = (!fit.is_empty()).then(|| {
+            let xs: Vec<f64> = fit.iter().map(|&k| r[k]).collect();
+            let per_block: Vec<f64> = blocks
+                .iter()
+                .map(|g| contact_at(&xs, &fit.iter().map(|&k| g[k]).collect::<Vec<_>>(), sigma))
+                .collect();
+            let value = contact_at(
+                &xs,
+                &fit.iter().map(|&k| pooled[k]).collect::<Vec<_>>(),
+                sigma,
+            );
+            (per_block, value)
+        });
+        let weight = {
+            let (xa, xb) = (
+                sa.count as f64 / n_total as f64,
+                sb.count as f64 / n_total as f64,
+            );
+            let ordered = if a == b { 1.0 } else { 2.0 };
+            ordered * xa * xb * sigma * sigma
+        };
+        match &contact {
+            Some((per_block, _)) => {
+                for (s, g) in block_sum.iter_mut().zip(per_block) {
+                    *s += weight * g;
+                }
+            }
+            None => all_contacts = false,
+        }
+        out.push(PairReport {
+            a,
+            b,
+            sigma,
+            g: pooled,
+            std_error,
+            contact: contact.map(|(per_block, value)| ContactValue {
+                value,
+                std_error: mean_se(&per_block).1,
+                fit_bins: fit.len(),
+            }),
+        });
+    }
+    let contact_theorem = match pressure {
+        Some(p) if elastic_periodic && all_contacts && !out.is_empty() => {
+            let n = n_total as f64 / pc.sim_box.area();
+            let c = std::f64::consts::FRAC_PI_2 * n;
+            let z: Vec<f64> = block_sum.iter().map(|s| 1.0 + c * s).collect();
+            // The pooled value: the same sum over the pooled contact values.
+            let pooled_sum: f64 = out
+                .iter()
+                .map(|pr| {
+                    let (sa, sb) = (&pc.species[pr.a], &pc.species[pr.b]);
+                    let (xa, xb) = (
+                        sa.count as f64 / n_total as f64,
+                        sb.count as f64 / n_total as f64,
+                    );
+                    let ordered = if pr.a == pr.b { 1.0 } else { 2.0 };
+                    ordered
+                        * xa
+                        * xb
+                        * pr.sigma
+                        * pr.sigma
+                        * pr.contact.as_ref().map_or(0.0, |c| c.value)
+                })
+                .sum();
+            let z_s = 1.0 + c * pooled_sum;
+            let se_s = mean_se(&z).1;
+            let se = se_s.hypot(p.z_std_error);
+            Some(ContactTheoremReport {
+                z_structure: z_s,
+                z_structure_std_error: se_s,
+                z_virial: p.z,
+                z_virial_std_error: p.z_std_error,
+                difference: z_s - p.z,
+                difference_std_errors: (z_s - p.z) / se,
+            })
+        }
+        _ => None,
+    };
+    Some(PairCorrelationReport {
+        r,
+        bin_width: pc.dr,
+        r_max: pc.r_max,
+        snapshots: pc.snapshot_count(),
+        blocks: used.len(),
+        pairs: out,
+        contact_theorem,
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn line_fit_extrapolates_a_straight_line_exactly() {
+        let x = [1.01, 1.03, 1.05, 1.07, 1.09];
+        let y: Vec<f64> = x.iter().map(|v| 4.0 - 2.5 * (v - 1.0)).collect();
+        assert!((line_at(&x, &y, 1.0) - 4.0).abs() < 1e-12);
+        let g: Vec<f64> = x.iter().map(|v| 3.0 * (-2.0 * (v - 1.0)).exp()).collect();
+        assert!((contact_at(&x, &g, 1.0) - 3.0).abs() < 1e-12);
+    }
+}
