@@ -26,23 +26,15 @@ use log_view_common as view;
 use mcap_common::*;
 use serde_json::{json, Value};
 use std::path::Path;
-use std::process::Command;
 
 /// Every field of every message of `path` as the Python readers decode it.
 fn read_every_field(py: &str, path: &Path, streaming: bool) -> Value {
-    let script = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/python/read_carom_log.py");
-    let mut cmd = Command::new(py);
-    cmd.arg(script).arg(path).arg("--fields");
-    if streaming {
-        cmd.arg("--streaming");
-    }
-    let out = cmd.output().expect("python runs");
-    assert!(
-        out.status.success(),
-        "python reader failed:\n{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    serde_json::from_slice(&out.stdout).expect("python prints JSON")
+    let flags: &[&str] = if streaming {
+        &["--fields", "--streaming"]
+    } else {
+        &["--fields"]
+    };
+    python_reader(py, path, flags)
 }
 
 /// Where `py` and `rs` first differ, below `at`: a key only one side has, an

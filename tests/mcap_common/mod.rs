@@ -105,13 +105,19 @@ pub fn python() -> Option<String> {
 
 /// Run the helper script on `path` and parse its JSON.
 pub fn read_with_python(py: &str, path: &Path, streaming: bool) -> Value {
+    python_reader(py, path, if streaming { &["--streaming"] } else { &[] })
+}
+
+/// Run `tests/python/read_carom_log.py` on `path` with `flags` (`--streaming`,
+/// `--fields`) and parse its JSON.
+pub fn python_reader(py: &str, path: &Path, flags: &[&str]) -> Value {
     let script = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/python/read_carom_log.py");
-    let mut cmd = Command::new(py);
-    cmd.arg(script).arg(path);
-    if streaming {
-        cmd.arg("--streaming");
-    }
-    let out = cmd.output().expect("python runs");
+    let out = Command::new(py)
+        .arg(script)
+        .arg(path)
+        .args(flags)
+        .output()
+        .expect("python runs");
     assert!(
         out.status.success(),
         "python reader failed:\n{}",
