@@ -6,7 +6,8 @@
 //! inelastic runs with each restitution rule.
 //!
 //! Python is `$CAROM_PYTHON` if set (then the packages must be there), else
-//! `python3`; without the packages the test prints that it skipped and passes.
+//! `python3`; without the packages the test skips, loudly, or fails when `CI` is
+//! set (tests/readers_common).
 
 mod mcap_common;
 

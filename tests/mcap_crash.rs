@@ -2,7 +2,8 @@
 //! mid-run. Everything up to its last flush must be readable by carom's reader
 //! (bit-identical to the engine's collisions) and by the Python `mcap` streaming
 //! reader, and the run must resume from the file's last checkpoint to exactly the
-//! log an uninterrupted run writes.
+//! log an uninterrupted run writes. The Python and `@mcap/core` parts skip when
+//! their packages are missing, or fail when `CI` is set (tests/readers_common).
 //!
 //! The child is this test binary run again with `CAROM_CRASH_CHILD=<log path>`,
 //! selecting only [`crash_child`], which then runs "forever".
@@ -157,12 +158,7 @@ fn sigkill_mid_run_leaves_a_readable_resumable_log() {
                 "{topic} messages"
             );
         }
-        let py_collisions: u64 = v["batches"]
-            .as_array()
-            .unwrap()
-            .iter()
-            .map(|b| b["len"].as_u64().unwrap())
-            .sum();
+        let py_collisions = v["collisions"].as_u64().unwrap();
         assert_eq!(py_collisions, info.logged_collisions);
     }
 

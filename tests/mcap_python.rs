@@ -1,260 +1,205 @@
-//! Independent reader: the Python `mcap` + `mcap-ros2-support` packages decode carom
-//! logs (schemas, CDR messages, JSON thermo, metadata, summary statistics) to the
-//! same values the Rust reader gives, for complete files (indexed reading) and for
-//! a file cut mid-way (streaming reading).
+//! Independent reader, field by field: the Python `mcap` + `mcap-ros2-support`
+//! packages (`tests/python/read_carom_log.py --fields`) decode EVERY field of
+//! EVERY message of carom logs — full and compact collision records (with and
+//! without normals), snapshots, thermo, checkpoints, `/scene` frames — and the
+//! metadata records, and each must equal the Rust reader's view of it
+//! (`tests/log_view_common`) exactly: floats bit for bit, the same set of keys at
+//! every level (so a field one side has and the other lacks fails), the same
+//! envelope (sequence, log and publish time), channels and schema texts. This is
+//! what catches a field swapped consistently in a writer and its reader: the file
+//! would no longer match its published schema. Complete files are read with the
+//! indexed reader, a cut one with the streaming reader.
 //!
 //! Python is `$CAROM_PYTHON` if set (then the packages must be there), else
-//! `python3`; without the packages the test prints that it skipped and passes.
+//! `python3`; without the packages the test skips, loudly, or fails when `CI` is
+//! set (tests/readers_common).
 
+mod log_view_common;
 mod mcap_common;
 
-use carom::io::CollisionBatch;
+use carom::core::Restitution;
+use carom::events::EngineParams;
 use carom::io::{CollisionDetail, Compression, LogOptions, Stop};
-use carom::io::{LogMessage, LogReader};
+use carom::io::{CHANNELS, CH_COLLISIONS, COMPACT_COLLISIONS_CHANNEL, TOPICS};
 use carom::run::{run, Control};
+use log_view_common as view;
 use mcap_common::*;
-use serde_json::Value;
+use serde_json::{json, Value};
 use std::path::Path;
 
-/// CRC-32 (IEEE, as Python's zlib.crc32), continuing from `crc`.
-fn crc32(mut crc: u32, bytes: &[u8]) -> u32 {
-    crc = !crc;
-    for &b in bytes {
-        crc ^= b as u32;
-        for _ in 0..8 {
-            crc = if crc & 1 != 0 {
-                (crc >> 1) ^ 0xEDB8_8320
-            } else {
-                crc >> 1
-            };
-        }
-    }
-    !crc
-}
-
-fn le<T: Copy, const K: usize>(v: &[T], f: impl Fn(T) -> [u8; K]) -> Vec<u8> {
-    v.iter().flat_map(|&x| f(x)).collect()
-}
-
-/// What the Rust reader decodes, in the shape the Python script prints.
-fn rust_side(path: &Path) -> (Value, u64) {
-    let mut r = LogReader::open(path).unwrap();
-    let mut crc = std::collections::BTreeMap::<&str, u32>::new();
-    let mut batches = Vec::new();
-    let mut snaps = Vec::new();
-    let mut thermo = Vec::new();
-    let mut cps = Vec::new();
-    let mut messages = 0u64;
-    let add = |crc: &mut std::collections::BTreeMap<&str, u32>, k: &'static str, b: &[u8]| {
-        let c = crc.entry(k).or_insert(0);
-        *c = crc32(*c, b);
+/// Every field of every message of `path` as the Python readers decode it.
+fn read_every_field(py: &str, path: &Path, streaming: bool) -> Value {
+    let flags: &[&str] = if streaming {
+        &["--fields", "--streaming"]
+    } else {
+        &["--fields"]
     };
-    loop {
-        let m = match r.next_message() {
-            Ok(Some(m)) => m,
-            Ok(None) => break,
-            Err(e) => panic!("{e}"),
-        };
-        messages += 1;
-        match m {
-            LogMessage::Collisions(b) => {
-                let CollisionBatch {
-                    first_ordinal,
-                    stride,
-                    time,
-                    kind,
-                    i,
-                    j,
-                    ..
-                } = &*b;
-                batches.push(serde_json::json!({
-                    "first_ordinal": first_ordinal, "stride": stride, "len": time.len(),
-                }));
-                let f = |v: &[f64]| le(v, f64::to_le_bytes);
-                add(&mut crc, "time", &f(time));
-                add(&mut crc, "kind", kind);
-                add(&mut crc, "i", &le(i, u32::to_le_bytes));
-                add(&mut crc, "j", &le(j, u32::to_le_bytes));
-                for (k, v) in [
-                    ("nx", &b.nx),
-                    ("ny", &b.ny),
-                    ("vix_before", &b.vix_before),
-                    ("viy_before", &b.viy_before),
-                    ("vjx_before", &b.vjx_before),
-                    ("vjy_before", &b.vjy_before),
-                    ("vix_after", &b.vix_after),
-                    ("viy_after", &b.viy_after),
-                    ("vjx_after", &b.vjx_after),
-                    ("vjy_after", &b.vjy_after),
-                    ("energy_lost", &b.energy_lost),
-                    ("virial", &b.virial),
-                ] {
-                    add(&mut crc, k, &f(v));
-                }
-            }
-            LogMessage::Snapshot(s) => {
-                snaps.push(serde_json::json!({"n": s.len()}));
-                add(&mut crc, "s_species", &le(&s.species, u16::to_le_bytes));
-                let xs: Vec<f64> = s.positions.iter().map(|p| p.x).collect();
-                let ys: Vec<f64> = s.positions.iter().map(|p| p.y).collect();
-                let vx: Vec<f64> = s.velocities.iter().map(|p| p.x).collect();
-                let vy: Vec<f64> = s.velocities.iter().map(|p| p.y).collect();
-                add(&mut crc, "s_x", &le(&xs, f64::to_le_bytes));
-                add(&mut crc, "s_y", &le(&ys, f64::to_le_bytes));
-                add(&mut crc, "s_vx", &le(&vx, f64::to_le_bytes));
-                add(&mut crc, "s_vy", &le(&vy, f64::to_le_bytes));
-            }
-            LogMessage::Thermo(t) => thermo.push(serde_json::to_value(t).unwrap()),
-            LogMessage::Checkpoint(c) => {
-                let xs: Vec<f64> = c.engine.positions.iter().map(|p| p.x).collect();
-                cps.push(serde_json::json!({
-                    "pair_collisions": c.engine.stats.pair_collisions,
-                    "wall_collisions": c.engine.stats.wall_collisions,
-                    "logged_collisions": c.driver.logged_collisions,
-                    "x_crc": crc32(0, &le(&xs, f64::to_le_bytes)),
-                    "n": xs.len(),
-                }));
-            }
-        }
-    }
-    let v = serde_json::json!({
-        "crc": crc, "batches": batches, "snapshots": snaps, "thermo": thermo, "checkpoints": cps,
-        "run": r.run_map(), "summary": r.summary().unwrap().map(|s| s.to_map()),
-    });
-    (v, messages)
+    python_reader(py, path, flags)
 }
 
-fn compare(py: &Value, rs: &Value) {
-    let batches = py["batches"].as_array().unwrap();
-    let rb = rs["batches"].as_array().unwrap();
-    assert_eq!(batches.len(), rb.len(), "batch count");
-    for (p, r) in batches.iter().zip(rb) {
-        for k in ["first_ordinal", "stride", "len"] {
-            assert_eq!(p[k], r[k], "batch field {k}");
+/// Where `py` and `rs` first differ, below `at`: a key only one side has, an
+/// array length, or a leaf value (floats are hex bit patterns on both sides).
+fn first_difference(py: &Value, rs: &Value, at: &str) -> Option<String> {
+    match (py, rs) {
+        (Value::Object(p), Value::Object(r)) => {
+            let keys = |m: &serde_json::Map<String, Value>| m.keys().cloned().collect::<Vec<_>>();
+            if keys(p) != keys(r) {
+                return Some(format!(
+                    "{at}: python has the fields {:?}, rust {:?}",
+                    keys(p),
+                    keys(r)
+                ));
+            }
+            p.iter()
+                .find_map(|(k, v)| first_difference(v, &r[k], &format!("{at}.{k}")))
         }
+        (Value::Array(p), Value::Array(r)) if p.len() != r.len() => Some(format!(
+            "{at}: python has {} entries, rust {}",
+            p.len(),
+            r.len()
+        )),
+        (Value::Array(p), Value::Array(r)) => p
+            .iter()
+            .zip(r)
+            .enumerate()
+            .find_map(|(k, (a, b))| first_difference(a, b, &format!("{at}[{k}]"))),
+        _ if py == rs => None,
+        _ => Some(format!("{at}: python {py}, rust {rs}")),
     }
-    for (name, _) in [
-        ("time", 0),
-        ("kind", 0),
-        ("i", 0),
-        ("j", 0),
-        ("nx", 0),
-        ("vjy_after", 0),
-        ("virial", 0),
-        ("energy_lost", 0),
-    ] {
-        assert_eq!(
-            py["batch_crc"][name].as_u64(),
-            rs["crc"][name].as_u64().or(Some(0)),
-            "CRC of decoded collision field {name}"
-        );
+}
+
+fn assert_same(py: &Value, rs: &Value, what: &str) {
+    if let Some(d) = first_difference(py, rs, what) {
+        panic!("the Python and Rust readers disagree: {d}");
     }
-    for f in ["species", "x", "y", "vx", "vy"] {
-        assert_eq!(
-            py["snapshot_crc"][f].as_u64(),
-            rs["crc"][format!("s_{f}").as_str()].as_u64().or(Some(0)),
-            "CRC of snapshot field {f}"
-        );
+}
+
+/// Python's messages of `path` against Rust's, field by field; `complete` = the
+/// file as written (its snapshots give the `/scene` frames' expected content).
+fn compare_messages(pyv: &Value, path: &Path, complete: &Path) -> usize {
+    let rs = view::messages(path, complete);
+    let py = pyv["messages"].as_array().unwrap();
+    assert_eq!(py.len(), rs.len(), "messages in {}", path.display());
+    for (k, (p, r)) in py.iter().zip(&rs).enumerate() {
+        let what = format!("message {k} ({} #{})", r["topic"], r["sequence"]);
+        assert_same(p, r, &what);
     }
-    assert_eq!(
-        py["snapshots"].as_array().unwrap().len(),
-        rs["snapshots"].as_array().unwrap().len()
-    );
-    // Thermo JSON: same numbers (Python parses floats exactly).
-    assert_eq!(py["thermo"], rs["thermo"], "thermo records");
-    let pc = py["checkpoints"].as_array().unwrap();
-    let rc = rs["checkpoints"].as_array().unwrap();
-    assert_eq!(pc.len(), rc.len());
-    for (p, r) in pc.iter().zip(rc) {
-        for k in [
-            "pair_collisions",
-            "wall_collisions",
-            "logged_collisions",
-            "x_crc",
-            "n",
-        ] {
-            assert_eq!(p[k], r[k], "checkpoint field {k}");
-        }
+    // What each topic's messages were decoded with: the published schema.
+    for m in &rs {
+        let topic = m["topic"].as_str().unwrap();
+        let k = TOPICS.iter().position(|t| *t == topic).unwrap();
+        let ch = match k {
+            CH_COLLISIONS if m["fields"].get("dpx").is_some() => COMPACT_COLLISIONS_CHANNEL,
+            _ => CHANNELS[k],
+        };
+        let want = json!([ch.schema_name, ch.schema_encoding, ch.message_encoding]);
+        assert_eq!(pyv["channels"][topic], want, "{topic}");
+        assert_eq!(pyv["schemas"][topic], ch.schema_text, "{topic}");
     }
+    rs.len()
+}
+
+/// A case: its name, engine parameters, log options and whether the box has walls.
+fn cases() -> Vec<(&'static str, EngineParams, LogOptions, bool)> {
+    let observed = LogOptions {
+        snapshot_interval: Some(1.0),
+        thermo_interval: Some(0.25),
+        checkpoint_interval: Some(1.5),
+        ..LogOptions::default()
+    };
+    let inelastic = |rule| EngineParams {
+        restitution: rule,
+        tc: 1e-4,
+        ..EngineParams::default()
+    };
+    vec![
+        (
+            "full records, inelastic (e = 0.9), walls, zstd, scene frames",
+            inelastic(Restitution::Normal(0.9)),
+            LogOptions {
+                collision_detail: CollisionDetail::Full,
+                scene_interval: Some(1.0),
+                ..observed
+            },
+            true,
+        ),
+        (
+            "full records of every 2nd collision, periodic, lz4",
+            EngineParams::default(),
+            LogOptions {
+                collision_every: 2,
+                compression: Compression::Lz4,
+                ..observed
+            },
+            false,
+        ),
+        (
+            "compact records, elastic, walls, zstd",
+            EngineParams::default(),
+            observed.clone(),
+            true,
+        ),
+        (
+            "compact records with normals (centre-of-mass R = 0.9), periodic, uncompressed",
+            inelastic(Restitution::CentreOfMass(0.9)),
+            LogOptions {
+                compression: Compression::None,
+                ..observed
+            },
+            false,
+        ),
+    ]
 }
 
 #[test]
-fn python_reads_what_rust_reads() {
+fn python_reads_every_field_that_rust_reads() {
     let Some(py) = python() else {
         return;
     };
-    let system = system(300, 0.45, true, true, 21);
-    for (compression, every) in [(Compression::Zstd, 1), (Compression::Lz4, 2)] {
+    for (k, (name, params, log, walls)) in cases().into_iter().enumerate() {
         let out = tmp("python.mcap");
-        let log = LogOptions {
-            collision_every: every,
-            snapshot_interval: Some(1.0),
-            thermo_interval: Some(0.25),
-            checkpoint_interval: Some(1.5),
-            compression,
-            // The full record's layout (tests/compact_python.rs replays the compact one).
-            collision_detail: CollisionDetail::Full,
-            ..LogOptions::default()
-        };
-        run(
-            &spec(system.clone(), Stop::Time(4.0), log),
-            &out,
-            Control::default(),
-        )
-        .unwrap();
-        let pyv = read_with_python(&py, &out, false);
-        assert!(pyv["error"].is_null(), "python: {}", pyv["error"]);
-        let (rs, messages) = rust_side(&out);
-        compare(&pyv, &rs);
-        // Channels, schemas and encodings as documented.
-        assert_eq!(
-            pyv["channels"]["/collisions"],
-            serde_json::json!(["carom_msgs/msg/CollisionBatch", "ros2msg", "cdr"])
+        let mut s = spec(
+            system(200, 0.45, walls, true, 21 + k as u64),
+            Stop::Time(3.0),
+            log.clone(),
         );
-        assert_eq!(
-            pyv["channels"]["/thermo"],
-            serde_json::json!(["carom.Thermo", "jsonschema", "json"])
-        );
-        assert_eq!(
-            pyv["channels"]["/checkpoint"],
-            serde_json::json!(["carom_msgs/msg/Checkpoint", "ros2msg", "cdr"])
-        );
-        // Message counts: Python's iteration, the MCAP statistics record, and Rust agree.
+        s.params = params;
+        // A metadata key that only some runs have.
+        s.max_time_without_collision = Some(100.0);
+        run(&s, &out, Control::default()).unwrap();
+        let pyv = read_every_field(&py, &out, false);
+        assert!(pyv["error"].is_null(), "{name}: python: {}", pyv["error"]);
+        let messages = compare_messages(&pyv, &out, &out);
+        // Every metadata record, every key, and no other record.
+        assert_same(&pyv["metadata"], &view::metadata(&out), "metadata");
+        // Message counts: Python's iteration, the MCAP statistics and Rust agree.
         let counted: u64 = pyv["counts"]
             .as_object()
             .unwrap()
             .values()
             .map(|v| v.as_u64().unwrap())
             .sum();
-        assert_eq!(counted, messages);
-        assert_eq!(pyv["statistics"], pyv["counts"]);
-        assert_eq!(pyv["counts"]["/snapshot"], 5);
-        assert_eq!(pyv["counts"]["/thermo"], 17);
-        // Metadata records.
-        assert_eq!(pyv["metadata"]["carom.run"], rs["run"]);
-        assert_eq!(pyv["metadata"]["carom.summary"], rs["summary"]);
+        assert_eq!(counted, messages as u64, "{name}");
+        assert_eq!(pyv["statistics"], pyv["counts"], "{name}");
+        assert_eq!(pyv["counts"]["/snapshot"], 4, "{name}");
+        assert_eq!(pyv["counts"]["/thermo"], 13, "{name}");
+        assert!(pyv["collisions"].as_u64().unwrap() > 500, "{name}");
+        if log.scene_interval.is_some() {
+            assert_eq!(pyv["counts"]["/scene"], 4, "{name}");
+        }
 
-        // The same file cut at 60 %: Python's streaming reader and Rust agree on
-        // everything before the cut.
-        let bytes = std::fs::read(&out).unwrap();
-        let cut = tmp("python-cut.mcap");
-        std::fs::write(&cut, &bytes[..bytes.len() * 6 / 10]).unwrap();
-        let pyv = read_with_python(&py, &cut, true);
-        assert!(
-            !pyv["error"].is_null(),
-            "a cut file ends in an error in Python"
-        );
-        let (rs, messages) = rust_side(&cut);
-        assert!(messages > 10);
-        compare(&pyv, &rs);
-        let counted: u64 = pyv["counts"]
-            .as_object()
-            .unwrap()
-            .values()
-            .map(|v| v.as_u64().unwrap())
-            .sum();
-        assert_eq!(counted, messages);
+        // The file cut at 60 %: Python's streaming reader and Rust agree on every
+        // message before the cut.
+        if k == 0 {
+            let bytes = std::fs::read(&out).unwrap();
+            let cut = tmp("python-cut.mcap");
+            std::fs::write(&cut, &bytes[..bytes.len() * 6 / 10]).unwrap();
+            let pyv = read_every_field(&py, &cut, true);
+            assert!(!pyv["error"].is_null(), "a cut file ends in an error");
+            let messages = compare_messages(&pyv, &cut, &out);
+            assert!(messages > 10, "{messages} messages before the cut");
+            std::fs::remove_file(&cut).unwrap();
+        }
         std::fs::remove_file(&out).unwrap();
-        std::fs::remove_file(&cut).unwrap();
     }
 }

@@ -5,7 +5,7 @@
 //! positions and sizes of `/snapshot`, and by Python's `mcap-ros2-support`. The
 //! node part runs when node and `npm install --prefix tests/node` are there, the
 //! Python part with `CAROM_PYTHON` (see `mcap_python.rs`); each is skipped with a
-//! message otherwise.
+//! message otherwise, and fails instead when `CI` is set.
 
 mod mcap_common;
 
@@ -38,23 +38,10 @@ fn scene_messages(path: &Path) -> Vec<(u32, u64, Vec<u8>)> {
     v
 }
 
-/// What `tests/node/scene.mjs` finds in `path`; `None` (with a message) when node
-/// or the packages are missing.
+/// What `tests/node/scene.mjs` finds in `path`; `None` to skip when node or the
+/// packages are missing (a failure under `CI`: `skip_or_fail`).
 fn node_scene(path: &Path) -> Option<Value> {
-    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/node");
-    let skip = |why: &str| {
-        eprintln!("skipped: the Foxglove decoder check ({why})");
-        None
-    };
-    if Command::new("node").arg("--version").output().is_err() {
-        return skip("node is not installed");
-    }
-    if !dir
-        .join("node_modules/@foxglove/rosmsg2-serialization")
-        .exists()
-    {
-        return skip("run `npm install --prefix tests/node` first; .ci/run does");
-    }
+    let dir = node_with("@foxglove/rosmsg2-serialization")?;
     let out = Command::new("node")
         .arg(dir.join("scene.mjs"))
         .arg(path)

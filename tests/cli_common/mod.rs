@@ -7,6 +7,11 @@ use std::process::{Command, Output, Stdio};
 
 use serde_json::Value;
 
+#[path = "../readers_common/mod.rs"]
+mod readers_common;
+#[allow(unused_imports)] // only the tests that run Python use it
+pub use readers_common::python_with;
+
 /// The `carom` binary under test.
 pub const BIN: &str = env!("CARGO_BIN_EXE_carom");
 
@@ -51,33 +56,4 @@ pub fn sh(dir: &Path, script: &str) -> Output {
         .stdin(Stdio::null())
         .output()
         .unwrap()
-}
-
-/// The Python interpreter that can import `modules` — `$CAROM_PYTHON` if set (then
-/// it must have them), else `python3` — or `None`, after saying so, to skip.
-pub fn python_with(modules: &[&str]) -> Option<String> {
-    let (py, explicit) = match std::env::var("CAROM_PYTHON") {
-        Ok(p) if !p.is_empty() => (p, true),
-        _ => ("python3".to_string(), false),
-    };
-    let ok = Command::new(&py)
-        .args(["-c", &format!("import {}", modules.join(", "))])
-        .output()
-        .map(|o| o.status.success())
-        .unwrap_or(false);
-    if ok {
-        return Some(py);
-    }
-    assert!(
-        !explicit,
-        "CAROM_PYTHON={py} is set but cannot import {modules:?} \
-         (pip install -r tests/python-requirements.txt)"
-    );
-    use std::io::Write;
-    let _ = writeln!(
-        std::io::stderr(),
-        "SKIPPED: the Python packages {modules:?} are not available to {py}; \
-         set CAROM_PYTHON to an interpreter that has them (.ci/run does)"
-    );
-    None
 }

@@ -10,6 +10,10 @@ use std::path::{Path, PathBuf};
 use std::process::Command;
 use std::sync::atomic::{AtomicUsize, Ordering};
 
+#[path = "../readers_common/mod.rs"]
+mod readers_common;
+pub use readers_common::{node_with, python_with};
+
 /// A fresh path under Cargo's per-test temporary directory.
 pub fn tmp(name: &str) -> PathBuf {
     static N: AtomicUsize = AtomicUsize::new(0);
@@ -93,45 +97,27 @@ pub fn bits(v: &[DVec2]) -> Vec<u64> {
         .collect()
 }
 
-/// The Python interpreter with the packages, or `None` (after saying so) to skip.
+/// The Python interpreter with `mcap` and `mcap-ros2-support`, or `None` to skip
+/// (a failure under `CI`: [`skip_or_fail`]).
 pub fn python() -> Option<String> {
-    let (py, explicit) = match std::env::var("CAROM_PYTHON") {
-        Ok(p) if !p.is_empty() => (p, true),
-        _ => ("python3".to_string(), false),
-    };
-    let ok = Command::new(&py)
-        .args(["-c", "import mcap, mcap_ros2.decoder"])
-        .output()
-        .map(|o| o.status.success())
-        .unwrap_or(false);
-    if ok {
-        return Some(py);
-    }
-    assert!(
-        !explicit,
-        "CAROM_PYTHON={py} is set but cannot import mcap and mcap_ros2 \
-         (pip install -r tests/python-requirements.txt)"
-    );
-    // Straight to stderr, past the test harness's output capture, so that the skip
-    // shows in a normal `cargo test` run.
-    use std::io::Write;
-    let _ = writeln!(
-        std::io::stderr(),
-        "SKIPPED: the Python packages mcap and mcap-ros2-support are not available to {py}; \
-         set CAROM_PYTHON to an interpreter that has them (.ci/run does)"
-    );
-    None
+    python_with(&["mcap", "mcap_ros2.decoder"])
 }
 
 /// Run the helper script on `path` and parse its JSON.
 pub fn read_with_python(py: &str, path: &Path, streaming: bool) -> Value {
+    python_reader(py, path, if streaming { &["--streaming"] } else { &[] })
+}
+
+/// Run `tests/python/read_carom_log.py` on `path` with `flags` (`--streaming`,
+/// `--fields`) and parse its JSON.
+pub fn python_reader(py: &str, path: &Path, flags: &[&str]) -> Value {
     let script = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/python/read_carom_log.py");
-    let mut cmd = Command::new(py);
-    cmd.arg(script).arg(path);
-    if streaming {
-        cmd.arg("--streaming");
-    }
-    let out = cmd.output().expect("python runs");
+    let out = Command::new(py)
+        .arg(script)
+        .arg(path)
+        .args(flags)
+        .output()
+        .expect("python runs");
     assert!(
         out.status.success(),
         "python reader failed:\n{}",
@@ -140,19 +126,10 @@ pub fn read_with_python(py: &str, path: &Path, streaming: bool) -> Value {
     serde_json::from_slice(&out.stdout).expect("python prints JSON")
 }
 
-/// `@mcap/core`'s stream reader on `path`, or `None` (after saying why) to skip.
+/// `@mcap/core`'s stream reader on `path`, or `None` to skip (a failure under
+/// `CI`: [`skip_or_fail`]).
 pub fn node_read(path: &Path) -> Option<Value> {
-    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/node");
-    let skip = |why: &str| {
-        eprintln!("skipped: the @mcap/core check ({why})");
-        None
-    };
-    if Command::new("node").arg("--version").output().is_err() {
-        return skip("node is not installed");
-    }
-    if !dir.join("node_modules/@mcap/core").exists() {
-        return skip("run `npm install --prefix tests/node` first; .ci/run does");
-    }
+    let dir = node_with("@mcap/core")?;
     let out = Command::new("node")
         .arg(dir.join("read.mjs"))
         .arg(path)

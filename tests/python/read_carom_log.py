@@ -2,78 +2,72 @@
 """Read a carom MCAP log with the independent Python readers (`mcap`,
 `mcap-ros2-support`) and print what was decoded as one JSON object.
 
-Usage: read_carom_log.py FILE.mcap [--streaming]
+Usage: read_carom_log.py FILE.mcap [--streaming] [--fields]
 
 Without --streaming the file is read with `mcap.reader.make_reader` (the
 summary/index path for complete files); with it, with `NonSeekingReader`, which
 also reads files cut short by a crash (then "error" says where it stopped).
 
-Exact comparison with the Rust side: for every decoded array field the output
-holds a CRC-32 of the little-endian packed values, concatenated over all messages
-of the topic in file order.
+Always printed: message counts per topic, each topic's schema (name, encoding,
+message encoding), the number of collisions decoded, and for a complete file its
+metadata records and the MCAP statistics. With --fields, also "messages": every
+message in file order with its envelope (topic, sequence, log and publish time)
+and EVERY field the schema defines (generic: the decoded object's fields, nested
+messages as objects, so a field added to a schema shows up here unasked), and
+"schemas": each topic's schema text. Floats are printed as the 16 hex digits of
+their IEEE-754 bits (exact, and distinct from integers); uint8[] as integers.
 """
 
 import json
 import struct
 import sys
-import zlib
 
 from mcap.reader import NonSeekingReader, make_reader
 from mcap_ros2.decoder import DecoderFactory
 
-PACK = {
-    "float64": "d",
-    "uint64": "Q",
-    "uint32": "I",
-    "uint16": "H",
-    "uint8": "B",
-}
 
-BATCH_FIELDS = [
-    ("time", "d"), ("kind", "B"), ("i", "I"), ("j", "I"), ("nx", "d"), ("ny", "d"),
-    ("vix_before", "d"), ("viy_before", "d"), ("vjx_before", "d"), ("vjy_before", "d"),
-    ("vix_after", "d"), ("viy_after", "d"), ("vjx_after", "d"), ("vjy_after", "d"),
-    ("energy_lost", "d"), ("virial", "d"),
-]
-# The compact record (log format 2; tests/python/replay_compact_log.py replays it).
-COMPACT_FIELDS = [("time", "d"), ("i", "I"), ("j", "I"), ("dpx", "d"), ("dpy", "d")]
-SNAPSHOT_FIELDS = [("species", "H"), ("x", "d"), ("y", "d"), ("vx", "d"), ("vy", "d")]
+def f64_bits(values):
+    """Hex bit patterns of a list of floats."""
+    n = len(values)
+    words = struct.unpack("<%dQ" % n, struct.pack("<%dd" % n, *values))
+    return ["%016x" % w for w in words]
 
 
-def packed(values, code):
-    if isinstance(values, (bytes, bytearray)):
-        return bytes(values)
-    return struct.pack("<%d%s" % (len(values), code), *values)
-
-
-class Crc:
-    def __init__(self, fields):
-        self.fields = fields
-        self.crc = {name: 0 for name, _ in fields}
-
-    def add(self, msg):
-        for name, code in self.fields:
-            self.crc[name] = zlib.crc32(packed(getattr(msg, name), code), self.crc[name])
+def plain(v):
+    """A decoded value as JSON: floats as bit patterns, messages as objects."""
+    if isinstance(v, bool) or isinstance(v, int) or isinstance(v, str):
+        return v
+    if isinstance(v, float):
+        return f64_bits([v])[0]
+    if isinstance(v, (bytes, bytearray)):
+        return list(v)
+    if isinstance(v, list):
+        if v and all(type(x) is float for x in v):
+            return f64_bits(v)
+        return [plain(x) for x in v]
+    if isinstance(v, dict):
+        return {k: plain(x) for k, x in v.items()}
+    if hasattr(v, "__slots__"):
+        return {k: plain(getattr(v, k)) for k in v.__slots__}
+    raise TypeError("cannot print a %s" % type(v).__name__)
 
 
 def main():
     path = sys.argv[1]
     streaming = "--streaming" in sys.argv[2:]
+    fields = "--fields" in sys.argv[2:]
     out = {
         "mode": "streaming" if streaming else "seeking",
         "error": None,
         "counts": {},
         "channels": {},
         "metadata": {},
-        "batches": [],
-        "snapshots": [],
-        "thermo": [],
-        "checkpoints": [],
+        "collisions": 0,
     }
+    if fields:
+        out["messages"] = []
+        out["schemas"] = {}
     ros2 = DecoderFactory()
-    batch_crc = Crc(BATCH_FIELDS)
-    compact_crc = Crc(COMPACT_FIELDS)
-    snap_crc = Crc(SNAPSHOT_FIELDS)
     with open(path, "rb") as f:
         reader = (
             NonSeekingReader(f, validate_crcs=True)
@@ -90,46 +84,20 @@ def main():
                     channel.message_encoding,
                 ]
                 if channel.message_encoding == "json":
-                    rec = json.loads(message.data)
-                    out["thermo"].append(rec)
-                    continue
-                decode = ros2.decoder_for(channel.message_encoding, schema)
-                msg = decode(message.data)
+                    msg = json.loads(message.data)
+                else:
+                    msg = ros2.decoder_for(channel.message_encoding, schema)(message.data)
                 if topic == "/collisions":
-                    n = len(msg.time)
-                    compact = schema.name == "carom_msgs/msg/CompactCollisionBatch"
-                    for name, _ in COMPACT_FIELDS if compact else BATCH_FIELDS:
-                        assert len(getattr(msg, name)) == n, name
-                    out["batches"].append(
+                    out["collisions"] += len(msg.time)
+                if fields:
+                    out["schemas"][topic] = schema.data.decode() if schema else None
+                    out["messages"].append(
                         {
+                            "topic": topic,
                             "sequence": message.sequence,
                             "log_time": message.log_time,
-                            "first_ordinal": msg.first_ordinal,
-                            "stride": msg.stride,
-                            "len": n,
-                            "first_time": msg.time[0].hex() if n else None,
-                        }
-                    )
-                    (compact_crc if compact else batch_crc).add(msg)
-                elif topic == "/snapshot":
-                    out["snapshots"].append(
-                        {
-                            "time": msg.time.hex(),
-                            "n": len(msg.x),
-                            "box": [msg.box_x.hex(), msg.box_y.hex()],
-                            "species_mass": [m.hex() for m in msg.species_mass],
-                        }
-                    )
-                    snap_crc.add(msg)
-                elif topic == "/checkpoint":
-                    out["checkpoints"].append(
-                        {
-                            "now": msg.now.hex(),
-                            "pair_collisions": msg.pair_collisions,
-                            "wall_collisions": msg.wall_collisions,
-                            "logged_collisions": msg.logged_collisions,
-                            "x_crc": zlib.crc32(packed(msg.x, "d")),
-                            "n": len(msg.x),
+                            "publish_time": message.publish_time,
+                            "fields": plain(msg),
                         }
                     )
         except Exception as e:  # a truncated file ends in an exception
@@ -145,9 +113,6 @@ def main():
                 out["statistics"] = {
                     summary.channels[cid].topic: n for cid, n in stats.items()
                 }
-    out["batch_crc"] = batch_crc.crc
-    out["compact_crc"] = compact_crc.crc
-    out["snapshot_crc"] = snap_crc.crc
     json.dump(out, sys.stdout)
 
 
