@@ -119,12 +119,12 @@ fn the_reported_a2_and_haff_time_follow_van_noije_ernst() {
 /// Haff's law (physics.md (8.2)–(8.4)) as `carom analyze` reports it: N = 1024 at
 /// η = 0.1, e = 0.9, 16 seeds, each melted elastically first (20 collisions per
 /// disc: from the lattice, the collision rate starts low and the report's constant
-/// ω biases the ratio by ≈ −1.5 %), cooled to t = 40 (T/T0 ≈ 0.25). The mean of
+/// ω biased the ratio by −1.5 % at t = 10 over 8 seeds), cooled to t = 40. The mean of
 /// the reported kT_final/kT_Haff is 1 within k = 4 standard errors of the seeds'
-/// spread (measured 1.005 ± 0.005 over 8 seeds; one run's SD ≈ 1.3 %, so the single
-/// run's 1.0235 that the issue quotes was noise plus the lattice start). A sign slip
-/// in a2 (1 − 2e² → 1 + 2e²) speeds the predicted cooling by 2.7 % and raises the
-/// ratio by ≈ 2.6 %.
+/// spread: measured 1.0056 ± 0.0032 (one run's SD ≈ 1.3 %, so the single run's
+/// 1.0235 that issue 39 quotes was noise plus the lattice start). A sign slip in
+/// a2 (1 − 2e² → 1 + 2e²) speeds the predicted cooling by 2.7 %: measured
+/// 1.0324 ± 0.0032, 10 SE.
 #[test]
 fn haff_law_holds_from_an_equilibrated_start() {
     let params = EngineParams {
