@@ -11,14 +11,19 @@ use carom::core::Restitution;
 use carom::events::{Engine, EngineParams, Velocities};
 use stats_common::assert_within;
 
+/// Normal restitution `e` with the TC model's duration `tc`.
+fn cooling(e: f64, tc: f64) -> EngineParams {
+    EngineParams {
+        restitution: Restitution::Normal(e),
+        tc,
+        ..Default::default()
+    }
+}
+
 #[test]
 fn cooling_granular_gas_closes_its_energy_budget() {
     let spec = fluid(1024, 0.1, 9, Velocities::MaxwellBoltzmann);
-    let params = EngineParams {
-        restitution: Restitution::Normal(0.9),
-        tc: 1e-6,
-        ..Default::default()
-    };
+    let params = cooling(0.9, 1e-6);
     let r = analyse(spec, params, 40.0, 1.0, AnalysisOptions::default());
     assert!(!r.elastic);
     let inel = r.inelastic.as_ref().unwrap();
@@ -39,11 +44,7 @@ fn cooling_granular_gas_closes_its_energy_budget() {
 #[test]
 fn a_cooling_gas_is_tested_in_its_homogeneous_cooling_state() {
     let spec = fluid(1024, 0.25, 4, Velocities::MaxwellBoltzmann);
-    let params = EngineParams {
-        restitution: Restitution::Normal(0.9),
-        tc: 1e-5,
-        ..Default::default()
-    };
+    let params = cooling(0.9, 1e-5);
     let opts = AnalysisOptions {
         equilibrate: Some(2.0),
         every: Some(2.0),
@@ -93,11 +94,7 @@ fn the_reported_a2_and_haff_time_follow_van_noije_ernst() {
     }
     assert!((a2_van_noije_ernst(0.9, 2.0) + 0.0269).abs() < 1e-4);
     for (k, e) in [0.5, 0.8, 0.9].into_iter().enumerate() {
-        let params = EngineParams {
-            restitution: Restitution::Normal(e),
-            tc: 1e-6,
-            ..Default::default()
-        };
+        let params = cooling(e, 1e-6);
         let spec = fluid(256, 0.1, 30 + k as u64, Velocities::MaxwellBoltzmann);
         let r = analyse(spec, params, 4.0, 0.5, AnalysisOptions::default());
         let inel = r.inelastic.as_ref().unwrap();
@@ -127,11 +124,7 @@ fn the_reported_a2_and_haff_time_follow_van_noije_ernst() {
 /// 1.0324 ± 0.0032, 10 SE.
 #[test]
 fn haff_law_holds_from_an_equilibrated_start() {
-    let params = EngineParams {
-        restitution: Restitution::Normal(0.9),
-        tc: 1e-6,
-        ..Default::default()
-    };
+    let params = cooling(0.9, 1e-6);
     let ratios: Vec<f64> = (1..=16)
         .map(|seed| {
             let spec = fluid(1024, 0.1, seed, Velocities::MaxwellBoltzmann);

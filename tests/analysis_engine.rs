@@ -5,7 +5,7 @@
 mod analysis_common;
 mod stats_common;
 
-use analysis_common::{analyse, analyse_with_rate, fluid};
+use analysis_common::{analyse, analyse_state, fluid};
 use carom::analysis::AnalysisOptions;
 use carom::core::rates::expected_mean_free_time;
 use carom::core::{SimBox, Species};
@@ -253,8 +253,8 @@ fn snapshots_closer_than_a_few_collisions_are_thinned_by_default() {
         every,
         ..Default::default()
     };
-    let all = analyse_with_rate(
-        spec.clone(),
+    let all = analyse_state(
+        spec.build().unwrap(),
         EngineParams::default(),
         t_end,
         dt,
@@ -281,8 +281,8 @@ fn snapshots_closer_than_a_few_collisions_are_thinned_by_default() {
         dt * omega
     );
 
-    let thinned = analyse_with_rate(
-        spec,
+    let thinned = analyse_state(
+        spec.build().unwrap(),
         EngineParams::default(),
         t_end,
         dt,
@@ -315,8 +315,8 @@ fn the_default_spacing_keeps_at_most_the_velocities_allowed() {
         ..Default::default()
     };
     let omega = 7.0; // about the rate at η = 0.5 (only its order matters here)
-    let bounded = analyse_with_rate(
-        spec.clone(),
+    let bounded = analyse_state(
+        spec.build().unwrap(),
         EngineParams::default(),
         t_end,
         dt,
@@ -334,8 +334,8 @@ fn the_default_spacing_keeps_at_most_the_velocities_allowed() {
     assert!(mb.passed, "{:?} {:?}", mb.chi_square, mb.ks);
     assert!(w.snapshot_times.windows(2).all(|p| p[1] - p[0] > 2.99));
 
-    let asked = analyse_with_rate(
-        spec,
+    let asked = analyse_state(
+        spec.build().unwrap(),
         EngineParams::default(),
         t_end,
         dt,

@@ -37,6 +37,17 @@ use stats_common::{assert_within, est};
 /// Number of standard errors allowed between the two estimators.
 const K: f64 = 4.0;
 
+/// The `/thermo` records of the log at `path`.
+fn read_thermo(path: &std::path::Path) -> Vec<Thermo> {
+    let mut r = LogReader::open(path).unwrap();
+    r.thermo()
+        .map(|m| match m.unwrap() {
+            LogMessage::Thermo(t) => t,
+            other => panic!("{other:?}"),
+        })
+        .collect()
+}
+
 /// The run's thermo records and collision records.
 fn logged_run(system: SystemSpec, t_end: f64, dt: f64) -> (Vec<Thermo>, Vec<CollisionRecord>) {
     let out = tmp("thermo-pressure.mcap");
@@ -55,14 +66,7 @@ fn logged_run(system: SystemSpec, t_end: f64, dt: f64) -> (Vec<Thermo>, Vec<Coll
         Control::default(),
     )
     .unwrap();
-    let mut r = LogReader::open(&out).unwrap();
-    let thermo: Vec<Thermo> = r
-        .thermo()
-        .map(|m| match m.unwrap() {
-            LogMessage::Thermo(t) => t,
-            other => panic!("{other:?}"),
-        })
-        .collect();
+    let thermo = read_thermo(&out);
     let mut r = LogReader::open(&out).unwrap();
     let records = r.collisions().collect::<Result<_, _>>().unwrap();
     std::fs::remove_file(&out).unwrap();
@@ -191,14 +195,7 @@ fn thermo_pressure_matches_the_equation_of_state() {
     )
     .unwrap();
     assert_eq!(s.stop_reason, StopReason::Time);
-    let mut r = LogReader::open(&out).unwrap();
-    let thermo: Vec<_> = r
-        .thermo()
-        .map(|m| match m.unwrap() {
-            LogMessage::Thermo(t) => t,
-            other => panic!("{other:?}"),
-        })
-        .collect();
+    let thermo = read_thermo(&out);
     let nf = n as f64;
     // Z per thermo interval from t = 20 (equilibrated after the lattice start), from
     // differences of the cumulative sums: βPA/N = 1 + W/(N kT), W = Σ r·Δp/(2t).

@@ -14,23 +14,12 @@ pub fn analyse(
     dt: f64,
     opts: AnalysisOptions,
 ) -> Report {
-    analyse_with_rate(spec, params, t_end, dt, opts, None)
+    analyse_state(spec.build().unwrap(), params, t_end, dt, opts, None)
 }
 
-/// [`analyse`], with the pair collision rate known beforehand (as `carom analyze`
-/// knows it from the log's thermo records).
-pub fn analyse_with_rate(
-    spec: SystemSpec,
-    params: EngineParams,
-    t_end: f64,
-    dt: f64,
-    opts: AnalysisOptions,
-    pair_rate: Option<f64>,
-) -> Report {
-    analyse_state(spec.build().unwrap(), params, t_end, dt, opts, pair_rate)
-}
-
-/// [`analyse_with_rate`] from a given state at time 0.
+/// [`analyse`] from a given state at time 0, with the pair collision rate known
+/// beforehand when `pair_rate` is given (as `carom analyze` knows it from the log's
+/// thermo records).
 pub fn analyse_state(
     state: State,
     params: EngineParams,
