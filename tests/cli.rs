@@ -791,9 +791,11 @@ fn pressure_from_thermo_totals_when_collisions_are_not_logged() {
     assert!((z - 2.0633).abs() < tol, "Z = {z} ± {se}");
     // ω from the thermo pair counts; the Enskog check still closes.
     assert!(f(&r["collision_rate"]["per_disc"]) > 2.0);
+    // (Z − 1) − (√π/4)ωτ0 = 0 within 4 of its blocked SE (the NVE offset, ≈ 10⁻⁴, is
+    // far below it).
     let e = &r["enskog"];
     assert!(
-        f(&e["difference"]).abs() < 4.0 * f(&e["difference_std_error"]) + 0.01,
+        f(&e["difference"]).abs() < 4.0 * f(&e["difference_std_error"]),
         "{e}"
     );
 }

@@ -2,14 +2,17 @@
 //!
 //! Every case runs the engine directly (no log file) and compares a measured
 //! quantity with a reference, with one standard error from block averaging
-//! (`carom::analysis::stats::blocking`) where the quantity is statistical:
+//! (`carom::analysis::stats::blocking`, via tests/stats_common) where the quantity is
+//! statistical:
 //!
 //! 1. Equation of state Z(η) in a periodic box: η = 0.2, 0.4, 0.5, 0.6 (N = 1024)
 //!    against the Kolafa–Rottner values of physics.md §7, and η = 0.670, 0.680,
 //!    0.690 (N = 870, square box) against the canonical Monte Carlo of Li et al.
 //!    2022 (`data/reference/hard-disc-pressure.csv`, a copy of the project's
 //!    reference data), with the finite-N estimator βPA = N + W/kT, kT = 2K/f
-//!    (physics.md §5). Pass: within 3 combined standard errors.
+//!    (physics.md §5). Pass: within 3 combined standard errors, and the two halves
+//!    of the production run within 4 SE of each other (equilibration). The default
+//!    suite runs η = 0.4 and the dense η = 0.6 (issue 39 item 5).
 //! 2. Collision rate: Z − 1 = (√π/4) ω τ0 within 0.1 % on the same runs.
 //! 3. Maxwell–Boltzmann: χ² and KS of speeds and velocity components, monodisperse
 //!    fluid and a binary mixture with mass ratio 4 (each species at its own mass),
@@ -28,7 +31,7 @@
 //!   criterion; for a Gaussian estimate a correct engine fails it 0.3 % of the time.
 //! * 0.1 % on (Z − 1) − (√π/4)ωτ0 relative to Z − 1: the issue's criterion; the measured
 //!   SE is ≈ 10⁻⁴ and the exact NVE offset ≈ −1.2·10⁻⁴ (see `nve_rate_factor`).
-//! * Pressure drift between the halves of a dense production run ≤ 4 SE: an equilibration
+//! * Pressure drift between the halves of a production run ≤ 4 SE: an equilibration
 //!   check, loose enough (6·10⁻⁵ false alarms) not to fire on fluctuations.
 //! * Maxwell–Boltzmann: a KS test of each kind's 20 p-values against U(0, 1) with
 //!   p ≥ 10⁻³ (18 kinds: ≈ 2 % chance that some kind fails for a correct engine whose
@@ -62,11 +65,14 @@ use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
+mod stats_common;
+
 use carom::analysis::stats::{
-    blocking, chi_square_histogram, ks_test, mb_speed_test, Histogram, MaxwellBoltzmann2d,
+    chi_square_histogram, ks_test, mb_speed_test, Histogram, MaxwellBoltzmann2d,
 };
 use carom::core::{Axis, Boundary, DVec2, Restitution, Species, WallSide};
 use carom::events::{Engine, EngineError, EngineParams, Event, State, SystemSpec, Velocities};
+use stats_common::{dilute_wall_z, est, Est};
 
 // ===========================================================================
 // The results table
@@ -117,8 +123,7 @@ impl Row {
     /// (value − reference) / √(se² + err²).
     fn deviation(&self) -> Option<f64> {
         let (r, e) = self.reference?;
-        let s = (self.se * self.se + e * e).sqrt();
-        (s > 0.0).then(|| (self.value - r) / s)
+        stats_common::deviation(self.value, self.se, r, e)
     }
     fn pass(&self) -> Option<bool> {
         let r = self.reference.map(|r| r.0);
@@ -395,23 +400,6 @@ fn kt(e: &Engine) -> f64 {
     2.0 * s.kinetic_energy() / s.degrees_of_freedom() as f64
 }
 
-/// Mean and standard error from the blocking analysis; with `converged` false the
-/// error is from the coarsest usable level (a lower bound).
-struct Est {
-    mean: f64,
-    se: f64,
-    converged: bool,
-}
-
-fn est(x: &[f64]) -> Est {
-    let b = blocking(x).expect("blocking analysis");
-    Est {
-        mean: b.mean,
-        se: b.std_error,
-        converged: b.converged,
-    }
-}
-
 /// Global hexatic order |Ψ6| = |(1/N) Σ_j (1/n_j) Σ_k exp(6iθ_jk)| over neighbours
 /// closer than 1.4σ (below the first minimum of g(r) in the dense liquid): ≈ 1 for
 /// the triangular lattice, O(N^-1/2) in an isotropic liquid.
@@ -541,6 +529,17 @@ fn eos_rows(frag: &mut Fragment, label: &str, r: &EosResult, reference: (f64, f6
             .reference(reference.0, reference.1)
             .check(Check::Sigma(3.0)),
     );
+    // Equilibration: the two halves of the production run agree.
+    let [h0, h1] = &r.z_halves;
+    let d = stats_common::deviation(h0.mean, h0.se, h1.mean, h1.se).unwrap_or(0.0);
+    frag.row(
+        Row::new(
+            format!("Z drift, 1st − 2nd half of production (SE), {label}"),
+            d,
+            0.0,
+        )
+        .check(Check::AtMost(4.0)),
+    );
     // Collision rate: Z − 1 = (√π/4) ω τ0 within 0.1 % (relative to Z − 1).
     let rel = r.enskog_diff.mean / (r.z.mean - 1.0);
     let rel_se = r.enskog_diff.se / (r.z.mean - 1.0);
@@ -616,6 +615,20 @@ fn case1_eos_fluid_short() {
     );
 }
 
+/// The dense regime on every commit (issue 39 item 5): η = 0.6, N = 1024, 10⁷
+/// collisions after 50 per disc of equilibration from the lattice, against
+/// Kolafa–Rottner 6.4553 ± 0.0034 within 3 combined SE (measured SE ≈ 0.002), with
+/// the drift between the production halves within 4 SE as the equilibration check.
+#[test]
+fn case1_eos_dense_short() {
+    eos_fluid(
+        "1a-eos-dense-short",
+        "1/2 EOS + Enskog, dense fluid (short)",
+        &[0.6],
+        1.0,
+    );
+}
+
 #[test]
 #[ignore = "long: ≈ 2 min (4 × 4·10⁷ collisions)"]
 fn case1_eos_fluid() {
@@ -639,16 +652,6 @@ fn case1_eos_dense_n870() {
         // Equilibrate 2·10⁷ collisions (≈ 2300 τ0, ≈ 4.6·10⁴ collisions per disc).
         let r = eos_run(n, eta, 21 + k as u64, 20_000_000, 200_000_000);
         eos_rows(&mut frag, &format!("η = {eta}"), &r, (bp * zf, err * zf));
-        let d = (r.z_halves[0].mean - r.z_halves[1].mean)
-            / (r.z_halves[0].se.powi(2) + r.z_halves[1].se.powi(2)).sqrt();
-        frag.row(
-            Row::new(
-                format!("Z drift, 1st − 2nd half of production (SE), η = {eta}"),
-                d,
-                0.0,
-            )
-            .check(Check::AtMost(4.0)),
-        );
         frag.row(
             Row::new(
                 format!("naive Z = (N−1)/N + W/(NkT), η = {eta}"),
@@ -1580,11 +1583,9 @@ fn walls(key: &'static str, title: &str, scale: f64) {
     // within σ of a wall has part of its excluded disc outside the reachable area:
     // N = ρ_b [A_acc + ρ_b P_acc ∫₀^σ S(h) dh], S(h) = σ² acos(h/σ) − h√(σ² − h²) the
     // excluded segment beyond the wall, ∫ = (2/3)σ³. Hence a correction
-    // −(2/3)σ³ ρ P_acc/A_acc to Z (corners are higher order).
-    let rho = g.n as f64 / g.a_acc;
-    let wall_term = -(2.0 / 3.0) * rho * g.perimeter_acc / g.a_acc;
-    let z_ref =
-        1.0 + 2.0 * eta_acc + 4.0 * (4.0 / 3.0 - 3f64.sqrt() / PI) * eta_acc * eta_acc + wall_term;
+    // −(2/3)σ³ ρ P_acc/A_acc to Z (corners are higher order): `dilute_wall_z`.
+    let z_ref = dilute_wall_z(g.n, g.a_acc, g.perimeter_acc);
+    let wall_term = z_ref - dilute_wall_z(g.n, g.a_acc, 0.0);
     frag.row(
         Row::new("η = 0.01, N = 100: βP_wall A_acc/N", z, z_se)
             .reference(z_ref, 0.0)

@@ -1,0 +1,83 @@
+//! Shared helpers of the analysis tests: the analysis of `carom analyze` fed
+//! straight from the engine (no log file), and the standard fluid.
+#![allow(dead_code)]
+
+use carom::analysis::{AnalysisOptions, Analyzer, Report, RunDescription};
+use carom::events::{Engine, EngineParams, Event, State, SystemSpec, Velocities};
+
+/// Run the engine from `spec` until `t_end`, with a snapshot (and thermo record)
+/// every `dt`, feeding every event to an analyzer.
+pub fn analyse(
+    spec: SystemSpec,
+    params: EngineParams,
+    t_end: f64,
+    dt: f64,
+    opts: AnalysisOptions,
+) -> Report {
+    analyse_state(spec.build().unwrap(), params, t_end, dt, opts, None)
+}
+
+/// [`analyse`] from a given state at time 0, with the pair collision rate known
+/// beforehand when `pair_rate` is given (as `carom analyze` knows it from the log's
+/// thermo records).
+pub fn analyse_state(
+    state: State,
+    params: EngineParams,
+    t_end: f64,
+    dt: f64,
+    opts: AnalysisOptions,
+    pair_rate: Option<f64>,
+) -> Report {
+    assert_eq!(state.time, 0.0);
+    let run = RunDescription {
+        species: state.species.clone(),
+        sim_box: state.sim_box,
+        restitution: params.restitution,
+        collision_stride: 1,
+        totals_from_thermo: false,
+        t_start: 0.0,
+        t_end,
+        pair_rate,
+        snapshot_interval: Some(dt),
+    };
+    let mut a = Analyzer::new(run, opts).unwrap();
+    let mut engine = Engine::new(state, params).unwrap();
+    let steps = (t_end / dt).round() as u64;
+    for k in 0..=steps {
+        engine.schedule(k as f64 * dt, k).unwrap();
+    }
+    let mut lost = 0.0;
+    while let Some(ev) = engine.next_event().unwrap() {
+        match ev {
+            Event::Pair(p) => {
+                lost += p.energy_lost;
+                a.pair(p.time, p.virial, p.energy_lost);
+            }
+            Event::Wall(w) => {
+                lost += w.energy_lost;
+                a.wall(w.time, w.impulse, w.energy_lost);
+            }
+            Event::Scheduled { time, tag } => {
+                let s = engine.state();
+                let vx: Vec<f64> = s.velocities.iter().map(|v| v.x).collect();
+                let vy: Vec<f64> = s.velocities.iter().map(|v| v.y).collect();
+                a.thermo(time, s.kinetic_energy(), Some(lost));
+                a.snapshot(time, &s.species_of, &vx, &vy).unwrap();
+                let px: Vec<f64> = s.positions.iter().map(|p| p.x).collect();
+                let py: Vec<f64> = s.positions.iter().map(|p| p.y).collect();
+                a.positions(time, &s.species_of, &px, &py).unwrap();
+                if tag == steps {
+                    break;
+                }
+            }
+        }
+    }
+    a.finish().unwrap()
+}
+
+pub fn fluid(n: usize, eta: f64, seed: u64, velocities: Velocities) -> SystemSpec {
+    SystemSpec {
+        velocities,
+        ..SystemSpec::periodic_fluid(n, eta, seed)
+    }
+}
