@@ -9,13 +9,13 @@
 
 use carom_core::observables::{degrees_of_freedom, packing_fraction, temperature};
 
-use super::options::{budget_spacing, AnalysisOptions, DECORRELATION_COLLISIONS};
 use super::bond_correlation::BondCorrelation;
 use super::bond_order::BondOrder;
+use super::options::{budget_spacing, AnalysisOptions, DECORRELATION_COLLISIONS};
 use super::pair_correlation::PairCorrelation;
-use super::structure_factor::StructureFactor;
 use super::report::{Report, SpeciesInfo, WindowReport};
 use super::stats::StatsError;
+use super::structure_factor::StructureFactor;
 use super::{collision_rate, contact, inelastic, pressure, temperature, velocity, RunDescription};
 
 #[derive(Debug, Clone, Copy, Default)]

@@ -162,7 +162,11 @@ impl BondCorrelation {
         let g6 = ratio(&pooled);
         let std_error: Vec<f64> = (0..self.nbins)
             .map(|k| {
-                let col: Vec<f64> = blocks.iter().map(|b| b[k]).filter(|v| v.is_finite()).collect();
+                let col: Vec<f64> = blocks
+                    .iter()
+                    .map(|b| b[k])
+                    .filter(|v| v.is_finite())
+                    .collect();
                 mean_se(&col).1
             })
             .collect();
@@ -175,7 +179,7 @@ impl BondCorrelation {
         let r_stop = r
             .iter()
             .zip(g6.iter().zip(&std_error))
-            .find(|&(&r, (&g, &e))| r >= w && !(g > SIGNIFICANT * e))
+            .find(|&(&r, (&g, &e))| r >= w && (g.is_nan() || g <= SIGNIFICANT * e))
             .map_or(f64::INFINITY, |p| *p.0);
         let fits: Vec<(f64, f64, f64, f64)> = blocks
             .iter()
@@ -213,7 +217,7 @@ impl BondCorrelation {
 pub fn decay_fits(r: &[f64], g6: &[f64], width: f64, r_stop: f64) -> Option<(f64, f64, f64, f64)> {
     let mut env: Vec<(f64, f64)> = Vec::new();
     for (&r, &g) in r.iter().zip(g6) {
-        if r < width || r >= r_stop || !(g > 0.0) {
+        if r < width || r >= r_stop || g.is_nan() || g <= 0.0 {
             continue;
         }
         let w = (r / width).floor();

@@ -1,6 +1,11 @@
 //! Bond-orientational order (physics.md §11). The local order of disc j is
-//! ψ6_j = (1/n_j) Σ_k e^{6iθ_jk} over its n_j Delaunay neighbours k
-//! ([`super::neighbours`]), θ_jk the angle of the bond r_k − r_j; the global
+//! ψ6_j = Σ_k ℓ_jk e^{6iθ_jk} / Σ_k ℓ_jk over its Delaunay neighbours k
+//! ([`super::neighbours`]), θ_jk the angle of the bond r_k − r_j and ℓ_jk the
+//! length of the Voronoi edge the two cells share (Mickel et al., J. Chem.
+//! Phys. 138, 044501 (2013): a neighbour across a vanishing edge, which a small
+//! displacement adds or removes, then weighs nothing, so ψ6 is continuous in
+//! the positions; a disc on the hull of a walled box, with an unbounded cell,
+//! weighs its bonds equally); the global
 //! order is Ψ6 = (1/N) Σ_j ψ6_j. Per snapshot the accumulator keeps |Ψ6| and
 //! the mean local |ψ6_j| (a series of two numbers per snapshot, as the report's
 //! snapshot times); the susceptibility is χ6 = N (⟨|Ψ6|²⟩ − ⟨|Ψ6|⟩²), with
@@ -29,17 +34,20 @@ pub fn local_psi6_from(nb: &Neighbours) -> Vec<[f64; 2]> {
     (0..nb.start.len() - 1)
         .map(|i| {
             let bonds = nb.of(i);
-            if bonds.is_empty() {
-                return [0.0, 0.0];
-            }
-            let mut s = [0.0, 0.0];
-            for &(_, [dx, dy]) in bonds {
+            let equal = bonds.iter().any(|b| b.2.is_nan() || b.2 < 0.0);
+            let (mut s, mut total) = ([0.0, 0.0], 0.0);
+            for &(_, [dx, dy], facet) in bonds {
+                let w = if equal { 1.0 } else { facet };
                 let z = sixfold(dx, dy);
-                s[0] += z[0];
-                s[1] += z[1];
+                s[0] += w * z[0];
+                s[1] += w * z[1];
+                total += w;
             }
-            let inv = 1.0 / bonds.len() as f64;
-            [s[0] * inv, s[1] * inv]
+            if total > 0.0 {
+                [s[0] / total, s[1] / total]
+            } else {
+                [0.0, 0.0]
+            }
         })
         .collect()
 }
@@ -164,7 +172,7 @@ mod tests {
         let nb = delaunay_neighbours(&sb, &x, &y);
         for i in 0..x.len() {
             assert_eq!(nb.of(i).len(), 6, "disc {i}");
-            for &(_, [dx, dy]) in nb.of(i) {
+            for &(_, [dx, dy], _) in nb.of(i) {
                 assert!((dx.hypot(dy) - 1.1).abs() < 1e-12);
             }
         }

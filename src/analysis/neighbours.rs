@@ -1,6 +1,8 @@
 //! Nearest neighbours of every disc in one snapshot from the Delaunay
 //! triangulation of the centres (the `delaunator` crate): i and j are neighbours
-//! when their Voronoi cells share an edge (physics.md §11). Along a periodic axis
+//! when their Voronoi cells share an edge, whose length (the distance between
+//! the circumcentres of the two triangles on the bond) is kept as the bond's
+//! weight (physics.md §11). Along a periodic axis
 //! the triangulation also holds ghost copies of the discs within
 //! [`GHOST_SPACINGS`] mean spacings of each edge, so that a disc near the edge
 //! finds its neighbours across it; the displacement to a neighbour is the
@@ -8,23 +10,24 @@
 //! outermost discs have the neighbours the hull gives them.
 
 use carom_core::SimBox;
-use delaunator::{triangulate, Point};
+use delaunator::{next_halfedge, triangulate, Point, EMPTY};
 
 /// Width of the ghost layer beyond each periodic edge, in mean spacings √(A/N).
 pub const GHOST_SPACINGS: f64 = 4.0;
 
 /// Neighbour lists of one snapshot: disc i's neighbours are
-/// `list[start[i]..start[i + 1]]`, each the neighbour's index and the
-/// displacement r_j − r_i (minimum image, length).
+/// `list[start[i]..start[i + 1]]`, each the neighbour's index, the displacement
+/// r_j − r_i (minimum image, length) and the length of the Voronoi edge the two
+/// cells share (NaN for an edge of the hull, whose cells are unbounded).
 #[derive(Debug, Clone, Default, PartialEq)]
 pub struct Neighbours {
     pub start: Vec<usize>,
-    pub list: Vec<(u32, [f64; 2])>,
+    pub list: Vec<(u32, [f64; 2], f64)>,
 }
 
 impl Neighbours {
     /// The neighbours of disc `i`.
-    pub fn of(&self, i: usize) -> &[(u32, [f64; 2])] {
+    pub fn of(&self, i: usize) -> &[(u32, [f64; 2], f64)] {
         &self.list[self.start[i]..self.start[i + 1]]
     }
 }
@@ -67,22 +70,35 @@ pub fn delaunay_neighbours(sim_box: &SimBox, x: &[f64], y: &[f64]) -> Neighbours
         }
     }
     let tri = triangulate(&points);
-    // Directed edges p → q with p a real disc, as (p, point q); each interior
-    // edge appears in two triangles, so duplicates are removed after sorting.
-    let mut edges: Vec<(u32, u32)> = Vec::with_capacity(2 * tri.triangles.len());
-    for t in tri.triangles.chunks_exact(3) {
-        for (a, b) in [(t[0], t[1]), (t[1], t[2]), (t[2], t[0])] {
-            for (p, q) in [(a, b), (b, a)] {
-                if p < n {
-                    edges.push((p as u32, q as u32));
-                }
-            }
+    // Circumcentre of each triangle: the Voronoi vertices.
+    let centre: Vec<[f64; 2]> = tri
+        .triangles
+        .chunks_exact(3)
+        .map(|t| circumcentre(&points[t[0]], &points[t[1]], &points[t[2]]))
+        .collect();
+    // Each half-edge p → q (q the next vertex of its triangle) once; its Voronoi
+    // facet joins its triangle's circumcentre and its twin's. A hull edge has no
+    // twin: it is also entered as q → p, with an unknown (NaN) facet.
+    let mut edges: Vec<(u32, u32, f64)> = Vec::with_capacity(tri.triangles.len() + 8);
+    for e in 0..tri.triangles.len() {
+        let (p, q) = (tri.triangles[e], tri.triangles[next_halfedge(e)]);
+        let twin = tri.halfedges[e];
+        let facet = if twin == EMPTY {
+            f64::NAN
+        } else {
+            let (c, d) = (centre[e / 3], centre[twin / 3]);
+            (c[0] - d[0]).hypot(c[1] - d[1])
+        };
+        if p < n {
+            edges.push((p as u32, q as u32, facet));
+        }
+        if twin == EMPTY && q < n {
+            edges.push((q as u32, p as u32, facet));
         }
     }
-    edges.sort_unstable();
-    edges.dedup();
+    edges.sort_unstable_by_key(|e| (e.0, e.1));
     let mut start = vec![0usize; n + 1];
-    for &(p, _) in &edges {
+    for &(p, _, _) in &edges {
         start[p as usize + 1] += 1;
     }
     for i in 0..n {
@@ -90,14 +106,23 @@ pub fn delaunay_neighbours(sim_box: &SimBox, x: &[f64], y: &[f64]) -> Neighbours
     }
     let list = edges
         .iter()
-        .map(|&(p, q)| {
+        .map(|&(p, q, facet)| {
             // (x_j − x_i) + shift, so that j's view of i is exactly the negative.
             let (i, j, s) = (p as usize, owner[q as usize], shift[q as usize]);
             let d = [x[j as usize] - x[i] + s[0], y[j as usize] - y[i] + s[1]];
-            (j, d)
+            (j, d, facet)
         })
         .collect();
     Neighbours { start, list }
+}
+
+/// The centre of the circle through `a`, `b`, `c`.
+fn circumcentre(a: &Point, b: &Point, c: &Point) -> [f64; 2] {
+    let (bx, by) = (b.x - a.x, b.y - a.y);
+    let (cx, cy) = (c.x - a.x, c.y - a.y);
+    let d = 2.0 * (bx * cy - by * cx);
+    let (b2, c2) = (bx * bx + by * by, cx * cx + cy * cy);
+    [a.x + (cy * b2 - by * c2) / d, a.y + (bx * c2 - cx * b2) / d]
 }
 
 #[cfg(test)]
@@ -106,8 +131,9 @@ mod tests {
     use rand::{RngExt, SeedableRng};
     use rand_pcg::Pcg64;
 
-    /// Random points: neighbourhood is symmetric with opposite displacements,
-    /// and on a torus the Delaunay triangulation has exactly 3N edges (Euler:
+    /// Random points: neighbourhood is symmetric with opposite displacements and
+    /// equal facets, the Voronoi cells' areas (Σ facet·|d|/4) add up to the
+    /// box's, and on a torus the Delaunay triangulation has exactly 3N edges (Euler:
     /// V − E + F = 0 with 3F = 2E), so the mean number of neighbours is 6 — a
     /// missing or doubled ghost breaks it.
     #[test]
@@ -118,15 +144,24 @@ mod tests {
             let y: Vec<f64> = (0..n).map(|_| rng.random_range(0.0..ly)).collect();
             for sb in [SimBox::periodic(lx, ly), SimBox::walled(lx, ly, 1.0)] {
                 let nb = delaunay_neighbours(&sb, &x, &y);
+                let mut area = 0.0;
                 for i in 0..n {
-                    for &(j, d) in nb.of(i) {
+                    for &(j, d, facet) in nb.of(i) {
                         let back = nb.of(j as usize).iter().find(|e| e.0 == i as u32);
                         let back = back.unwrap_or_else(|| panic!("{i} -> {j} not mutual"));
                         assert_eq!([back.1[0], back.1[1]], [-d[0], -d[1]]);
+                        assert!(
+                            (back.2 - facet).abs() <= 1e-9 * facet
+                                || (back.2.is_nan() && facet.is_nan())
+                        );
+                        // The triangle of the cell's edge and the centre.
+                        area += 0.25 * facet * d[0].hypot(d[1]);
                     }
                 }
                 if sb.boundary[0].is_periodic() {
                     assert_eq!(nb.list.len(), 6 * n, "{lx} x {ly}");
+                    // The Voronoi cells tile the torus.
+                    assert!((area / (lx * ly) - 1.0).abs() < 1e-9, "area {area}");
                 } else {
                     // A planar triangulation of N points has fewer than 3N edges.
                     assert!(nb.list.len() < 6 * n && nb.list.len() > 5 * n);

@@ -8,8 +8,8 @@ use serde::Serialize;
 use super::bond_correlation::BondCorrelationReport;
 use super::bond_order::BondOrderReport;
 use super::contact::PairCorrelationReport;
-use super::structure_factor::StructureFactorReport;
 use super::stats::{Histogram, KsTest};
+use super::structure_factor::StructureFactorReport;
 #[cfg(doc)]
 use super::{DECORRELATION_COLLISIONS, MAX_SNAPSHOT_CORRELATION, MB_FAMILY_ALPHA};
 

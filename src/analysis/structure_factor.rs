@@ -1,21 +1,25 @@
 //! The structure factor S(k) = |ρ_k|²/N, ρ_k = Σ_j e^{−i k·r_j}, on the wave
-//! vectors of a periodic box, k = 2π (n/L_x, m/L_y), 0 < |k| ≤ [`SK_K_MAX_SIGMA`]/σ_min,
-//! radially averaged in shells 2π/min(L) wide centred on multiples of it (physics.md §11). ρ_{−k} = ρ_k*, so
-//! half of the k-plane is summed: row by row in n on all cores, the factors
-//! e^{−i m θ_y} built by repeated multiplication along each row. The largest S
+//! vectors of a periodic box, k = 2π (n/L_x, m/L_y), 0 < |k| ≤ k_max =
+//! min([`SK_K_MAX_SIGMA`]/σ_min, [`SK_MAX_MODES`]·2π/L_max),
+//! radially averaged in shells 2π/min(L) wide centred on multiples of it
+//! (physics.md §11); ρ_k from the non-uniform FFT ([`super::nufft`]), and since
+//! ρ_{−k} = ρ_k* half of the k-plane is averaged. The largest S
 //! among the vectors gives the translational order ψ_T = max_k |ρ_k|/N (a Bragg
-//! peak of weight N ψ_T² in a crystal; of order N^(−1/2) in a fluid). The direct
-//! sum costs N × (number of vectors) per snapshot, so it runs on at most
-//! [`SK_SNAPSHOTS`] snapshots, one per time block (errors from their spread).
+//! peak of weight N ψ_T² in a crystal; of order N^(−1/2) in a fluid). It runs on
+//! at most [`SK_SNAPSHOTS`] snapshots, one per time block (errors from their
+//! spread).
 
 use carom_core::SimBox;
-use rayon::prelude::*;
 use serde::Serialize;
 
+use super::nufft::density_modes;
 use super::pair_correlation::{mean_se, BLOCKS};
 
 /// Largest |k| in units of 1/σ_min (the first peak of a dense fluid is near 7).
 pub const SK_K_MAX_SIGMA: f64 = 10.0;
+/// Most modes per axis and sign: bounds the FFT grid at 2048² points (64 MiB),
+/// so k_max shrinks to 511·2π/L in boxes wider than about 320 σ_min.
+pub const SK_MAX_MODES: usize = 511;
 /// Most snapshots that enter S(k): one per time block.
 pub const SK_SNAPSHOTS: usize = BLOCKS;
 
@@ -36,8 +40,10 @@ pub struct SnapshotSk {
 /// the vectors with round(|k|/dk) = s, so that the vectors along the axes lie
 /// at the centres of theirs, not on a boundary.
 fn shells(sim_box: &SimBox, sigma_min: f64) -> (f64, usize, f64) {
-    let dk = 2.0 * std::f64::consts::PI / sim_box.size.x.min(sim_box.size.y);
-    let k_max = SK_K_MAX_SIGMA / sigma_min;
+    let tp = 2.0 * std::f64::consts::PI;
+    let dk = tp / sim_box.size.x.min(sim_box.size.y);
+    let k_max = (SK_K_MAX_SIGMA / sigma_min)
+        .min(SK_MAX_MODES as f64 * tp / sim_box.size.x.max(sim_box.size.y));
     (dk, (k_max / dk).round() as usize + 1, k_max)
 }
 
@@ -46,114 +52,45 @@ fn shell_of(k: f64, dk: f64, nshell: usize) -> usize {
     ((k / dk).round() as usize).min(nshell - 1)
 }
 
-/// Σ_j (re_j, im_j), in eight interleaved partial sums (so that the additions
-/// need not wait for each other; a fixed order, so the same bits every run).
-fn sum(re: &[f64], im: &[f64]) -> (f64, f64) {
-    let (mut a, mut b) = ([0.0; 8], [0.0; 8]);
-    let (cr, ci) = (re.chunks_exact(8), im.chunks_exact(8));
-    let (rr, ri) = (cr.remainder(), ci.remainder());
-    for (x, y) in cr.zip(ci) {
-        for l in 0..8 {
-            a[l] += x[l];
-            b[l] += y[l];
-        }
-    }
-    let (mut sr, mut si) = (a.iter().sum::<f64>(), b.iter().sum::<f64>());
-    for (x, y) in rr.iter().zip(ri) {
-        sr += x;
-        si += y;
-    }
-    (sr, si)
-}
-
 /// S(k) of the discs at (`x`, `y`) in the periodic `sim_box`.
 pub fn snapshot_sk(sim_box: &SimBox, sigma_min: f64, x: &[f64], y: &[f64]) -> SnapshotSk {
     let two_pi = 2.0 * std::f64::consts::PI;
     let (lx, ly) = (sim_box.size.x, sim_box.size.y);
     let (dkx, dky) = (two_pi / lx, two_pi / ly);
     let (dk, nshell, k_max) = shells(sim_box, sigma_min);
-    let n_max = (k_max / dkx).floor() as i64;
-    let m_max = (k_max / dky).floor() as i64;
-    // e^{−i θ_y} per disc, and e^{−i m_max θ_y} to start each row from.
-    let step: Vec<(f64, f64)> = y
-        .iter()
-        .map(|&y| {
-            let (s, c) = (dky * y).sin_cos();
-            (c, -s)
-        })
-        .collect();
-    let first: Vec<(f64, f64)> = y
-        .iter()
-        .map(|&y| {
-            let (s, c) = (-(m_max as f64) * dky * y).sin_cos();
-            (c, -s)
-        })
-        .collect();
+    let n_max = (k_max / dkx).floor() as usize;
+    let m_max = (k_max / dky).floor() as usize;
+    let angle = |v: &[f64], l: f64| -> Vec<f64> {
+        v.iter()
+            .map(|&v| (two_pi * (v / l)).rem_euclid(two_pi))
+            .collect()
+    };
+    let modes = density_modes(&angle(x, lx), &angle(y, ly), n_max, m_max);
     let n = x.len() as f64;
-    let rows: Vec<SnapshotSk> = (0..=n_max)
-        .into_par_iter()
-        .map(|nx| {
-            let mut out = SnapshotSk {
-                sums: vec![0.0; nshell],
-                counts: vec![0; nshell],
-                peak: (0.0, 0.0, 0.0),
-                n: x.len(),
-            };
-            let kx = nx as f64 * dkx;
-            // p_j = e^{−i (n θ_x + m θ_y)}, starting at m = −m_max.
-            let (mut pr, mut pi): (Vec<f64>, Vec<f64>) = x
-                .iter()
-                .zip(&first)
-                .map(|(&x, &(fr, fi))| {
-                    let (s, c) = (kx * x).sin_cos();
-                    let (ar, ai) = (c, -s);
-                    (ar * fr - ai * fi, ar * fi + ai * fr)
-                })
-                .unzip();
-            for my in -m_max..=m_max {
-                let ky = my as f64 * dky;
-                let k = kx.hypot(ky);
-                // Half plane: n > 0, or n = 0 with m > 0.
-                if (nx > 0 || my > 0) && k <= k_max {
-                    let (sr, si) = sum(&pr, &pi);
-                    let s = (sr * sr + si * si) / n;
-                    let shell = shell_of(k, dk, nshell);
-                    out.sums[shell] += s;
-                    out.counts[shell] += 1;
-                    if s > out.peak.0 {
-                        out.peak = (s, kx, ky);
-                    }
-                }
-                if my < m_max {
-                    for ((a, b), &(cr, ci)) in pr.iter_mut().zip(pi.iter_mut()).zip(&step) {
-                        let (ar, ai) = (*a, *b);
-                        *a = ar * cr - ai * ci;
-                        *b = ar * ci + ai * cr;
-                    }
-                }
-            }
-            out
-        })
-        .collect();
-    // Rows merged in order: the same sums on every run.
-    let mut total = SnapshotSk {
+    let mut out = SnapshotSk {
         sums: vec![0.0; nshell],
         counts: vec![0; nshell],
         peak: (0.0, 0.0, 0.0),
         n: x.len(),
     };
-    for r in rows {
-        for (a, b) in total.sums.iter_mut().zip(&r.sums) {
-            *a += b;
-        }
-        for (a, b) in total.counts.iter_mut().zip(&r.counts) {
-            *a += b;
-        }
-        if r.peak.0 > total.peak.0 {
-            total.peak = r.peak;
+    for nx in 0..=n_max as i64 {
+        for my in -(m_max as i64)..=m_max as i64 {
+            let (kx, ky) = (nx as f64 * dkx, my as f64 * dky);
+            let k = kx.hypot(ky);
+            // Half plane: n > 0, or n = 0 with m > 0.
+            if (nx == 0 && my <= 0) || k > k_max {
+                continue;
+            }
+            let s = modes.get(nx, my).norm_sqr() / n;
+            let shell = shell_of(k, dk, nshell);
+            out.sums[shell] += s;
+            out.counts[shell] += 1;
+            if s > out.peak.0 {
+                out.peak = (s, kx, ky);
+            }
         }
     }
-    total
+    out
 }
 
 /// S(k) and ψ_T over the snapshots.
@@ -208,7 +145,7 @@ impl StructureFactor {
 
     /// Add a snapshot at `t` if it is the first of its time block.
     pub fn add(&mut self, t: f64, x: &[f64], y: &[f64]) {
-        if t < self.t0 || !(self.block_time > 0.0) || x.is_empty() {
+        if t < self.t0 || self.block_time.is_nan() || self.block_time <= 0.0 || x.is_empty() {
             return;
         }
         let blk = (((t - self.t0) / self.block_time) as usize).min(BLOCKS - 1);
@@ -236,7 +173,10 @@ impl StructureFactor {
             vectors.push(c);
         }
         let top = (0..s.len()).max_by(|&a, &b| s[a].total_cmp(&s[b]))?;
-        let psi_t: Vec<f64> = used.iter().map(|u| (u.peak.0 / u.n as f64).sqrt()).collect();
+        let psi_t: Vec<f64> = used
+            .iter()
+            .map(|u| (u.peak.0 / u.n as f64).sqrt())
+            .collect();
         let (translational, translational_std_error) = mean_se(&psi_t);
         Some(StructureFactorReport {
             peak_k: k[top],
@@ -307,13 +247,12 @@ mod tests {
         }
         let r = sf.report().unwrap();
         assert_eq!(r.snapshots, BLOCKS);
-        let z2: f64 = r
-            .s
-            .iter()
-            .zip(&r.std_error)
-            .map(|(s, e)| ((s - 1.0) / e).powi(2))
-            .sum::<f64>()
-            / r.s.len() as f64;
+        let z2: f64 =
+            r.s.iter()
+                .zip(&r.std_error)
+                .map(|(s, e)| ((s - 1.0) / e).powi(2))
+                .sum::<f64>()
+                / r.s.len() as f64;
         assert!((0.6..1.6).contains(&z2), "mean squared deviation {z2}");
         assert!(r.translational < 0.2, "{}", r.translational);
     }

@@ -368,7 +368,7 @@ fn structure_text(r: &Report, s: &mut String) {
             fit(g.xi6),
             g.decay.unwrap_or("neither (fewer than 3 significant envelope points: short-ranged)"),
             match (g.decay, g.eta6) {
-                (Some("power law"), Some([eta, _])) if eta <= 0.25 => " (η6 ≤ 1/4: hexatic-like)",
+                (Some("power law"), Some([eta, _])) if eta <= 0.25 => " (η6 ≤ 1/4: quasi-long-range order, as in the hexatic phase, or a crystal)",
                 _ => "",
             }
         );
