@@ -9,7 +9,7 @@ mod cli_common;
 use std::path::{Path, PathBuf};
 
 use carom::core::DVec2;
-use carom::render::{speed_colour, Layout, BACKGROUND, SPECIES};
+use carom::render::{scale_colour, Layout, BACKGROUND, SPECIES};
 use cli_common::*;
 
 /// Width given to every render here.
@@ -89,7 +89,7 @@ fn discs_have_their_species_colour_and_the_rest_is_background() {
 }
 
 #[test]
-fn speed_colours_follow_the_speeds_and_nearest_snapshots_are_chosen() {
+fn scale_colours_follow_the_speeds_and_nearest_snapshots_are_chosen() {
     let dir = scratch("speed");
     two_disc_log(&dir, "walls", true);
     let w = WIDTH.to_string();
@@ -104,12 +104,12 @@ fn speed_colours_follow_the_speeds_and_nearest_snapshots_are_chosen() {
     let layout = Layout::new(WIDTH, DVec2::new(20.0, 10.0), true);
     assert_eq!(img.dimensions(), layout.size);
     // The scale's top is the faster disc's speed.
-    assert_eq!(rgb_at(&img, &layout, 4.0, 5.0), rgb(speed_colour(0.5, 0.5)));
+    assert_eq!(rgb_at(&img, &layout, 4.0, 5.0), rgb(scale_colour(0.5, 0.5)));
     assert_eq!(
         rgb_at(&img, &layout, 12.0, 5.0),
-        rgb(speed_colour(0.25, 0.5))
+        rgb(scale_colour(0.25, 0.5))
     );
-    assert_ne!(speed_colour(0.5, 0.5), speed_colour(0.25, 0.5));
+    assert_ne!(scale_colour(0.5, 0.5), scale_colour(0.25, 0.5));
     for (t, nearest) in [("1.4", "t = 1,"), ("1.6", "t = 2,"), ("1.5", "t = 1,")] {
         let out = ok(&carom(
             &dir,

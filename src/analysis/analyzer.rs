@@ -9,10 +9,13 @@
 
 use carom_core::observables::{degrees_of_freedom, packing_fraction, temperature};
 
+use super::bond_correlation::BondCorrelation;
+use super::bond_order::BondOrder;
 use super::options::{budget_spacing, AnalysisOptions, DECORRELATION_COLLISIONS};
 use super::pair_correlation::PairCorrelation;
 use super::report::{Report, SpeciesInfo, WindowReport};
 use super::stats::StatsError;
+use super::structure_factor::StructureFactor;
 use super::{collision_rate, contact, inelastic, pressure, temperature, velocity, RunDescription};
 
 #[derive(Debug, Clone, Copy, Default)]
@@ -59,6 +62,12 @@ pub struct Analyzer {
     pub(super) every_from_budget: bool,
     /// Pair-distance histograms per time block (physics.md §10).
     pub(super) pair_correlation: PairCorrelation,
+    /// |Ψ6| and local |ψ6| of every snapshot (physics.md §11).
+    pub(super) bond_order: BondOrder,
+    /// g6(r) per time block.
+    pub(super) bond_correlation: BondCorrelation,
+    /// S(k) of one snapshot per time block (periodic boxes only).
+    pub(super) structure_factor: Option<StructureFactor>,
 }
 
 impl Analyzer {
@@ -109,8 +118,18 @@ impl Analyzer {
                 )
             }
         };
+        let sigma_min = 2.0
+            * run
+                .species
+                .iter()
+                .filter(|s| s.count > 0)
+                .map(|s| s.radius)
+                .fold(f64::INFINITY, f64::min);
         Ok(Analyzer {
             pair_correlation: PairCorrelation::new(&run.species, &run.sim_box, t_eq, run.t_end),
+            bond_order: BondOrder::default(),
+            bond_correlation: BondCorrelation::new(&run.species, &run.sim_box, t_eq, run.t_end),
+            structure_factor: StructureFactor::new(&run.sim_box, sigma_min, t_eq, run.t_end),
             every_default,
             every_from_budget,
             bin_width: (run.t_end - t_eq) / nbins as f64,
@@ -285,8 +304,9 @@ impl Analyzer {
     }
 
     /// The positions of a snapshot at time `t` (species index and centre of every
-    /// disc, length): their pair distances go into g(r) when `t` is after the
-    /// equilibration time (every such snapshot, independent of `every`).
+    /// disc, length), used when `t` is after the equilibration time (independent
+    /// of `every`): pair distances into g(r) and ψ6 from every such snapshot, g6(r)
+    /// and S(k) from some (physics.md §10–§11).
     ///
     /// Errors when the slices differ in length or a species index is not one of
     /// the run's species.
@@ -318,8 +338,13 @@ impl Analyzer {
         if t < self.t_eq - 1e-12 * self.t_eq.abs().max(span) {
             return Ok(());
         }
-        self.pair_correlation
-            .add(t.max(self.t_eq), species_of, x, y);
+        let t = t.max(self.t_eq);
+        self.pair_correlation.add(t, species_of, x, y);
+        let psi = self.bond_order.add(t, &self.run.sim_box, x, y);
+        self.bond_correlation.add(t, x, y, &psi);
+        if let Some(sf) = &mut self.structure_factor {
+            sf.add(t, x, y);
+        }
         Ok(())
     }
 
@@ -425,6 +450,12 @@ impl Analyzer {
             enskog,
             inelastic,
             pair_correlation,
+            bond_order: self.bond_order.report(),
+            orientational_correlation: self.bond_correlation.report(),
+            structure_factor: self
+                .structure_factor
+                .as_ref()
+                .and_then(StructureFactor::report),
         })
     }
 

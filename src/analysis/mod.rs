@@ -8,29 +8,44 @@
 //! the velocity distribution against Maxwell–Boltzmann, pressure and Z, the
 //! collision rate and the Enskog check, and for inelastic runs the energy budget
 //! and Haff's law; from the snapshots' positions the pair correlation g_ab(r),
-//! its contact values and the contact theorem. [`stats`] holds the statistics (histograms, χ², KS, blocking).
+//! its contact values and the contact theorem, the bond-orientational order ψ6
+//! (Delaunay neighbours), g6(r), and S(k) with the translational order.
+//! [`stats`] holds the statistics (histograms, χ², KS, blocking).
 
 mod analyzer;
+mod bond_correlation;
+mod bond_order;
+mod cell_list;
 mod collision_rate;
 mod contact;
 mod description;
 mod from_log;
 mod inelastic;
+mod neighbours;
+mod nufft;
 mod options;
 mod pair_correlation;
 mod pressure;
 mod report;
 mod series;
 pub mod stats;
+mod structure_factor;
 mod temperature;
+#[cfg(test)]
+mod test_lattice;
 mod velocity;
 
 pub use analyzer::Analyzer;
+pub use bond_correlation::{
+    BondCorrelationReport, G6_BIN_WIDTH_SIGMA, G6_R_MAX_SIGMA, G6_SNAPSHOTS,
+};
+pub use bond_order::{global_psi6, local_psi6, BondOrderReport};
 pub use contact::{
     ContactTheoremReport, ContactValue, PairCorrelationReport, PairReport, CONTACT_FIT_SIGMA,
 };
 pub use description::RunDescription;
 pub use from_log::{analyze_log, AnalysisError, ReadObserver};
+pub use neighbours::GHOST_SPACINGS;
 pub use options::{AnalysisOptions, CORRELATED_SPACING, DECORRELATION_COLLISIONS, MAX_VELOCITIES};
 pub use pair_correlation::{BIN_WIDTH_SIGMA, BLOCKS as PAIR_CORRELATION_BLOCKS, R_MAX_SIGMA};
 pub use report::{
@@ -39,4 +54,5 @@ pub use report::{
     SpeciesMb, SpeciesUntested, TemperatureReport, WindowReport,
 };
 pub use series::DRIFT_STD_ERRORS;
+pub use structure_factor::{StructureFactorReport, SK_K_MAX_SIGMA, SK_MAX_MODES, SK_SNAPSHOTS};
 pub use velocity::{MAX_SNAPSHOT_CORRELATION, MB_FAMILY_ALPHA, MB_TESTS_PER_SPECIES};

@@ -1,8 +1,8 @@
 //! The pair correlation g_ab(r) per species pair (physics.md §10), streamed over
 //! snapshots: each snapshot's pair distances (minimum image along periodic axes,
-//! a cell list so that one snapshot costs O(N)) go into a histogram of one of
+//! a cell list, [`super::cell_list`]) go into a histogram of one of
 //! [`BLOCKS`] equal time blocks, so memory is independent of the number of
-//! snapshots (rows of cells on all cores, rayon). g is the count over the exact ideal-gas count (10.1):
+//! snapshots. g is the count over the exact ideal-gas count (10.1):
 //! N_a N_b' P_ab(shell), with b' = N_b − δ_ab (unordered pairs: halved when
 //! a = b) and P_ab the probability that two independent uniform centres in their
 //! reachable regions lie a distance in the shell apart: π(r₂² − r₁²)/A in a
@@ -11,7 +11,8 @@
 //! standard error of the block means.
 
 use carom_core::{Boundary, SimBox, Species};
-use rayon::prelude::*;
+
+use super::cell_list::CellList;
 
 /// Number of equal time blocks over the window (error bars from their spread).
 pub const BLOCKS: usize = 16;
@@ -35,9 +36,8 @@ pub struct PairCorrelation {
     counts: Vec<Vec<Vec<u64>>>,
     /// Snapshots per block.
     pub(super) snapshots: Vec<u64>,
-    /// Cell list scratch: cell of each disc, sorted disc order, cell starts.
-    order: Vec<u32>,
-    starts: Vec<u32>,
+    /// Cell list scratch.
+    cells: CellList,
 }
 
 /// Index of the unordered species pair (a ≤ b) among `ns` species.
@@ -84,8 +84,7 @@ impl PairCorrelation {
             block_time: (t1 - t0) / BLOCKS as f64,
             counts: vec![vec![vec![0; nbins]; np]; BLOCKS],
             snapshots: vec![0; BLOCKS],
-            order: Vec::new(),
-            starts: Vec::new(),
+            cells: CellList::default(),
         }
     }
 
@@ -103,127 +102,27 @@ impl PairCorrelation {
             return;
         }
         let blk = (((t - self.t0) / self.block_time) as usize).min(BLOCKS - 1);
-        let (lx, ly) = (self.sim_box.size.x, self.sim_box.size.y);
-        let per = self.sim_box.boundary.map(|b| b.is_periodic());
-        // Cells at least r_max wide; fewer than 3 along a periodic axis would
-        // visit a neighbour twice, so such an axis gets a single cell.
-        let ncell = |l: f64, p: bool| {
-            let n = ((l / self.r_max).floor() as usize).max(1);
-            if p && n < 3 {
-                1
-            } else {
-                n.min(1 << 12)
-            }
-        };
-        let (cx, cy) = (ncell(lx, per[0]), ncell(ly, per[1]));
-        let cell_of =
-            |v: f64, l: f64, n: usize| (((v / l) * n as f64).floor().max(0.0) as usize).min(n - 1);
-        let n = x.len();
-        let cells: Vec<usize> = (0..n)
-            .map(|i| cell_of(y[i], ly, cy) * cx + cell_of(x[i], lx, cx))
-            .collect();
-        self.starts.clear();
-        self.starts.resize(cx * cy + 1, 0);
-        for &c in &cells {
-            self.starts[c + 1] += 1;
-        }
-        for c in 0..cx * cy {
-            self.starts[c + 1] += self.starts[c];
-        }
-        let mut fill = self.starts.clone();
-        self.order.clear();
-        self.order.resize(n, 0);
-        for (i, &c) in cells.iter().enumerate() {
-            self.order[fill[c] as usize] = i as u32;
-            fill[c] += 1;
-        }
+        self.cells.build(&self.sim_box, self.r_max, x, y);
         let ns = self.species.len();
-        let r2max = self.r_max * self.r_max;
-        let inv_dr = 1.0 / self.dr;
-        let nbins = self.nbins;
-        let (hx, hy) = (0.5 * lx, 0.5 * ly);
-        // Half stencil: the own cell (pairs i < j) and four neighbours, so each
-        // pair of neighbouring cells is visited once; an axis with one cell has
-        // no neighbours along it, a walled axis none beyond its ends.
-        const HALF: [(i64, i64); 5] = [(0, 0), (1, 0), (-1, 1), (0, 1), (1, 1)];
-        let wrap = |k: i64, nc: usize, p: bool| -> Option<usize> {
-            if p {
-                Some(k.rem_euclid(nc as i64) as usize)
-            } else {
-                (0..nc as i64).contains(&k).then_some(k as usize)
-            }
-        };
-        let visit = |hist: &mut [Vec<u64>], i: usize, j: usize| {
-            let mut dx = x[j] - x[i];
-            let mut dy = y[j] - y[i];
-            if per[0] {
-                if dx > hx {
-                    dx -= lx;
-                } else if dx < -hx {
-                    dx += lx;
-                }
-            }
-            if per[1] {
-                if dy > hy {
-                    dy -= ly;
-                } else if dy < -hy {
-                    dy += ly;
-                }
-            }
-            let r2 = dx * dx + dy * dy;
-            if r2 < r2max {
-                let k = ((r2.sqrt() * inv_dr) as usize).min(nbins - 1);
-                let p = pair_index(species_of[i] as usize, species_of[j] as usize, ns);
-                hist[p][k] += 1;
-            }
-        };
-        let (order, starts) = (&self.order, &self.starts);
-        let cell = |c: usize| &order[starts[c] as usize..starts[c + 1] as usize];
-        let row = |hist: &mut [Vec<u64>], gy: usize| {
-            for gx in 0..cx {
-                let own = cell(gy * cx + gx);
-                for (a, &i) in own.iter().enumerate() {
-                    for &j in &own[a + 1..] {
-                        visit(hist, i as usize, j as usize);
-                    }
-                }
-                for &(ox, oy) in &HALF[1..] {
-                    if (ox != 0 && cx == 1) || (oy != 0 && cy == 1) {
-                        continue;
-                    }
-                    let (Some(nx), Some(ny)) = (
-                        wrap(gx as i64 + ox, cx, per[0]),
-                        wrap(gy as i64 + oy, cy, per[1]),
-                    ) else {
-                        continue;
-                    };
-                    let other = cell(ny * cx + nx);
-                    for &i in own {
-                        for &j in other {
-                            visit(hist, i as usize, j as usize);
-                        }
-                    }
-                }
-            }
-        };
-        // Rows of cells in parallel, each thread into its own histogram; integer
-        // counts, so the sum is the same in any order (deterministic).
+        let (inv_dr, nbins) = (1.0 / self.dr, self.nbins);
         let np = self.counts[blk].len();
-        let zero = || vec![vec![0u64; nbins]; np];
-        let local = (0..cy)
-            .into_par_iter()
-            .fold(zero, |mut h, gy| {
-                row(&mut h, gy);
-                h
-            })
-            .reduce(zero, |mut a, b| {
+        // Integer counts: the same sum in any order.
+        let local = self.cells.fold_pairs(
+            x,
+            y,
+            || vec![vec![0u64; nbins]; np],
+            |hist, i, j, r| {
+                let k = ((r * inv_dr) as usize).min(nbins - 1);
+                hist[pair_index(species_of[i] as usize, species_of[j] as usize, ns)][k] += 1;
+            },
+            |a, b| {
                 for (x, y) in a.iter_mut().zip(&b) {
                     for (u, v) in x.iter_mut().zip(y) {
                         *u += v;
                     }
                 }
-                a
-            });
+            },
+        );
         for (x, y) in self.counts[blk].iter_mut().zip(&local) {
             for (u, v) in x.iter_mut().zip(y) {
                 *u += v;

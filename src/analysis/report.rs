@@ -5,8 +5,11 @@
 
 use serde::Serialize;
 
+use super::bond_correlation::BondCorrelationReport;
+use super::bond_order::BondOrderReport;
 use super::contact::PairCorrelationReport;
 use super::stats::{Histogram, KsTest};
+use super::structure_factor::StructureFactorReport;
 #[cfg(doc)]
 use super::{DECORRELATION_COLLISIONS, MAX_SNAPSHOT_CORRELATION, MB_FAMILY_ALPHA};
 
@@ -47,6 +50,14 @@ pub struct Report {
     /// Pair correlation g(r), contact values and the contact theorem
     /// (physics.md §10); `null` without snapshots after the equilibration time.
     pub pair_correlation: Option<PairCorrelationReport>,
+    /// Bond-orientational order ψ6, |Ψ6| and χ6 (physics.md §11); `null` with
+    /// fewer than two snapshots after the equilibration time.
+    pub bond_order: Option<BondOrderReport>,
+    /// g6(r) and its decay (physics.md §11); `null` without snapshots.
+    pub orientational_correlation: Option<BondCorrelationReport>,
+    /// S(k) and the translational order (physics.md §11); `null` unless the box
+    /// is periodic and there are snapshots.
+    pub structure_factor: Option<StructureFactorReport>,
 }
 
 /// One species of the run.

@@ -290,6 +290,7 @@ pub fn text(r: &Report, args: &AnalyzeArgs, complete: bool) -> String {
             );
         }
     }
+    structure_text(r, &mut s);
     if let Some(i) = &r.inelastic {
         if let Some(e) = &i.energy {
             let _ = writeln!(
@@ -333,6 +334,59 @@ pub fn text(r: &Report, args: &AnalyzeArgs, complete: bool) -> String {
 
 /// How a species' snapshots were thinned, for the text report ("" when all of the
 /// window's snapshots were used).
+/// The lines of bond order, g6(r) and S(k) (physics.md §11).
+fn structure_text(r: &Report, s: &mut String) {
+    use std::fmt::Write;
+    if let Some(b) = &r.bond_order {
+        let _ = writeln!(
+            s,
+            "bond order  |Ψ6| = {:.4} ± {:.4}, local ⟨|ψ6|⟩ = {:.4} ± {:.4}, susceptibility χ6 = N(⟨|Ψ6|²⟩ − ⟨|Ψ6|⟩²) = {:.4} ± {:.4} ({} snapshots, Delaunay neighbours)",
+            Num(b.global), Num(b.global_std_error), Num(b.local), Num(b.local_std_error),
+            Num(b.susceptibility), Num(b.susceptibility_std_error), b.snapshots
+        );
+        if let Some(d) = b.drift.as_ref().filter(|d| d.drifting) {
+            let _ = writeln!(
+                s,
+                "  drifting: first half |Ψ6| = {:.4} ± {:.4}, second half {:.4} ± {:.4} ({:.1} standard errors apart); \
+                 the order is still changing: equilibrate longer with --equilibrate T",
+                Num(d.first_half), Num(d.first_half_std_error), Num(d.second_half),
+                Num(d.second_half_std_error), d.difference_std_errors
+            );
+        }
+    }
+    if let Some(g) = &r.orientational_correlation {
+        let fit = |v: Option<[f64; 2]>| match v {
+            Some([x, e]) => format!("{:.4} ± {:.4}", Num(x), Num(e)),
+            None => "n/a".to_string(),
+        };
+        let _ = writeln!(
+            s,
+            "orientational correlation  g6(r) to r = {:.4} from {} snapshots: power law η6 = {}, exponential ξ6 = {}; {} fits better{}",
+            Num(g.r.last().copied().unwrap_or(f64::NAN) + 0.5 * (g.r.get(1).copied().unwrap_or(0.0) - g.r.first().copied().unwrap_or(0.0))),
+            g.snapshots,
+            fit(g.eta6),
+            fit(g.xi6),
+            g.decay.unwrap_or("neither (fewer than 3 significant envelope points: short-ranged)"),
+            match (g.decay, g.eta6) {
+                (Some("power law"), Some([eta, _])) if eta <= 0.25 => " (η6 ≤ 1/4: quasi-long-range order, as in the hexatic phase, or a crystal)",
+                _ => "",
+            }
+        );
+    }
+    if let Some(f) = &r.structure_factor {
+        let _ = writeln!(
+            s,
+            "structure factor  first peak S = {:.4} at k = {:.4}; S at the smallest k = {:.4} ± {:.4} (k = {:.4}); \
+             translational order ψ_T = max_k |ρ_k|/N = {:.4} ± {:.4} at k = ({:.4}, {:.4}) ({} snapshots)",
+            Num(f.peak_s), Num(f.peak_k),
+            Num(f.s.first().copied().unwrap_or(f64::NAN)), Num(f.std_error.first().copied().unwrap_or(f64::NAN)),
+            Num(f.k.first().copied().unwrap_or(f64::NAN)),
+            Num(f.translational), Num(f.translational_std_error),
+            Num(f.translational_k[0]), Num(f.translational_k[1]), f.snapshots
+        );
+    }
+}
+
 fn thinned(m: &carom::analysis::SpeciesMb) -> String {
     match m.snapshot_correlation {
         Some(rho) if m.snapshot_step > 1 => format!(

@@ -6,8 +6,9 @@
 //! `temperature` (kT against time; for a cooling run on log–log axes against the
 //! time since the first record, with Haff's law), `pressure` (Z against time with
 //! the mean and one standard error, and the halves' means when it drifts),
-//! `pair_correlation` (g_ab(r) per species pair with its contact value). Axes are
-//! in the run's units.
+//! `pair_correlation` (g_ab(r) per species pair with its contact value),
+//! `bond_order`, `g6` and `structure_factor` ([`structure`]). Axes are in the
+//! run's units.
 
 use std::ops::Range;
 use std::path::Path;
@@ -19,9 +20,13 @@ use plotters::prelude::*;
 
 use super::CliError;
 
+#[path = "plot_structure.rs"]
+mod structure;
+
 const SIZE: (u32, u32) = (900, 600);
 
-type DrawResult<DB> = Result<(), DrawingAreaErrorKind<<DB as DrawingBackend>::ErrorType>>;
+pub(super) type DrawResult<DB> =
+    Result<(), DrawingAreaErrorKind<<DB as DrawingBackend>::ErrorType>>;
 
 /// A figure that could not be drawn or written: the error says which file and why (the operating system's reason for a write).
 fn plot_err<E: std::error::Error + Send + Sync + 'static>(
@@ -100,10 +105,24 @@ pub fn write_all(report: &Report, dir: &Path) -> Result<usize, CliError> {
         ));
         n += 1;
     }
+    if let Some(b) = report.bond_order.as_ref().filter(|b| b.series.len() >= 2) {
+        both!(dir, "bond_order", |root| structure::draw_bond_order(
+            root, b
+        ));
+        n += 1;
+    }
+    if let Some(g) = &report.orientational_correlation {
+        both!(dir, "g6", |root| structure::draw_g6(root, g));
+        n += 1;
+    }
+    if let Some(f) = report.structure_factor.as_ref().filter(|f| f.k.len() >= 2) {
+        both!(dir, "structure_factor", |root| structure::draw_sk(root, f));
+        n += 1;
+    }
     Ok(n)
 }
 
-fn range(values: impl Iterator<Item = f64>) -> (f64, f64) {
+pub(super) fn range(values: impl Iterator<Item = f64>) -> (f64, f64) {
     let (lo, hi) = values
         .filter(|v| v.is_finite())
         .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), v| {
@@ -118,10 +137,10 @@ fn range(values: impl Iterator<Item = f64>) -> (f64, f64) {
 }
 
 /// A chart with f64 axes on both sides.
-type Chart<'a, DB> = ChartContext<'a, DB, Cartesian2d<RangedCoordf64, RangedCoordf64>>;
+pub(super) type Chart<'a, DB> = ChartContext<'a, DB, Cartesian2d<RangedCoordf64, RangedCoordf64>>;
 
 /// The chart every figure uses: a caption, labelled axes over `x` × `y`.
-fn axes<'a, DB: DrawingBackend>(
+pub(super) fn axes<'a, DB: DrawingBackend>(
     root: &'a DrawingArea<DB, Shift>,
     caption: &str,
     (x_desc, y_desc): (&str, &str),
@@ -143,7 +162,7 @@ fn axes<'a, DB: DrawingBackend>(
 }
 
 /// The legend of the labelled series drawn so far.
-fn legend<'a, DB: DrawingBackend + 'a>(chart: &mut Chart<'a, DB>) -> DrawResult<DB> {
+pub(super) fn legend<'a, DB: DrawingBackend + 'a>(chart: &mut Chart<'a, DB>) -> DrawResult<DB> {
     chart
         .configure_series_labels()
         .background_style(WHITE.mix(0.8))
@@ -152,7 +171,7 @@ fn legend<'a, DB: DrawingBackend + 'a>(chart: &mut Chart<'a, DB>) -> DrawResult<
 }
 
 /// The largest of `values`, times 1.1 (a density axis's top), at least 10⁻¹².
-fn top(values: impl Iterator<Item = f64>) -> f64 {
+pub(super) fn top(values: impl Iterator<Item = f64>) -> f64 {
     (values.fold(0.0, f64::max) * 1.1).max(1e-12)
 }
 

@@ -18,6 +18,12 @@ pub enum ColourArg {
     Species,
     /// Speed |v| on a colour map, with a colour bar.
     Speed,
+    /// Local bond order |ψ6| (Delaunay neighbours), 0 to 1: crystalline and
+    /// hexatic patches bright, defects and grain boundaries dark.
+    Psi6,
+    /// Phase of ψ6, arg ψ6 / 6 (the local lattice orientation modulo 60°) on a
+    /// colour wheel: each orientational domain its own colour.
+    Psi6Phase,
 }
 
 /// Arguments of `carom render`.
@@ -124,6 +130,8 @@ pub fn render(args: RenderArgs) -> Result<ExitCode, CliError> {
     let by = match args.color {
         ColourArg::Species => ColourBy::Species,
         ColourArg::Speed => ColourBy::Speed,
+        ColourArg::Psi6 => ColourBy::Psi6,
+        ColourArg::Psi6Phase => ColourBy::Psi6Phase,
     };
     let out = args
         .out

@@ -12,7 +12,7 @@ use plotters::coord::Shift;
 use plotters::element::DashedPathElement;
 use plotters::prelude::*;
 
-use super::colours::{species_colour, speed_colour, BACKGROUND};
+use super::colours::{scale_colour, species_colour, wheel_colour, BACKGROUND};
 use super::layout::{Layout, MARGIN, TITLE};
 use super::raster::Raster;
 
@@ -26,6 +26,22 @@ pub enum Colouring {
         /// The speed at the top of the scale (length/time).
         max: f64,
     },
+    /// By the local bond order |ψ6| (physics.md §11), viridis from 0 to 1.
+    Psi6,
+    /// By the phase arg ψ6 / 6 on a colour wheel.
+    Psi6Phase,
+}
+
+/// ψ6 of every disc of `s` (Delaunay neighbours, minimum image along periodic axes).
+fn psi6_of(s: &Snapshot, periodic: [bool; 2]) -> Vec<[f64; 2]> {
+    let mut sim_box = carom_core::SimBox::periodic(s.box_size.x, s.box_size.y);
+    for (b, p) in sim_box.boundary.iter_mut().zip(periodic) {
+        if !p {
+            *b = carom_core::Boundary::Walls { restitution: 1.0 };
+        }
+    }
+    let (x, y): (Vec<f64>, Vec<f64>) = s.positions.iter().map(|p| (p.x, p.y)).unzip();
+    crate::analysis::local_psi6(&sim_box, &x, &y)
 }
 
 /// How discs are drawn.
@@ -66,12 +82,20 @@ pub fn draw_snapshot<DB: DrawingBackend>(
     let l = s.box_size;
     let periodic = [s.boundary[0] == 0, s.boundary[1] == 0];
     let mut raster = (style == DiscStyle::Raster).then(|| Raster::new(layout, BACKGROUND));
+    let psi =
+        matches!(colouring, Colouring::Psi6 | Colouring::Psi6Phase).then(|| psi6_of(s, periodic));
     for (i, p) in s.positions.iter().enumerate() {
         let k = s.species[i];
         let r = s.species_radius.get(usize::from(k)).copied().unwrap_or(0.0);
         let colour = match colouring {
             Colouring::Species => species_colour(k),
-            Colouring::Speed { max } => speed_colour(s.velocities[i].length(), max),
+            Colouring::Speed { max } => scale_colour(s.velocities[i].length(), max),
+            Colouring::Psi6 => psi
+                .as_ref()
+                .map_or(BACKGROUND, |p| scale_colour(p[i][0].hypot(p[i][1]), 1.0)),
+            Colouring::Psi6Phase => psi.as_ref().map_or(BACKGROUND, |p| {
+                wheel_colour(p[i][1].atan2(p[i][0]) / std::f64::consts::TAU)
+            }),
         };
         let radius = r * layout.scale;
         for dx in images(p.x, r, l.x, periodic[0]) {
@@ -123,7 +147,16 @@ pub fn draw_snapshot<DB: DrawingBackend>(
     draw_title(area, s, periodic, layout.size.0)?;
     match colouring {
         Colouring::Species => draw_legend(area, s, layout)?,
-        Colouring::Speed { max } => draw_bar(area, layout, max)?,
+        Colouring::Speed { max } => draw_bar(area, layout, ("speed |v|", 0.0), max, |v| {
+            scale_colour(v, max)
+        })?,
+        Colouring::Psi6 => draw_bar(area, layout, ("order |ψ6|", 0.0), 1.0, |v| {
+            scale_colour(v, 1.0)
+        })?,
+        // arg ψ6 / 6 in degrees, −30 to 30: the wheel's full turn.
+        Colouring::Psi6Phase => draw_bar(area, layout, ("arg ψ6 / 6 (°)", -30.0), 60.0, |v| {
+            wheel_colour(v / 60.0 - 0.5)
+        })?,
     }
     Ok(())
 }
@@ -197,11 +230,14 @@ fn tick(v: f64, max: f64) -> String {
     format!("{v:.decimals$}")
 }
 
-/// The speed colour bar: the map from 0 (bottom) to `max` (top), with labels.
+/// A colour bar titled `label`: `colour(v)` for v from 0 (bottom) to `max` (top),
+/// labelled v + `offset`.
 fn draw_bar<DB: DrawingBackend>(
     area: &DrawingArea<DB, Shift>,
     layout: &Layout,
+    (label, offset): (&str, f64),
     max: f64,
+    colour: impl Fn(f64) -> RGBColor,
 ) -> DrawResult<DB> {
     let Some((x, y, w, h)) = layout.bar else {
         return Ok(());
@@ -210,7 +246,7 @@ fn draw_bar<DB: DrawingBackend>(
         let v = max * f64::from(h - 1 - row) / f64::from((h - 1).max(1));
         area.draw(&Rectangle::new(
             [(x, y + row), (x + w, y + row + 1)],
-            speed_colour(v, max).filled(),
+            colour(v).filled(),
         ))?;
     }
     area.draw(&Rectangle::new(
@@ -221,9 +257,13 @@ fn draw_bar<DB: DrawingBackend>(
         let v = max * f64::from(j) / 4.0;
         let py = y + h - 1 - ((h - 1) * j) / 4;
         area.draw(&PathElement::new([(x + w, py), (x + w + 5, py)], BLACK))?;
-        area.draw(&Text::new(tick(v, max), (x + w + 8, py - 7), font(14)))?;
+        area.draw(&Text::new(
+            tick(v + offset, max),
+            (x + w + 8, py - 7),
+            font(14),
+        ))?;
     }
-    area.draw(&Text::new("speed |v|", (x - 16, y - 22), font(15)))
+    area.draw(&Text::new(label.to_owned(), (x - 16, y - 22), font(15)))
 }
 
 #[cfg(test)]

@@ -13,7 +13,7 @@ mod draw;
 mod layout;
 mod raster;
 
-pub use colours::{species_colour, speed_colour, speed_scale, BACKGROUND, SPECIES};
+pub use colours::{scale_colour, species_colour, speed_scale, wheel_colour, BACKGROUND, SPECIES};
 pub use draw::{draw_snapshot, Colouring, DiscStyle, DrawResult};
 pub use layout::Layout;
 pub use raster::Raster;
@@ -35,6 +35,17 @@ pub enum ColourBy {
     Species,
     /// Speed (the viridis map with a colour bar).
     Speed,
+    /// The local bond order |ψ6| (viridis from 0 to 1, with a colour bar).
+    Psi6,
+    /// The phase of ψ6, arg ψ6 / 6 ∈ (−30°, 30°] (a colour wheel, with a bar).
+    Psi6Phase,
+}
+
+impl ColourBy {
+    /// Whether the picture has a colour bar.
+    pub fn has_bar(self) -> bool {
+        self != ColourBy::Species
+    }
 }
 
 /// The colouring of `s` by `by`: a speed scale from `s`'s own speeds.
@@ -47,6 +58,8 @@ pub fn colouring_for(s: &Snapshot, by: ColourBy) -> Colouring {
                 max: speed_scale(&mut v),
             }
         }
+        ColourBy::Psi6 => Colouring::Psi6,
+        ColourBy::Psi6Phase => Colouring::Psi6Phase,
     }
 }
 
@@ -121,7 +134,7 @@ pub fn render_snapshot(
 ) -> Result<Layout, FrameError> {
     register_font();
     let colouring = colouring_for(s, by);
-    let layout = Layout::new(width, s.box_size, by == ColourBy::Speed);
+    let layout = Layout::new(width, s.box_size, by.has_bar());
     let result = match format {
         ImageFormat::Png => {
             let (w, h) = layout.size;
@@ -186,7 +199,7 @@ impl Movie {
         delay_ms: u32,
     ) -> Result<Movie, FrameError> {
         register_font();
-        let layout = Layout::new(width, first.box_size, by == ColourBy::Speed);
+        let layout = Layout::new(width, first.box_size, by.has_bar());
         let backend = BitMapBackend::gif(out, layout.size, delay_ms).map_err(|e| {
             crate::frames::remove_output(out);
             FrameError::Write {

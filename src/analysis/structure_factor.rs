@@ -1,0 +1,282 @@
+//! The structure factor S(k) = |ρ_k|²/N, ρ_k = Σ_j e^{−i k·r_j}, on the wave
+//! vectors of a periodic box, k = 2π (n/L_x, m/L_y), 0 < |k| ≤ k_max =
+//! min([`SK_K_MAX_SIGMA`]/σ_min, [`SK_MAX_MODES`]·2π/L_max),
+//! radially averaged in shells 2π/min(L) wide centred on multiples of it
+//! (physics.md §11); ρ_k from the non-uniform FFT ([`super::nufft`]), and since
+//! ρ_{−k} = ρ_k* half of the k-plane is averaged. The largest S
+//! among the vectors gives the translational order ψ_T = max_k |ρ_k|/N (a Bragg
+//! peak of weight N ψ_T² in a crystal; of order N^(−1/2) in a fluid). It runs on
+//! at most [`SK_SNAPSHOTS`] snapshots, one per time block (errors from their
+//! spread).
+
+use carom_core::SimBox;
+use serde::Serialize;
+
+use super::nufft::density_modes;
+use super::pair_correlation::{mean_se, BLOCKS};
+
+/// Largest |k| in units of 1/σ_min (the first peak of a dense fluid is near 7).
+pub const SK_K_MAX_SIGMA: f64 = 10.0;
+/// Most modes per axis and sign: bounds the FFT grid at 2048² points (64 MiB),
+/// so k_max shrinks to 511·2π/L in boxes wider than about 320 σ_min.
+pub const SK_MAX_MODES: usize = 511;
+/// Most snapshots that enter S(k): one per time block.
+pub const SK_SNAPSHOTS: usize = BLOCKS;
+
+/// S(k) of one snapshot, shell by shell, and its largest value with the vector.
+#[derive(Debug, Clone, PartialEq)]
+pub struct SnapshotSk {
+    /// Σ S over the vectors in each shell.
+    pub sums: Vec<f64>,
+    /// Vectors in each shell (the half plane).
+    pub counts: Vec<u64>,
+    /// (largest S, its k_x, its k_y).
+    pub peak: (f64, f64, f64),
+    /// Discs.
+    pub n: usize,
+}
+
+/// k-shells of the box: width dk, count, and the largest |k|. Shell s holds
+/// the vectors with round(|k|/dk) = s, so that the vectors along the axes lie
+/// at the centres of theirs, not on a boundary.
+fn shells(sim_box: &SimBox, sigma_min: f64) -> (f64, usize, f64) {
+    let tp = 2.0 * std::f64::consts::PI;
+    let dk = tp / sim_box.size.x.min(sim_box.size.y);
+    let k_max = (SK_K_MAX_SIGMA / sigma_min)
+        .min(SK_MAX_MODES as f64 * tp / sim_box.size.x.max(sim_box.size.y));
+    (dk, (k_max / dk).round() as usize + 1, k_max)
+}
+
+/// The shell of a vector of length `k`.
+fn shell_of(k: f64, dk: f64, nshell: usize) -> usize {
+    ((k / dk).round() as usize).min(nshell - 1)
+}
+
+/// S(k) of the discs at (`x`, `y`) in the periodic `sim_box`.
+pub fn snapshot_sk(sim_box: &SimBox, sigma_min: f64, x: &[f64], y: &[f64]) -> SnapshotSk {
+    let two_pi = 2.0 * std::f64::consts::PI;
+    let (lx, ly) = (sim_box.size.x, sim_box.size.y);
+    let (dkx, dky) = (two_pi / lx, two_pi / ly);
+    let (dk, nshell, k_max) = shells(sim_box, sigma_min);
+    let n_max = (k_max / dkx).floor() as usize;
+    let m_max = (k_max / dky).floor() as usize;
+    let angle = |v: &[f64], l: f64| -> Vec<f64> {
+        v.iter()
+            .map(|&v| (two_pi * (v / l)).rem_euclid(two_pi))
+            .collect()
+    };
+    let modes = density_modes(&angle(x, lx), &angle(y, ly), n_max, m_max);
+    let n = x.len() as f64;
+    let mut out = SnapshotSk {
+        sums: vec![0.0; nshell],
+        counts: vec![0; nshell],
+        peak: (0.0, 0.0, 0.0),
+        n: x.len(),
+    };
+    for nx in 0..=n_max as i64 {
+        for my in -(m_max as i64)..=m_max as i64 {
+            let (kx, ky) = (nx as f64 * dkx, my as f64 * dky);
+            let k = kx.hypot(ky);
+            // Half plane: n > 0, or n = 0 with m > 0.
+            if (nx == 0 && my <= 0) || k > k_max {
+                continue;
+            }
+            let s = modes.get(nx, my).norm_sqr() / n;
+            let shell = shell_of(k, dk, nshell);
+            out.sums[shell] += s;
+            out.counts[shell] += 1;
+            if s > out.peak.0 {
+                out.peak = (s, kx, ky);
+            }
+        }
+    }
+    out
+}
+
+/// S(k) and ψ_T over the snapshots.
+#[derive(Debug, Clone)]
+pub struct StructureFactor {
+    sim_box: SimBox,
+    sigma_min: f64,
+    t0: f64,
+    block_time: f64,
+    /// One snapshot's S(k) per time block (the first in the block).
+    per_block: Vec<Option<SnapshotSk>>,
+}
+
+/// The radially averaged S(k) and the translational order.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct StructureFactorReport {
+    /// Shell centres (1/length); shells without vectors are left out.
+    pub k: Vec<f64>,
+    /// S averaged over the vectors of each shell and the snapshots.
+    pub s: Vec<f64>,
+    /// Standard error of S from the spread of the snapshots.
+    pub std_error: Vec<f64>,
+    /// Wave vectors in each shell (half plane).
+    pub vectors: Vec<u64>,
+    /// Snapshots used (one per time block).
+    pub snapshots: usize,
+    /// Position of the largest shell average (the first peak), 1/length.
+    pub peak_k: f64,
+    /// Its height.
+    pub peak_s: f64,
+    /// ψ_T = max_k |ρ_k|/N, mean over the snapshots.
+    pub translational: f64,
+    /// Its standard error.
+    pub translational_std_error: f64,
+    /// The vector of the largest S in the last snapshot used (1/length).
+    pub translational_k: [f64; 2],
+}
+
+impl StructureFactor {
+    /// An accumulator over [t0, t1]; `None` unless the box is periodic.
+    pub fn new(sim_box: &SimBox, sigma_min: f64, t0: f64, t1: f64) -> Option<Self> {
+        (sim_box.boundary.iter().all(|b| b.is_periodic()) && sigma_min > 0.0).then(|| {
+            StructureFactor {
+                sim_box: *sim_box,
+                sigma_min,
+                t0,
+                block_time: (t1 - t0) / BLOCKS as f64,
+                per_block: vec![None; BLOCKS],
+            }
+        })
+    }
+
+    /// Add a snapshot at `t` if it is the first of its time block.
+    pub fn add(&mut self, t: f64, x: &[f64], y: &[f64]) {
+        if t < self.t0 || self.block_time.is_nan() || self.block_time <= 0.0 || x.is_empty() {
+            return;
+        }
+        let blk = (((t - self.t0) / self.block_time) as usize).min(BLOCKS - 1);
+        if self.per_block[blk].is_none() {
+            self.per_block[blk] = Some(snapshot_sk(&self.sim_box, self.sigma_min, x, y));
+        }
+    }
+
+    /// The report; `None` without snapshots.
+    pub fn report(&self) -> Option<StructureFactorReport> {
+        let used: Vec<&SnapshotSk> = self.per_block.iter().flatten().collect();
+        let last = used.last()?;
+        let (dk, nshell, _) = shells(&self.sim_box, self.sigma_min);
+        let (mut k, mut s, mut std_error, mut vectors) = (vec![], vec![], vec![], vec![]);
+        for sh in 0..nshell {
+            let c = last.counts[sh];
+            if c == 0 {
+                continue;
+            }
+            let per: Vec<f64> = used.iter().map(|u| u.sums[sh] / c as f64).collect();
+            let (m, se) = mean_se(&per);
+            k.push(sh as f64 * dk);
+            s.push(m);
+            std_error.push(se);
+            vectors.push(c);
+        }
+        let top = (0..s.len()).max_by(|&a, &b| s[a].total_cmp(&s[b]))?;
+        let psi_t: Vec<f64> = used
+            .iter()
+            .map(|u| (u.peak.0 / u.n as f64).sqrt())
+            .collect();
+        let (translational, translational_std_error) = mean_se(&psi_t);
+        Some(StructureFactorReport {
+            peak_k: k[top],
+            peak_s: s[top],
+            k,
+            s,
+            std_error,
+            vectors,
+            snapshots: used.len(),
+            translational,
+            translational_std_error,
+            translational_k: [last.peak.1, last.peak.2],
+        })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::super::test_lattice::triangular;
+    use super::*;
+    use rand::{RngExt, SeedableRng};
+    use rand_pcg::Pcg64;
+
+    /// The row recurrence and the half plane give the shell sums of a plain
+    /// double loop over every vector with sin and cos.
+    #[test]
+    fn shell_sums_match_the_direct_double_sum() {
+        let mut rng = Pcg64::seed_from_u64(5);
+        let sb = SimBox::periodic(9.0, 7.0);
+        let x: Vec<f64> = (0..40).map(|_| rng.random_range(0.0..9.0)).collect();
+        let y: Vec<f64> = (0..40).map(|_| rng.random_range(0.0..7.0)).collect();
+        let got = snapshot_sk(&sb, 1.0, &x, &y);
+        let (dk, nshell, k_max) = shells(&sb, 1.0);
+        let mut sums = vec![0.0; nshell];
+        let tp = 2.0 * std::f64::consts::PI;
+        for n in -20i64..=20 {
+            for m in -20i64..=20 {
+                let (kx, ky) = (n as f64 * (tp / 9.0), m as f64 * (tp / 7.0));
+                let k = kx.hypot(ky);
+                if k == 0.0 || k > k_max {
+                    continue;
+                }
+                let (mut c, mut s) = (0.0, 0.0);
+                for j in 0..40 {
+                    c += (kx * x[j] + ky * y[j]).cos();
+                    s += (kx * x[j] + ky * y[j]).sin();
+                }
+                // Both halves of the plane: each shell's sum counted twice.
+                sums[shell_of(k, dk, nshell)] += 0.5 * (c * c + s * s) / 40.0;
+            }
+        }
+        for (a, b) in got.sums.iter().zip(&sums) {
+            assert!((a - b).abs() < 1e-9 * b.max(1.0), "{a} vs {b}");
+        }
+    }
+
+    /// Uniform random points have S(k) = 1 at every k: the shell means lie
+    /// within their errors of 1 (mean squared deviation ≈ 1 SE²).
+    #[test]
+    fn an_ideal_gas_has_s_one() {
+        let mut rng = Pcg64::seed_from_u64(9);
+        let sb = SimBox::periodic(20.0, 20.0);
+        let mut sf = StructureFactor::new(&sb, 1.0, 0.0, 1.0).unwrap();
+        for t in 0..BLOCKS {
+            let x: Vec<f64> = (0..300).map(|_| rng.random_range(0.0..20.0)).collect();
+            let y: Vec<f64> = (0..300).map(|_| rng.random_range(0.0..20.0)).collect();
+            sf.add((t as f64 + 0.5) / BLOCKS as f64, &x, &y);
+        }
+        let r = sf.report().unwrap();
+        assert_eq!(r.snapshots, BLOCKS);
+        let z2: f64 =
+            r.s.iter()
+                .zip(&r.std_error)
+                .map(|(s, e)| ((s - 1.0) / e).powi(2))
+                .sum::<f64>()
+                / r.s.len() as f64;
+        assert!((0.6..1.6).contains(&z2), "mean squared deviation {z2}");
+        assert!(r.translational < 0.2, "{}", r.translational);
+    }
+
+    /// A perfect triangular lattice: a Bragg peak of height N at a reciprocal
+    /// vector of length 4π/(√3 a), ψ_T = 1, and S = 0 at the vectors between.
+    #[test]
+    fn a_crystal_has_bragg_peaks_and_translational_order_one() {
+        let (sb, x, y) = triangular(16, 18, 1.0);
+        let one = snapshot_sk(&sb, 1.0, &x, &y);
+        let n = x.len() as f64;
+        assert!((one.peak.0 - n).abs() < 1e-6 * n, "{:?}", one.peak);
+        let g = one.peak.1.hypot(one.peak.2);
+        let g0 = 4.0 * std::f64::consts::PI / 3f64.sqrt();
+        assert!((g - g0).abs() < 1e-9, "{g} vs {g0}");
+        // The shells below the first Bragg shell hold only S = 0.
+        let (dk, _, _) = shells(&sb, 1.0);
+        for sh in 0..shell_of(g0, dk, one.sums.len()) {
+            assert!(one.sums[sh] < 1e-9 * n, "shell {sh}: {}", one.sums[sh]);
+        }
+        let mut sf = StructureFactor::new(&sb, 1.0, 0.0, 1.0).unwrap();
+        sf.add(0.0, &x, &y);
+        sf.add(0.5, &x, &y);
+        let r = sf.report().unwrap();
+        assert!((r.translational - 1.0).abs() < 1e-9);
+    }
+}
