@@ -42,3 +42,11 @@ pub fn draw_dynamics(
     };
     (restitution, tc)
 }
+
+pub mod oracle;
+
+/// A binary mixture: `n_small` discs of radius 0.5 and mass 1 and `n_large` of
+/// radius 0.7 and mass 2.5 (neither ratio a power of two).
+pub fn mixture(n_small: usize, n_large: usize) -> Vec<Species> {
+    vec![Species::reference(n_small), Species::new(n_large, 0.7, 2.5)]
+}
