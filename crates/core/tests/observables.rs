@@ -4,6 +4,7 @@
 //! * kT = 2K/f;
 //! * the virial estimators: Z − 1 is the virial rate W = Σ r·Δp / (2t) per N kT,
 //!   so it halves when the window doubles, and P = Z N kT / A;
+//! * a species with no discs counts for nothing, even one too wide for the box;
 //! * which boxes have walls (any walled axis), and the reachable area of a channel
 //!   or a walled box, L − 2a on each walled axis only;
 //! * the wall estimator: an ideal gas hitting the walls at its kinetic rate gives
@@ -78,6 +79,20 @@ fn ideal_wall_impulse(s: &[Species], b: &SimBox, kt: f64, t: f64) -> f64 {
             2.0 * kt * t * per_length
         })
         .sum()
+}
+
+#[test]
+fn a_species_without_discs_changes_nothing_even_as_wide_as_the_box() {
+    // Diameter 6 = L_y: its centres could reach no area at all.
+    let b = SimBox::walled(10.0, 6.0, 1.0);
+    let one = [Species::new(10, 0.5, 1.0)];
+    let with_absent = [one[0], Species::new(0, 3.0, 1.0)];
+    assert_eq!(accessible_area(&with_absent, &b), 9.0 * 5.0);
+    let j = ideal_wall_impulse(&one, &b, 1.0, 2.0);
+    assert_eq!(
+        wall_z(&with_absent, &b, 1.0, j, 2.0),
+        wall_z(&one, &b, 1.0, j, 2.0)
+    );
 }
 
 #[test]
