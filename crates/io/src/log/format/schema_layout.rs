@@ -274,6 +274,7 @@ fn compact_collision_batches_follow_their_schema() {
         back.decode_into(&encode(COMPACT_COLLISION_BATCH_MSG, &fields))
             .unwrap();
         assert_eq!(back, expected);
+        assert!(back.len() == 3 && !back.is_empty());
     }
 }
 
