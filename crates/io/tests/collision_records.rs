@@ -7,7 +7,8 @@
 //! (Found missing by mutation testing, docs/testing.md: these were exercised
 //! only through the whole CLI.)
 
-use carom_core::{Axis, DVec2, WallSide};
+use carom_core::collision::resolve;
+use carom_core::{Axis, DVec2, Restitution, WallSide};
 use carom_events::{PairCollision, WallCollision};
 use carom_io::{CollisionBatch, CollisionRecord, KIND_PAIR, KIND_WALL, NO_DISC};
 
@@ -29,19 +30,24 @@ fn wall(axis: Axis, side: WallSide) -> WallCollision {
     }
 }
 
+/// A pair collision as the engine reports it: resolved elastically along the
+/// line of centres.
 fn pair() -> PairCollision {
+    let (vi, vj) = (DVec2::new(1.5, 0.25), DVec2::new(-0.5, 0.75));
+    let n = DVec2::new(0.8, -0.6);
+    let r = resolve(vi, vj, 1.0, 2.0, n, Restitution::Elastic);
     PairCollision {
-        time: 1.25,
-        i: 3,
-        j: 9,
-        normal: DVec2::new(0.6, 0.8),
-        vi_before: DVec2::new(1.0, 2.0),
-        vj_before: DVec2::new(-1.0, 0.5),
-        vi_after: DVec2::new(0.1, 0.2),
-        vj_after: DVec2::new(0.3, 0.4),
-        energy_lost: 0.0,
-        virial: -0.7,
-        impulse: DVec2::new(-0.9, -1.8),
+        time: 3.75,
+        i: 2,
+        j: 8,
+        normal: n,
+        vi_before: vi,
+        vj_before: vj,
+        vi_after: r.vi,
+        vj_after: r.vj,
+        energy_lost: r.energy_lost,
+        virial: -n.dot(r.impulse_i),
+        impulse: r.impulse_i,
     }
 }
 
