@@ -20,6 +20,8 @@ mod compact;
 mod facts;
 mod metadata;
 mod scene;
+#[cfg(test)]
+mod schema_layout;
 mod snapshot;
 mod thermo;
 

@@ -1,0 +1,445 @@
+//! Every CDR message against its published `ros2msg` schema, field by field, by a
+//! codec written here from the schema text alone (XCDR1 little-endian: header
+//! `00 01 00 00`, each primitive aligned to its size from the end of the header,
+//! `T[]` a `uint32` length then the elements, `T[n]` n elements). Each field is
+//! compared by its schema name with the Rust value, floats bit for bit, in both
+//! directions: carom's encoder against this decoder, this encoder against carom's
+//! decoder. A field written in the wrong place or type, or two fields swapped
+//! consistently in carom's writer and reader (which a round trip cannot see),
+//! fails here. Every value in the samples is distinct, so a swap shows.
+//! (A unit test: carom's `CdrWriter` is crate-private.)
+
+use super::cdr::CdrWriter;
+use super::{
+    CollisionBatch, CollisionRecord, CompactBatch, LogCheckpoint, Snapshot, CHECKPOINT_MSG,
+    COLLISION_BATCH_MSG, COMPACT_COLLISION_BATCH_MSG, SNAPSHOT_MSG,
+};
+use carom_core::{Axis, DVec2, WallSide};
+use carom_events::{PairCollision, WallCollision};
+
+/// A primitive type of the schemas and its size in bytes (also its alignment).
+fn size_of(ty: &str) -> usize {
+    match ty {
+        "uint8" => 1,
+        "uint16" => 2,
+        "uint32" => 4,
+        "uint64" | "float64" => 8,
+        _ => panic!("type {ty} is not used by carom's schemas"),
+    }
+}
+
+/// One field of a schema: name, primitive type, and `None` for a scalar,
+/// `Some(None)` for a sequence `T[]`, `Some(Some(n))` for an array `T[n]`.
+struct Field {
+    name: String,
+    ty: String,
+    shape: Option<Option<usize>>,
+}
+
+fn parse_schema(schema: &str) -> Vec<Field> {
+    schema
+        .lines()
+        .map(|l| l.split('#').next().unwrap().trim())
+        .filter(|l| !l.is_empty())
+        .map(|l| {
+            let (ty, name) = l.split_once(char::is_whitespace).unwrap();
+            let (ty, shape) = match ty.split_once('[') {
+                None => (ty, None),
+                Some((t, "]")) => (t, Some(None)),
+                Some((t, n)) => (t, Some(Some(n.trim_end_matches(']').parse().unwrap()))),
+            };
+            Field {
+                name: name.trim().to_string(),
+                ty: ty.to_string(),
+                shape,
+            }
+        })
+        .collect()
+}
+
+/// A field's values as raw little-endian words: integers as themselves, floats
+/// as their bits.
+type Values = Vec<(String, Vec<u64>)>;
+
+fn f(v: impl IntoIterator<Item = f64>) -> Vec<u64> {
+    v.into_iter().map(f64::to_bits).collect()
+}
+
+fn u<T: Into<u64>>(v: impl IntoIterator<Item = T>) -> Vec<u64> {
+    v.into_iter().map(Into::into).collect()
+}
+
+fn named(fields: Vec<(&str, Vec<u64>)>) -> Values {
+    fields
+        .into_iter()
+        .map(|(n, v)| (n.to_string(), v))
+        .collect()
+}
+
+fn align(pos: usize, size: usize) -> usize {
+    4 + (pos - 4).div_ceil(size) * size
+}
+
+/// Decode `bytes` as the schema says, every byte accounted for.
+fn decode(schema: &str, bytes: &[u8]) -> Values {
+    assert_eq!(bytes[..4], [0, 1, 0, 0], "CDR little-endian header");
+    let mut pos = 4;
+    let word = |pos: &mut usize, size: usize| {
+        *pos = align(*pos, size);
+        let mut b = [0u8; 8];
+        b[..size].copy_from_slice(&bytes[*pos..*pos + size]);
+        *pos += size;
+        u64::from_le_bytes(b)
+    };
+    let out = parse_schema(schema)
+        .into_iter()
+        .map(|fl| {
+            let size = size_of(&fl.ty);
+            let n = match fl.shape {
+                None => 1,
+                Some(None) => word(&mut pos, 4) as usize,
+                Some(Some(n)) => n,
+            };
+            let v = (0..n).map(|_| word(&mut pos, size)).collect();
+            (fl.name, v)
+        })
+        .collect();
+    assert_eq!(pos, bytes.len(), "bytes beyond the schema's last field");
+    out
+}
+
+/// Encode named values as the schema says (every schema field must be given,
+/// in any order).
+fn encode(schema: &str, values: &Values) -> Vec<u8> {
+    let mut out = vec![0, 1, 0, 0];
+    let put = |out: &mut Vec<u8>, x: u64, size: usize| {
+        out.resize(align(out.len(), size), 0);
+        out.extend_from_slice(&x.to_le_bytes()[..size]);
+    };
+    for fl in parse_schema(schema) {
+        let v = &values.iter().find(|(n, _)| *n == fl.name).unwrap().1;
+        let size = size_of(&fl.ty);
+        match fl.shape {
+            None => assert_eq!(v.len(), 1, "{}", fl.name),
+            Some(None) => put(&mut out, v.len() as u64, 4),
+            Some(Some(n)) => assert_eq!(v.len(), n, "{}", fl.name),
+        }
+        for &x in v {
+            put(&mut out, x, size);
+        }
+    }
+    out
+}
+
+/// `decode(encoded)` holds exactly `expected`, field by field in schema order.
+fn assert_layout(schema: &str, encoded: &[u8], expected: &Values) {
+    let got = decode(schema, encoded);
+    let names = |v: &Values| v.iter().map(|(n, _)| n.clone()).collect::<Vec<_>>();
+    let mut want_names = names(expected);
+    let mut got_names = names(&got);
+    want_names.sort();
+    got_names.sort();
+    assert_eq!(got_names, want_names, "the schema's fields");
+    for (name, v) in &got {
+        let want = &expected.iter().find(|(n, _)| n == name).unwrap().1;
+        assert_eq!(v, want, "field `{name}`");
+    }
+}
+
+fn collision_fields(b: &CollisionBatch) -> Values {
+    named(vec![
+        ("first_ordinal", vec![b.first_ordinal]),
+        ("stride", vec![b.stride]),
+        ("time", f(b.time.clone())),
+        ("kind", u(b.kind.clone())),
+        ("i", u(b.i.clone())),
+        ("j", u(b.j.clone())),
+        ("nx", f(b.nx.clone())),
+        ("ny", f(b.ny.clone())),
+        ("vix_before", f(b.vix_before.clone())),
+        ("viy_before", f(b.viy_before.clone())),
+        ("vjx_before", f(b.vjx_before.clone())),
+        ("vjy_before", f(b.vjy_before.clone())),
+        ("vix_after", f(b.vix_after.clone())),
+        ("viy_after", f(b.viy_after.clone())),
+        ("vjx_after", f(b.vjx_after.clone())),
+        ("vjy_after", f(b.vjy_after.clone())),
+        ("energy_lost", f(b.energy_lost.clone())),
+        ("virial", f(b.virial.clone())),
+    ])
+}
+
+/// A pair collision whose every number differs from every other (offset by `k`).
+fn pair(k: f64) -> PairCollision {
+    let v = |a: f64, b: f64| DVec2::new(a + k, b + k);
+    PairCollision {
+        time: 10.0 + k,
+        i: 3 + k as u32,
+        j: 9 + k as u32,
+        normal: DVec2::new(0.6, 0.8),
+        vi_before: v(1.125, 2.25),
+        vj_before: v(-1.5, 0.375),
+        vi_after: v(0.0625, 0.1875),
+        vj_after: v(0.3125, 0.4375),
+        energy_lost: 0.046875 + k,
+        virial: -0.71875 - k,
+        impulse: DVec2::new(-0.90625, -1.8125),
+    }
+}
+
+fn wall() -> WallCollision {
+    WallCollision {
+        time: 11.5,
+        i: 4,
+        axis: Axis::Y,
+        side: WallSide::High,
+        v_before: DVec2::new(0.53125, 1.03125),
+        v_after: DVec2::new(0.53125, -0.90625),
+        impulse: 1.9375,
+        energy_lost: 0.0546875,
+    }
+}
+
+fn records() -> Vec<CollisionRecord> {
+    vec![
+        CollisionRecord::from_pair(&pair(0.0), 7),
+        CollisionRecord::from_wall(&wall(), 8),
+        CollisionRecord::from_pair(&pair(100.0), 9),
+    ]
+}
+
+#[test]
+fn full_collision_batches_follow_their_schema() {
+    let mut b = CollisionBatch::with_capacity(3);
+    b.first_ordinal = 70;
+    b.stride = 3;
+    for r in records() {
+        b.push(&r);
+    }
+    let fields = collision_fields(&b);
+    let mut w = CdrWriter::new();
+    b.encode(&mut w);
+    assert_layout(COLLISION_BATCH_MSG, w.bytes(), &fields);
+    CollisionBatch::encode_records(&records(), 70, 3, &mut w);
+    assert_layout(COLLISION_BATCH_MSG, w.bytes(), &fields);
+    let mut back = CollisionBatch::default();
+    back.decode_into(&encode(COLLISION_BATCH_MSG, &fields))
+        .unwrap();
+    assert_eq!(collision_fields(&back), fields);
+    assert_eq!(back, b);
+}
+
+fn compact_fields(b: &CompactBatch) -> Values {
+    named(vec![
+        ("first_ordinal", vec![b.first_ordinal]),
+        ("stride", vec![1]),
+        ("time", f(b.time.clone())),
+        ("i", u(b.i.clone())),
+        ("j", u(b.j.clone())),
+        ("dpx", f(b.dpx.clone())),
+        ("dpy", f(b.dpy.clone())),
+        ("nx", f(b.nx.clone())),
+        ("ny", f(b.ny.clone())),
+    ])
+}
+
+#[test]
+fn compact_collision_batches_follow_their_schema() {
+    let recs = records();
+    for normals in [false, true] {
+        let (p, q) = (pair(0.0), pair(100.0));
+        let (nx, ny) = if normals {
+            (vec![0.6, 0.0, 0.6], vec![0.8, 0.0, 0.8])
+        } else {
+            (vec![], vec![])
+        };
+        // The wall: j codes (y, high); Δp_i = (0, −J), away from the wall.
+        let expected = CompactBatch {
+            first_ordinal: 7,
+            time: vec![p.time, 11.5, q.time],
+            i: vec![p.i, 4, q.i],
+            j: vec![p.j, u32::MAX, q.j],
+            dpx: vec![p.impulse.x, 0.0, q.impulse.x],
+            dpy: vec![p.impulse.y, -1.9375, q.impulse.y],
+            nx,
+            ny,
+        };
+        let fields = compact_fields(&expected);
+        let mut w = CdrWriter::new();
+        CompactBatch::encode_records(&recs, 7, normals, &mut w);
+        assert_layout(COMPACT_COLLISION_BATCH_MSG, w.bytes(), &fields);
+        expected.encode(&mut w);
+        assert_layout(COMPACT_COLLISION_BATCH_MSG, w.bytes(), &fields);
+        let mut back = CompactBatch::default();
+        back.decode_into(&encode(COMPACT_COLLISION_BATCH_MSG, &fields))
+            .unwrap();
+        assert_eq!(back, expected);
+        assert!(back.len() == 3 && !back.is_empty());
+    }
+}
+
+fn snapshot_fields(s: &Snapshot) -> Values {
+    named(vec![
+        ("time", f([s.time])),
+        ("box_x", f([s.box_size.x])),
+        ("box_y", f([s.box_size.y])),
+        ("boundary_x", u([s.boundary[0]])),
+        ("boundary_y", u([s.boundary[1]])),
+        ("species_radius", f(s.species_radius.clone())),
+        ("species_mass", f(s.species_mass.clone())),
+        ("species", u(s.species.clone())),
+        ("x", f(s.positions.iter().map(|p| p.x))),
+        ("y", f(s.positions.iter().map(|p| p.y))),
+        ("vx", f(s.velocities.iter().map(|v| v.x))),
+        ("vy", f(s.velocities.iter().map(|v| v.y))),
+    ])
+}
+
+#[test]
+fn snapshots_follow_their_schema() {
+    let s = Snapshot {
+        time: 2.75,
+        box_size: DVec2::new(7.5, 4.25),
+        boundary: [0, 1],
+        species_radius: vec![0.5, 0.6875],
+        species_mass: vec![1.0625, 2.5],
+        species: vec![0, 1, 1],
+        positions: vec![
+            DVec2::new(1.125, 1.375),
+            DVec2::new(3.0625, 2.125),
+            DVec2::new(5.5, 2.625),
+        ],
+        velocities: vec![
+            DVec2::new(0.09375, -0.203125),
+            DVec2::new(-1.53125, 0.28125),
+            DVec2::new(0.015625, 3.03125),
+        ],
+    };
+    let fields = snapshot_fields(&s);
+    let mut w = CdrWriter::new();
+    s.encode(&mut w);
+    assert_layout(SNAPSHOT_MSG, w.bytes(), &fields);
+    assert_eq!(Snapshot::decode(&encode(SNAPSHOT_MSG, &fields)).unwrap(), s);
+}
+
+/// The checkpoint's fields by schema name, read from carom's own decoded form:
+/// the schema and carom's encoder must agree on every one of them.
+fn checkpoint_fields(c: &LogCheckpoint) -> Values {
+    use carom_core::{Boundary, Restitution};
+    let (d, e) = (&c.driver, &c.engine);
+    let s = &e.stats;
+    let code = |b: &Boundary| u64::from(!b.is_periodic());
+    let we = |b: &Boundary| match *b {
+        Boundary::Periodic => 1.0,
+        Boundary::Walls { restitution } => restitution,
+    };
+    let (kind, coef) = match e.params.restitution {
+        Restitution::Elastic => (0, 1.0),
+        Restitution::CentreOfMass(r) => (1, r),
+        Restitution::Normal(x) => (2, x),
+    };
+    let b = &e.sim_box.boundary;
+    named(vec![
+        ("format_version", vec![2]),
+        ("run_start_time", f([d.run_start_time])),
+        ("logged_collisions", vec![d.logged_collisions]),
+        ("next_sequence", u(d.next_sequence)),
+        ("box_x", f([e.sim_box.size.x])),
+        ("box_y", f([e.sim_box.size.y])),
+        ("boundary_x", vec![code(&b[0])]),
+        ("boundary_y", vec![code(&b[1])]),
+        ("wall_restitution_x", f([we(&b[0])])),
+        ("wall_restitution_y", f([we(&b[1])])),
+        (
+            "species_count",
+            e.species.iter().map(|s| s.count as u64).collect(),
+        ),
+        ("species_radius", f(e.species.iter().map(|s| s.radius))),
+        ("species_mass", f(e.species.iter().map(|s| s.mass))),
+        ("species", u(e.species_of.clone())),
+        ("restitution_kind", vec![kind]),
+        ("restitution", f([coef])),
+        ("tc", f([e.params.tc])),
+        (
+            "max_events_without_time_advance",
+            vec![e.params.max_events_without_time_advance],
+        ),
+        ("now", f([e.now])),
+        ("epoch", f([e.epoch])),
+        ("clock", f([e.clock])),
+        ("same_time_collisions", vec![e.same_time_collisions]),
+        ("pair_collisions", vec![s.pair_collisions]),
+        ("wall_collisions", vec![s.wall_collisions]),
+        ("cell_crossings", vec![s.cell_crossings]),
+        ("stale_events", vec![s.stale_events]),
+        ("virial_sum", f([s.virial_sum])),
+        ("wall_impulse", f(s.wall_impulse.iter().flatten().copied())),
+        ("energy_lost", f([s.energy_lost])),
+        ("x", f(e.positions.iter().map(|p| p.x))),
+        ("y", f(e.positions.iter().map(|p| p.y))),
+        ("vx", f(e.velocities.iter().map(|v| v.x))),
+        ("vy", f(e.velocities.iter().map(|v| v.y))),
+        ("t", f(e.times.clone())),
+        ("collision_count", u(e.counts.clone())),
+        ("last_collision", f(e.last_collision.clone())),
+        ("event_time", f(e.event_times.clone())),
+        ("pair_time", f(e.pair_times.clone())),
+        ("pending_partner", u(e.pending.iter().map(|p| p[0]))),
+        ("pending_partner_count", u(e.pending.iter().map(|p| p[1]))),
+        ("pending_kind", u(e.pending.iter().map(|p| p[2]))),
+        ("cell_head", u(e.cell_head.clone())),
+        ("cell_next", u(e.cell_next.clone())),
+        ("cell_prev", u(e.cell_prev.clone())),
+        ("cell_column", u(e.cell.iter().map(|c| c[0]))),
+        ("cell_row", u(e.cell.iter().map(|c| c[1]))),
+        ("scheduled_time", f(e.scheduled.iter().map(|s| s.0))),
+        ("scheduled_seq", e.scheduled.iter().map(|s| s.1).collect()),
+        ("scheduled_tag", e.scheduled.iter().map(|s| s.2).collect()),
+        ("next_seq", vec![e.next_seq]),
+        ("labels", u(e.labels.clone())),
+        ("next_reorder", vec![e.next_reorder]),
+    ])
+}
+
+#[test]
+fn checkpoints_follow_their_schema() {
+    use super::DriverState;
+    use carom_core::{Boundary, Restitution, SimBox, Species};
+    use carom_events::{box_size_for, Engine, EngineParams, Placement, SystemSpec, Velocities};
+    let species = vec![Species::reference(30), Species::new(8, 0.8, 3.0)];
+    let spec = SystemSpec {
+        sim_box: SimBox {
+            size: box_size_for(&species, 0.4, 1.0),
+            boundary: [Boundary::Walls { restitution: 0.875 }, Boundary::Periodic],
+        },
+        species,
+        temperature: 1.0,
+        seed: 5,
+        placement: Placement::Lattice,
+        velocities: Velocities::MaxwellBoltzmann,
+    };
+    let params = EngineParams {
+        restitution: Restitution::CentreOfMass(0.96875),
+        tc: 1e-4,
+        max_events_without_time_advance: 1001,
+    };
+    let mut e = Engine::new(spec.build().unwrap(), params).unwrap();
+    e.run_collisions(300).unwrap();
+    e.schedule(e.now() + 1.0, 42).unwrap();
+    let c = LogCheckpoint {
+        driver: DriverState {
+            run_start_time: 0.5,
+            logged_collisions: 250,
+            next_sequence: [11, 12, 13, 14],
+        },
+        engine: e.checkpoint(),
+    };
+    let fields = checkpoint_fields(&c);
+    let mut w = CdrWriter::new();
+    c.encode(&mut w);
+    assert_layout(CHECKPOINT_MSG, w.bytes(), &fields);
+    assert_eq!(
+        LogCheckpoint::decode(&encode(CHECKPOINT_MSG, &fields)).unwrap(),
+        c
+    );
+}
