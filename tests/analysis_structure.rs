@@ -97,7 +97,7 @@ fn a_fluids_structure_factor_tends_to_its_compressibility() {
     // Weighted least squares for S0 + c k².
     let (mut sw, mut sx, mut sy, mut sxx, mut sxy) = (0.0, 0.0, 0.0, 0.0, 0.0);
     for ((&k, &s), &e) in f.k.iter().zip(&f.s).zip(&f.std_error) {
-        if k > 1.0 || !(e > 0.0) {
+        if k > 1.0 || e.is_nan() || e <= 0.0 {
             continue;
         }
         let (w, x) = (1.0 / (e * e), k * k);
