@@ -8,7 +8,8 @@
 //!   pairs, with N_b − 1 partners of a's own species;
 //! * a heavy gas between walls on both axes of unequal length: each disc hits the
 //!   walls of axis k at ⟨|v_k|⟩ / (L_k − 2a) with ⟨|v_k|⟩ = √(2kT/(πm));
-//! * the mean free time counts a pair collision for two discs, a wall hit for one.
+//! * the mean free time counts a pair collision for two discs, a wall hit for one;
+//! * a species with no discs changes nothing, even one as wide as the box.
 //!
 //! Found missing by mutation testing (docs/testing.md): the unit tests used equal
 //! masses (where 1/m_a + 1/m_b and 1/m_a ÷ 1/m_b agree up to a constant) and m = 1
@@ -103,4 +104,21 @@ fn the_mean_free_time_counts_pair_collisions_twice_and_wall_hits_once() {
         50.0 / (2.0 * pairs + walls),
         "mean free time",
     );
+}
+
+#[test]
+fn a_species_without_discs_changes_no_rate_even_as_wide_as_the_box() {
+    // A species of no discs with diameter 12 in a 12 × 7 walled box: its reachable
+    // length is 0 or less, and 0 discs × speed / 0 would be NaN.
+    let b = SimBox::walled(12.0, 7.0, 1.0);
+    let gas = Species::new(20, 0.5, 2.0);
+    let with = [gas, Species::new(0, 6.0, 3.0)];
+    for kt in [0.5, 2.0] {
+        let want = expected_collision_rate(&[gas], &b, kt);
+        assert_eq!(expected_collision_rate(&with, &b, kt), want, "kT = {kt}");
+        assert_eq!(
+            expected_mean_free_time(&with, &b, kt),
+            expected_mean_free_time(&[gas], &b, kt)
+        );
+    }
 }
