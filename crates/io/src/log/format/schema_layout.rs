@@ -9,7 +9,7 @@
 //! fails here. Every value in the samples is distinct, so a swap shows.
 //! (A unit test: carom's `CdrWriter` is crate-private.)
 
-use super::cdr::CdrWriter;
+use super::cdr::{CdrError, CdrWriter};
 use super::{
     CollisionBatch, CollisionRecord, CompactBatch, LogCheckpoint, Snapshot, CHECKPOINT_MSG,
     COLLISION_BATCH_MSG, COMPACT_COLLISION_BATCH_MSG, SNAPSHOT_MSG,
@@ -401,8 +401,9 @@ fn checkpoint_fields(c: &LogCheckpoint) -> Values {
     ])
 }
 
-#[test]
-fn checkpoints_follow_their_schema() {
+/// A checkpoint after 300 collisions of a binary mixture, walled in x, with one
+/// scheduled event.
+fn sample_checkpoint() -> LogCheckpoint {
     use super::DriverState;
     use carom_core::{Boundary, Restitution, SimBox, Species};
     use carom_events::{box_size_for, Engine, EngineParams, Placement, SystemSpec, Velocities};
@@ -426,14 +427,19 @@ fn checkpoints_follow_their_schema() {
     let mut e = Engine::new(spec.build().unwrap(), params).unwrap();
     e.run_collisions(300).unwrap();
     e.schedule(e.now() + 1.0, 42).unwrap();
-    let c = LogCheckpoint {
+    LogCheckpoint {
         driver: DriverState {
             run_start_time: 0.5,
             logged_collisions: 250,
             next_sequence: [11, 12, 13, 14],
         },
         engine: e.checkpoint(),
-    };
+    }
+}
+
+#[test]
+fn checkpoints_follow_their_schema() {
+    let c = sample_checkpoint();
     let fields = checkpoint_fields(&c);
     let mut w = CdrWriter::new();
     c.encode(&mut w);
@@ -442,4 +448,33 @@ fn checkpoints_follow_their_schema() {
         LogCheckpoint::decode(&encode(CHECKPOINT_MSG, &fields)).unwrap(),
         c
     );
+}
+
+/// A checkpoint whose paired arrays differ in length is refused, naming the
+/// array the reader checks: any one array of a group (the species' radii and
+/// masses, the pending events, the scheduled events, the cells) one entry short.
+/// (Found missing by mutation testing, docs/testing.md: carom's writer cannot
+/// produce such a file, so only bytes from this codec reach these checks.)
+#[test]
+fn a_checkpoint_with_unequal_paired_arrays_is_refused() {
+    let fields = checkpoint_fields(&sample_checkpoint());
+    for (short, named) in [
+        ("species_radius", "species_radius"),
+        ("species_mass", "species_radius"),
+        ("y", "y"),
+        ("vy", "vy"),
+        ("pending_partner_count", "pending_kind"),
+        ("pending_kind", "pending_kind"),
+        ("cell_row", "cell_row"),
+        ("scheduled_seq", "scheduled_tag"),
+        ("scheduled_tag", "scheduled_tag"),
+    ] {
+        let mut cut = fields.clone();
+        let values = &mut cut.iter_mut().find(|(n, _)| n == short).unwrap().1;
+        assert!(values.pop().is_some(), "{short} is empty in the sample");
+        match LogCheckpoint::decode(&encode(CHECKPOINT_MSG, &cut)) {
+            Err(CdrError::Invalid { field, .. }) => assert_eq!(field, named, "{short} short"),
+            other => panic!("{short} one entry short: {other:?}"),
+        }
+    }
 }

@@ -217,16 +217,17 @@ impl Snapshot {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use carom_core::{Boundary, SimBox, Species};
 
-    #[test]
-    fn a_state_encodes_as_its_snapshot() {
-        use carom_core::{Boundary, SimBox, Species};
-        let state = State {
+    /// Three discs of two species (masses 0.5 and 2.5, neither 1) in a box
+    /// periodic in x and walled in y.
+    fn state() -> State {
+        State {
             sim_box: SimBox {
                 size: DVec2::new(7.5, 4.0),
                 boundary: [Boundary::Periodic, Boundary::Walls { restitution: 0.9 }],
             },
-            species: vec![Species::reference(2), Species::new(1, 0.7, 2.5)],
+            species: vec![Species::new(2, 0.5, 0.5), Species::new(1, 0.7, 2.5)],
             species_of: vec![0, 0, 1],
             positions: vec![
                 DVec2::new(1.0, 1.0),
@@ -239,7 +240,12 @@ mod tests {
                 DVec2::new(0.0, 3.0),
             ],
             time: 2.75,
-        };
+        }
+    }
+
+    #[test]
+    fn a_state_encodes_as_its_snapshot() {
+        let state = state();
         let (mut a, mut b) = (CdrWriter::new(), CdrWriter::new());
         Snapshot::from_state(&state).encode(&mut a);
         // Into a writer that held an earlier, longer message.
@@ -250,5 +256,53 @@ mod tests {
             Snapshot::decode(b.bytes()).unwrap(),
             Snapshot::from_state(&state)
         );
+    }
+
+    /// Found missing by mutation testing (docs/testing.md): each disc's mass is its
+    /// species' mass, the boundary codes are 0 periodic and 1 walls, and the
+    /// number of discs is the length of the arrays.
+    #[test]
+    fn a_snapshot_knows_its_discs_masses_and_boundaries() {
+        let s = Snapshot::from_state(&state());
+        assert_eq!(s.boundary, [0, 1]);
+        assert_eq!((s.len(), s.is_empty()), (3, false));
+        let masses: Vec<f64> = (0..s.len()).map(|k| s.mass(k)).collect();
+        assert_eq!(masses, [0.5, 0.5, 2.5]);
+        let none = Snapshot {
+            species: vec![],
+            positions: vec![],
+            velocities: vec![],
+            ..s
+        };
+        assert_eq!((none.len(), none.is_empty()), (0, true));
+    }
+
+    /// A snapshot whose arrays disagree is refused, naming the field; the last
+    /// species index is accepted, one past it is not.
+    #[test]
+    fn an_inconsistent_snapshot_is_refused() {
+        let good = Snapshot::from_state(&state());
+        let refused = |s: &Snapshot| {
+            let mut w = CdrWriter::new();
+            s.encode(&mut w);
+            match Snapshot::decode(w.bytes()) {
+                Err(CdrError::Invalid { field, .. }) => field,
+                other => panic!("accepted or wrong error: {other:?}"),
+            }
+        };
+        let mut short = good.clone();
+        short.velocities.pop();
+        assert_eq!(refused(&short), "vx");
+        let mut masses = good.clone();
+        masses.species_mass.push(1.5);
+        assert_eq!(refused(&masses), "species_mass");
+        let mut past = good.clone();
+        past.species[2] = 2;
+        assert_eq!(refused(&past), "species");
+        let mut last = good.clone();
+        last.species[0] = 1;
+        let mut w = CdrWriter::new();
+        last.encode(&mut w);
+        assert_eq!(Snapshot::decode(w.bytes()).unwrap(), last);
     }
 }
