@@ -248,23 +248,7 @@ impl Analyzer {
         vx: &[f64],
         vy: &[f64],
     ) -> Result<(), StatsError> {
-        if species_of.len() != vx.len() || vx.len() != vy.len() {
-            return Err(StatsError::InvalidArgument(format!(
-                "snapshot at t = {t}: {} species indices, {} vx, {} vy",
-                species_of.len(),
-                vx.len(),
-                vy.len()
-            )));
-        }
-        if let Some(&bad) = species_of
-            .iter()
-            .find(|&&s| s as usize >= self.run.species.len())
-        {
-            return Err(StatsError::InvalidArgument(format!(
-                "snapshot at t = {t}: species index {bad}, but the run has {} species",
-                self.run.species.len()
-            )));
-        }
+        self.check_snapshot(t, species_of, [vx, vy], ["vx", "vy"])?;
         self.snapshots_seen += 1;
         let masses: Vec<f64> = self.run.species.iter().map(|s| s.mass).collect();
         let k: f64 = species_of
@@ -317,23 +301,7 @@ impl Analyzer {
         x: &[f64],
         y: &[f64],
     ) -> Result<(), StatsError> {
-        if species_of.len() != x.len() || x.len() != y.len() {
-            return Err(StatsError::InvalidArgument(format!(
-                "snapshot at t = {t}: {} species indices, {} x, {} y",
-                species_of.len(),
-                x.len(),
-                y.len()
-            )));
-        }
-        if let Some(&bad) = species_of
-            .iter()
-            .find(|&&s| s as usize >= self.run.species.len())
-        {
-            return Err(StatsError::InvalidArgument(format!(
-                "snapshot at t = {t}: species index {bad}, but the run has {} species",
-                self.run.species.len()
-            )));
-        }
+        self.check_snapshot(t, species_of, [x, y], ["x", "y"])?;
         let span = self.run.t_end - self.run.t_start;
         if t < self.t_eq - 1e-12 * self.t_eq.abs().max(span) {
             return Ok(());
@@ -344,6 +312,35 @@ impl Analyzer {
         self.bond_correlation.add(t, x, y, &psi);
         if let Some(sf) = &mut self.structure_factor {
             sf.add(t, x, y);
+        }
+        Ok(())
+    }
+
+    /// A snapshot's per-disc slices must agree in length, and its species indices
+    /// must be the run's.
+    fn check_snapshot(
+        &self,
+        t: f64,
+        species_of: &[u16],
+        [a, b]: [&[f64]; 2],
+        [na, nb]: [&str; 2],
+    ) -> Result<(), StatsError> {
+        if species_of.len() != a.len() || a.len() != b.len() {
+            return Err(StatsError::InvalidArgument(format!(
+                "snapshot at t = {t}: {} species indices, {} {na}, {} {nb}",
+                species_of.len(),
+                a.len(),
+                b.len()
+            )));
+        }
+        if let Some(&bad) = species_of
+            .iter()
+            .find(|&&s| s as usize >= self.run.species.len())
+        {
+            return Err(StatsError::InvalidArgument(format!(
+                "snapshot at t = {t}: species index {bad}, but the run has {} species",
+                self.run.species.len()
+            )));
         }
         Ok(())
     }

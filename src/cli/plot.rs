@@ -14,6 +14,7 @@ use std::ops::Range;
 use std::path::Path;
 
 use carom::analysis::{HistogramReport, Report, SpeciesMb};
+use plotters::coord::combinators::LogCoord;
 use plotters::coord::types::RangedCoordf64;
 use plotters::coord::Shift;
 use plotters::prelude::*;
@@ -161,6 +162,46 @@ pub(super) fn axes<'a, DB: DrawingBackend>(
     Ok(chart)
 }
 
+/// A chart with logarithmic axes.
+pub(super) type LogChart<'a, DB> = ChartContext<'a, DB, Cartesian2d<LogCoord<f64>, LogCoord<f64>>>;
+
+/// The log–log chart of a figure: a caption, labelled axes over x0..x1 and
+/// 0.8 y0..1.25 y1 (room above and below the data), three-digit tick labels.
+pub(super) fn log_axes<'a, DB: DrawingBackend>(
+    root: &'a DrawingArea<DB, Shift>,
+    caption: &str,
+    (x_desc, y_desc): (&str, &str),
+    (x0, x1): (f64, f64),
+    (y0, y1): (f64, f64),
+) -> Result<LogChart<'a, DB>, DrawingAreaErrorKind<DB::ErrorType>> {
+    let mut chart = ChartBuilder::on(root)
+        .caption(caption, ("sans-serif", 22))
+        .margin(15)
+        .x_label_area_size(45)
+        .y_label_area_size(70)
+        .build_cartesian_2d((x0..x1).log_scale(), (0.8 * y0..1.25 * y1).log_scale())?;
+    chart
+        .configure_mesh()
+        .x_desc(x_desc)
+        .y_desc(y_desc)
+        .x_label_formatter(&|v| format!("{v:.3}"))
+        .y_label_formatter(&|v| format!("{v:.3}"))
+        .draw()?;
+    Ok(chart)
+}
+
+/// The legend of a log–log chart, at the lower left (where decays leave room).
+pub(super) fn log_legend<'a, DB: DrawingBackend + 'a>(
+    chart: &mut LogChart<'a, DB>,
+) -> DrawResult<DB> {
+    chart
+        .configure_series_labels()
+        .position(SeriesLabelPosition::LowerLeft)
+        .background_style(WHITE.mix(0.8))
+        .border_style(BLACK)
+        .draw()
+}
+
 /// The legend of the labelled series drawn so far.
 pub(super) fn legend<'a, DB: DrawingBackend + 'a>(chart: &mut Chart<'a, DB>) -> DrawResult<DB> {
     chart
@@ -301,22 +342,16 @@ fn draw_cooling<DB: DrawingBackend>(
     let (x0, x1) = (first.0, last.0.max(first.0 * 1.0001));
     let ys = pts.iter().map(|p| p.1).chain([haff(x0), haff(x1)]);
     let (y0, y1) = ys.fold((f64::INFINITY, 0.0f64), |(a, b), v| (a.min(v), b.max(v)));
-    let mut chart = ChartBuilder::on(root)
-        .caption(
-            format!("cooling: kT against time, Haff's law t0 = {:.4}", h.t0),
-            ("sans-serif", 22),
-        )
-        .margin(15)
-        .x_label_area_size(45)
-        .y_label_area_size(70)
-        .build_cartesian_2d((x0..x1).log_scale(), (0.8 * y0..1.25 * y1).log_scale())?;
-    chart
-        .configure_mesh()
-        .x_desc("time since the first record t − t_start (time)")
-        .y_desc("kT (energy)")
-        .x_label_formatter(&|v| format!("{v:.3}"))
-        .y_label_formatter(&|v| format!("{v:.3}"))
-        .draw()?;
+    let mut chart = log_axes(
+        root,
+        &format!("cooling: kT against time, Haff's law t0 = {:.4}", h.t0),
+        (
+            "time since the first record t − t_start (time)",
+            "kT (energy)",
+        ),
+        (x0, x1),
+        (y0, y1),
+    )?;
     chart
         .draw_series(LineSeries::new(pts.iter().copied(), BLUE.stroke_width(2)))?
         .label("measured kT")
@@ -330,12 +365,7 @@ fn draw_cooling<DB: DrawingBackend>(
         .draw_series(DashedLineSeries::new(curve, 8, 5, BLACK.stroke_width(2)))?
         .label(format!("Haff's law kT0/(1 + t/t0)², t0 = {:.4}", h.t0))
         .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 15, y)], BLACK.stroke_width(2)));
-    chart
-        .configure_series_labels()
-        .position(SeriesLabelPosition::LowerLeft)
-        .background_style(WHITE.mix(0.8))
-        .border_style(BLACK)
-        .draw()
+    log_legend(&mut chart)
 }
 
 fn draw_pressure<DB: DrawingBackend>(root: &DrawingArea<DB, Shift>, r: &Report) -> DrawResult<DB> {

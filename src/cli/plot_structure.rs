@@ -6,7 +6,7 @@ use carom::analysis::{BondCorrelationReport, BondOrderReport, StructureFactorRep
 use plotters::coord::Shift;
 use plotters::prelude::*;
 
-use super::{axes, legend, range, top, DrawResult};
+use super::{axes, legend, log_axes, log_legend, range, top, DrawResult};
 
 /// |Ψ6| of every snapshot against time, with the mean ± one standard error.
 pub(super) fn draw_bond_order<DB: DrawingBackend>(
@@ -73,19 +73,8 @@ pub(super) fn draw_g6<DB: DrawingBackend>(
         ),
         _ => format!("g6(r), {} snapshots (no decay fit)", g.snapshots),
     };
-    let mut chart = ChartBuilder::on(root)
-        .caption(caption, ("sans-serif", 22))
-        .margin(15)
-        .x_label_area_size(45)
-        .y_label_area_size(70)
-        .build_cartesian_2d((x0..x1).log_scale(), (0.8 * y0..1.25 * y1).log_scale())?;
-    chart
-        .configure_mesh()
-        .x_desc("distance r (length)")
-        .y_desc("g6(r) (dimensionless)")
-        .x_label_formatter(&|v| format!("{v:.3}"))
-        .y_label_formatter(&|v| format!("{v:.3}"))
-        .draw()?;
+    let axis = ("distance r (length)", "g6(r) (dimensionless)");
+    let mut chart = log_axes(root, &caption, axis, (x0, x1), (y0, y1))?;
     chart
         .draw_series(LineSeries::new(pts.iter().copied(), BLUE.stroke_width(2)))?
         .label("g6(r)")
@@ -115,12 +104,7 @@ pub(super) fn draw_g6<DB: DrawingBackend>(
             .label(format!("exponential e^(−r/{xi:.3})"))
             .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 15, y)], GREEN));
     }
-    chart
-        .configure_series_labels()
-        .position(SeriesLabelPosition::LowerLeft)
-        .background_style(WHITE.mix(0.8))
-        .border_style(BLACK)
-        .draw()
+    log_legend(&mut chart)
 }
 
 /// S(k) with one-standard-error bars, and S = 1 (the ideal gas).
