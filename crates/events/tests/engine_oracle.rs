@@ -1,37 +1,17 @@
-//! The engine against an oracle with independent physics: a brute-force O(N²)
-//! event-driven integrator that predicts pair contacts with the seed's angular
-//! contact time (`kinematics::contact_time_seed`, seed 000 Eq. 14–17) and resolves
-//! them with the seed's component form (`collision::elastic_seed`, Eq. 8–13), run
-//! side by side with the real `Engine` from the same initial state and compared
-//! event by event (issue 39, item 4).
+//! The engine against an oracle with independent physics (`engine_common/oracle.rs`):
+//! a brute-force O(N²) event-driven integrator with the seed's angular contact time
+//! (`contact_time_seed`, Eq. 14–17) and component rule (`elastic_seed`, Eq. 8–13),
+//! which the engine does not call, and its own free flight, minimum image, event
+//! choice, wall time and specular wall rule. Shared with the engine: the initial
+//! state, the `DVec2` arithmetic, the disc numbering.
 //!
-//! Independent of the engine (the oracle, `engine_common/oracle.rs`): free flight,
-//! wrapping and the minimum image (written there), the choice of the next event (every pair and every wall, earliest first),
-//! the wall time and the wall rule (a specular reflection of the normal component,
-//! physics.md (2.6) and (4.7) with e_w = 1, written there), the contact time and the
-//! collision rule (the seed's formulas, which the engine does not call; it uses the
-//! vector forms `contact_time_or_inf` and `resolve`). Shared with the engine: the
-//! initial state (placement and velocities from `SystemSpec` and its RNG), the
-//! `DVec2` arithmetic, and the numbering of discs.
-//!
-//! What is compared, and for how long. Both paths round differently (angles and
-//! `atan2` against dot products), and hard discs are chaotic: a difference grows by
-//! a roughly constant factor per event (a Lyapunov growth), from rounding (≈ 10⁻¹⁴)
-//! to visible after 400–900 events at N = 60. So for every system:
-//! * each event must be the same (the same unordered pair, or the same disc, axis
-//!   and wall) in the same order, and the divergence δ is tracked: the largest
-//!   difference so far of an event time (in units of τ0 = σ√(m/kT) = 1) and of a
-//!   velocity after a collision (relative to the initial rms speed);
-//! * the comparison stops when δ exceeds [`SEPARATED`] = 10⁻⁶ (the trajectories
-//!   have separated; a physics bug gives δ of order 1 at once) or when two events
-//!   are closer in time than the divergence can resolve (a near-tie the two paths
-//!   may order differently); before that, at least [`MIN_AGREED`] events must have
-//!   agreed, and the first [`ROUNDING_EVENTS`] within [`ROUNDING`] (rounding level:
-//!   a small systematic error, such as a wrong contact time at 10⁻¹⁰, fails here);
-//! * kinetic energy of both paths, and momentum along periodic axes, are conserved to
-//!   rounding over the compared stretch.
-//!
-//! Measured divergence and horizons: docs/testing.md, "Oracle".
+//! Run side by side, every event must be the same (pair, or disc, axis and wall) in
+//! the same order while the divergence δ (the largest difference of an event time
+//! in τ0, or of a velocity relative to the rms speed) stays below [`SEPARATED`];
+//! chaos makes it grow from rounding, so the comparison stops there or at a
+//! near-tie. At least [`MIN_AGREED`] events must agree, the first
+//! [`ROUNDING_EVENTS`] within [`ROUNDING`], and both paths conserve energy (and
+//! momentum along periodic axes) to rounding. Measurements: docs/testing.md, "Oracle".
 
 mod engine_common;
 use carom_core::{Boundary, DVec2, SimBox, Species, WallSide};
