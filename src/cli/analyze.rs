@@ -361,12 +361,15 @@ fn structure_text(r: &Report, s: &mut String) {
         };
         let _ = writeln!(
             s,
-            "orientational correlation  g6(r) to r = {:.4} from {} snapshots: power law η6 = {}, exponential ξ6 = {}; {} fits better{}",
+            "orientational correlation  g6(r) to r = {:.4} from {} snapshots: power law η6 = {}, exponential ξ6 = {}; {}{}",
             Num(g.r.last().copied().unwrap_or(f64::NAN) + 0.5 * (g.r.get(1).copied().unwrap_or(0.0) - g.r.first().copied().unwrap_or(0.0))),
             g.snapshots,
             fit(g.eta6),
             fit(g.xi6),
-            g.decay.unwrap_or("neither (fewer than 3 significant envelope points: short-ranged)"),
+            match g.decay {
+                Some(form) => format!("{form} fits better"),
+                None => "no decay fit: g6 is within 3 SE of 0 after fewer than 3 envelope points (short-ranged order)".to_string(),
+            },
             match (g.decay, g.eta6) {
                 (Some("power law"), Some([eta, _])) if eta <= 0.25 => " (η6 ≤ 1/4: quasi-long-range order, as in the hexatic phase, or a crystal)",
                 _ => "",
