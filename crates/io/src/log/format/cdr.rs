@@ -356,6 +356,21 @@ mod tests {
     }
 
     #[test]
+    fn taken_bytes_are_the_message_and_the_writer_starts_again_after_reset() {
+        let mut w = CdrWriter::new();
+        w.put(3u32);
+        let expected = w.bytes().to_vec();
+        assert_eq!(w.take_bytes(), expected);
+        assert!(w.bytes().is_empty());
+        w.reset();
+        w.put(4u32);
+        assert_eq!(
+            w.bytes(),
+            [&CDR_LE_HEADER[..], &4u32.to_le_bytes()].concat()
+        );
+    }
+
+    #[test]
     fn corrupted_lengths_are_errors_not_allocations() {
         let mut w = CdrWriter::new();
         w.seq(&[1.0f64, 2.0]);
