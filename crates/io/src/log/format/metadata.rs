@@ -431,6 +431,76 @@ mod tests {
         assert_eq!(rfc3339(1_700_000_000, 0), "2023-11-14T22:13:20.000Z");
     }
 
+    /// Day by day from 1970 to 2500 against a calendar counted forward by hand
+    /// (the Gregorian leap rule: every 4th year, not every 100th, every 400th).
+    #[test]
+    fn rfc3339_counts_every_day_of_the_gregorian_calendar() {
+        let (mut y, mut m, mut d) = (1970i64, 1i64, 1i64);
+        let leap = |y: i64| (y % 4 == 0 && y % 100 != 0) || y % 400 == 0;
+        for day in 0..(530 * 366) as u64 {
+            if y == 2500 {
+                break;
+            }
+            let expected = format!("{y:04}-{m:02}-{d:02}T23:59:59.999Z");
+            assert_eq!(rfc3339(day * 86_400 + 86_399, 999), expected, "day {day}");
+            let len = match m {
+                2 if leap(y) => 29,
+                2 => 28,
+                4 | 6 | 9 | 11 => 30,
+                _ => 31,
+            };
+            d += 1;
+            if d > len {
+                (d, m) = (1, m + 1);
+            }
+            if m > 12 {
+                (m, y) = (1, y + 1);
+            }
+        }
+        assert_eq!(y, 2500);
+    }
+
+    #[test]
+    fn now_is_read_from_the_clock() {
+        let secs = || SystemTime::now().duration_since(UNIX_EPOCH).unwrap();
+        let before = secs();
+        let now = now_rfc3339();
+        let after = secs();
+        // The fixed-width format sorts like the time it names.
+        assert!(
+            rfc3339(before.as_secs(), before.subsec_millis()) <= now,
+            "{now}"
+        );
+        assert!(
+            now <= rfc3339(after.as_secs(), after.subsec_millis()),
+            "{now}"
+        );
+    }
+
+    #[test]
+    fn summary_metadata_round_trips() {
+        let mut s = SummaryMetadata {
+            end_time: rfc3339(1_700_000_000, 250),
+            stop_reason: StopReason::NoCollision,
+            error: Some("no pair can meet".into()),
+            sim_time: 12.5,
+            pair_collisions: 1_000_001,
+            wall_collisions: 17,
+            logged_collisions: 500_000,
+            kinetic_energy: 99.75,
+            energy_lost: 0.1 + 0.2,
+            virial_sum: -3.0e-7,
+            wall_seconds: 1.0 / 3.0,
+            collisions_per_second: 2.5e6,
+        };
+        assert_eq!(SummaryMetadata::from_map(&s.to_map()).unwrap(), s);
+        s.error = None;
+        s.stop_reason = StopReason::Time;
+        let m = s.to_map();
+        assert!(!m.contains_key("error"));
+        assert_eq!(SummaryMetadata::from_map(&m).unwrap(), s);
+    }
+
     #[test]
     fn stop_reasons_round_trip_under_distinct_names() {
         let all = [

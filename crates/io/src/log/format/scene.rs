@@ -258,8 +258,8 @@ mod tests {
         stamp: (i32, u32),
         /// The exact simulated time from the metadata `time`.
         time: f64,
-        /// Per cylinder: (x, y, diameter, RGB).
-        discs: Vec<(f64, f64, f64, [f64; 3])>,
+        /// Per cylinder: (x, y, diameter, height, RGB).
+        discs: Vec<(f64, f64, f64, f64, [f64; 3])>,
         /// The box outline's corners.
         outline: Vec<(f64, f64)>,
     }
@@ -313,7 +313,13 @@ mod tests {
             let mut discs = Vec::with_capacity(n.min(r.remaining() / CYLINDER_BYTES));
             for _ in 0..n {
                 let v: [f64; 16] = r.fixed("cylinders")?;
-                discs.push((v[0], v[1], v[7], [v[12], v[13], v[14]]));
+                if v[8] != v[7] {
+                    return Err(CdrError::Invalid {
+                        field: "cylinders.size",
+                        problem: format!("an ellipse {} × {}", v[7], v[8]),
+                    });
+                }
+                discs.push((v[0], v[1], v[7], v[9], [v[12], v[13], v[14]]));
             }
             count(&mut r, "lines", 1)?;
             r.get::<u8>("lines.type")?;
@@ -377,9 +383,10 @@ mod tests {
         assert_eq!(
             f.discs,
             vec![
-                (1.0, 1.0, d0, SPECIES_COLORS[0]),
-                (3.0, 2.0, 1.4, SPECIES_COLORS[1]),
-                (5.5, 2.5, d0, SPECIES_COLORS[0]),
+                // Cylinders as tall as a tenth of their diameter (docs/log-format.md).
+                (1.0, 1.0, d0, 0.1 * d0, SPECIES_COLORS[0]),
+                (3.0, 2.0, 1.4, 0.1 * 1.4, SPECIES_COLORS[1]),
+                (5.5, 2.5, d0, 0.1 * d0, SPECIES_COLORS[0]),
             ]
         );
         assert_eq!(
