@@ -1,6 +1,6 @@
 //! The pair-correlation report: g_ab(r) with block error bars, the contact value
-//! g_ab(σ_ab⁺) from a least-squares straight line in ln g through the bins lying
-//! wholly in [σ_ab, σ_ab + 0.1 σ_ab], extrapolated to σ_ab (physics.md §10), and the contact
+//! g_ab(σ_ab⁺) from a least-squares parabola in ln g through the bins lying
+//! wholly in [σ_ab, σ_ab + 0.2 σ_ab], extrapolated to σ_ab (physics.md §10), and the contact
 //! theorem (10.3) Z = 1 + (π/2) n Σ_ab x_a x_b σ_ab² g_ab(σ_ab⁺) next to the
 //! collision-virial Z, the difference in standard errors (periodic elastic runs
 //! only: with walls the wall term enters the pressure, and inelastic runs have no
@@ -13,7 +13,7 @@ use super::pair_correlation::{mean_se, pairs, PairCorrelation, BLOCKS};
 use super::report::PressureReport;
 
 /// Width of the contact fit in units of σ_ab.
-pub const CONTACT_FIT_SIGMA: f64 = 0.1;
+pub const CONTACT_FIT_SIGMA: f64 = 0.2;
 
 /// g(r) per species pair (physics.md §10).
 #[derive(Debug, Clone, PartialEq, Serialize)]
@@ -80,12 +80,59 @@ pub struct ContactTheoremReport {
     pub difference_std_errors: f64,
 }
 
-/// g(σ⁺) from the bins (x, g): exp of the least-squares line through (x, ln g)
-/// at `x0` (g near contact falls roughly exponentially; a straight line in g
-/// itself would miss its curvature).
+/// g(σ⁺) from the bins (x, g): exp of the least-squares parabola through
+/// (x, ln g) at `x0` (a straight line with fewer than 4 bins). ln g bends near
+/// contact in a dense fluid; a straight line through it reads g(σ⁺) low
+/// (physics.md §10). Empty bins (g = 0) are left out.
 fn contact_at(x: &[f64], g: &[f64], x0: f64) -> f64 {
-    let lg: Vec<f64> = g.iter().map(|v| v.ln()).collect();
-    line_at(x, &lg, x0).exp()
+    let (x, lg): (Vec<f64>, Vec<f64>) = x
+        .iter()
+        .zip(g)
+        .filter(|(_, &g)| g > 0.0)
+        .map(|(&x, &g)| (x - x0, g.ln()))
+        .unzip();
+    let intercept = if x.len() >= 4 {
+        parabola_at_zero(&x, &lg)
+    } else {
+        line_at(&x, &lg, 0.0)
+    };
+    intercept.exp()
+}
+
+/// Value at x = 0 of the least-squares parabola y = c0 + c1 x + c2 x² (the
+/// normal equations about the mean of x, solved by Cramer's rule).
+fn parabola_at_zero(x: &[f64], y: &[f64]) -> f64 {
+    let n = x.len() as f64;
+    let m = x.iter().sum::<f64>() / n;
+    let (mut s, mut t) = ([0.0; 5], [0.0; 3]);
+    for (&x, &y) in x.iter().zip(y) {
+        let u = x - m;
+        let mut p = 1.0;
+        for (k, sk) in s.iter_mut().enumerate() {
+            *sk += p;
+            if k < 3 {
+                t[k] += p * y;
+            }
+            p *= u;
+        }
+    }
+    let det3 = |a: [[f64; 3]; 3]| {
+        a[0][0] * (a[1][1] * a[2][2] - a[1][2] * a[2][1])
+            - a[0][1] * (a[1][0] * a[2][2] - a[1][2] * a[2][0])
+            + a[0][2] * (a[1][0] * a[2][1] - a[1][1] * a[2][0])
+    };
+    let a = [[s[0], s[1], s[2]], [s[1], s[2], s[3]], [s[2], s[3], s[4]]];
+    let d = det3(a);
+    let col = |k: usize| {
+        let mut b = a;
+        for (row, &tk) in b.iter_mut().zip(&t) {
+            row[k] = tk;
+        }
+        det3(b) / d
+    };
+    // y = c0 + c1 u + c2 u², u = x − m; at x = 0, u = −m.
+    let (c0, c1, c2) = (col(0), col(1), col(2));
+    c0 - c1 * m + c2 * m * m
 }
 
 /// Intercept at `x0` of the least-squares line through (x, y).
@@ -129,7 +176,7 @@ pub(super) fn report(
         let std_error = (0..pc.nbins)
             .map(|k| mean_se(&blocks.iter().map(|g| g[k]).collect::<Vec<_>>()).1)
             .collect();
-        // Bins wholly in [σ, σ(1 + 0.1)] (edges with a relative tolerance).
+        // Bins wholly in [σ, σ(1 + 0.2)] (edges with a relative tolerance).
         let tol = 1e-9 * sigma;
         let fit: Vec<usize> = (0..pc.nbins)
             .filter(|&k| {
@@ -237,6 +284,24 @@ mod tests {
         let y: Vec<f64> = x.iter().map(|v| 4.0 - 2.5 * (v - 1.0)).collect();
         assert!((line_at(&x, &y, 1.0) - 4.0).abs() < 1e-12);
         let g: Vec<f64> = x.iter().map(|v| 3.0 * (-2.0 * (v - 1.0)).exp()).collect();
-        assert!((contact_at(&x, &g, 1.0) - 3.0).abs() < 1e-12);
+        assert!((contact_at(&x[..3], &g[..3], 1.0) - 3.0).abs() < 1e-12);
+    }
+
+    /// ln g with curvature, as near contact in a dense fluid: the parabola
+    /// recovers g(σ) exactly where a straight line through the same bins reads low.
+    #[test]
+    fn contact_fit_follows_the_curvature_of_ln_g() {
+        let x: Vec<f64> = (0..10).map(|k| 1.01 + 0.02 * k as f64).collect();
+        let g: Vec<f64> = x
+            .iter()
+            .map(|v| 6.0 * (-8.0 * (v - 1.0) + 12.0 * (v - 1.0).powi(2)).exp())
+            .collect();
+        assert!((contact_at(&x, &g, 1.0) - 6.0).abs() < 1e-10);
+        let line = line_at(&x, &g.iter().map(|v| v.ln()).collect::<Vec<_>>(), 1.0).exp();
+        assert!(line < 5.9, "{line}");
+        // An empty bin is left out, not read as ln 0.
+        let mut holed = g.clone();
+        holed[9] = 0.0;
+        assert!((contact_at(&x, &holed, 1.0) - 6.0).abs() < 1e-10);
     }
 }

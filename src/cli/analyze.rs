@@ -7,7 +7,7 @@
 use std::process::ExitCode;
 
 use carom::analysis::{
-    analyze_log, AnalysisOptions, ReadObserver, Report, CORRELATED_SPACING,
+    analyze_log, AnalysisOptions, ReadObserver, Report, CONTACT_FIT_SIGMA, CORRELATED_SPACING,
     DECORRELATION_COLLISIONS,
 };
 use carom::io::ReadProgress;
@@ -276,8 +276,10 @@ pub fn text(r: &Report, args: &AnalyzeArgs, complete: bool) -> String {
                 None => {
                     let _ = writeln!(
                         s,
-                        "  species {}–{}: no contact value (no bin within [σ, 1.1 σ])",
-                        p.a, p.b
+                        "  species {}–{}: no contact value (no bin within [σ, {} σ])",
+                        p.a,
+                        p.b,
+                        1.0 + CONTACT_FIT_SIGMA
                     );
                 }
             }
