@@ -307,8 +307,14 @@ impl Analyzer {
             return Ok(());
         }
         let t = t.max(self.t_eq);
-        self.pair_correlation.add(t, species_of, x, y);
-        let psi = self.bond_order.add(t, &self.run.sim_box, x, y);
+        // g(r) runs on all cores; the triangulation behind ψ6 is serial, so it
+        // runs beside g(r) rather than after it.
+        let (pair_correlation, bond_order) = (&mut self.pair_correlation, &mut self.bond_order);
+        let sim_box = &self.run.sim_box;
+        let ((), psi) = rayon::join(
+            || pair_correlation.add(t, species_of, x, y),
+            || bond_order.add(t, sim_box, x, y),
+        );
         self.bond_correlation.add(t, x, y, &psi);
         if let Some(sf) = &mut self.structure_factor {
             sf.add(t, x, y);

@@ -115,8 +115,6 @@ impl BondCorrelation {
         self.cells
             .build(&self.sim_box, nbins as f64 * self.dr, x, y);
         let local = self.cells.fold_pairs(
-            x,
-            y,
             || vec![(0.0, 0u64); nbins],
             |h, i, j, r| {
                 let k = ((r * inv_dr) as usize).min(nbins - 1);

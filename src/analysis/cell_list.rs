@@ -23,6 +23,10 @@ pub struct CellList {
     /// Discs sorted by cell; cell c holds `order[starts[c]..starts[c + 1]]`.
     order: Vec<u32>,
     starts: Vec<u32>,
+    /// The positions in that order (`xs[k]` is disc `order[k]`'s), so that the
+    /// pair loops read memory in sequence.
+    xs: Vec<f64>,
+    ys: Vec<f64>,
 }
 
 impl CellList {
@@ -63,15 +67,19 @@ impl CellList {
             self.order[fill[c] as usize] = i as u32;
             fill[c] += 1;
         }
+        self.xs.clear();
+        self.xs.extend(self.order.iter().map(|&i| x[i as usize]));
+        self.ys.clear();
+        self.ys.extend(self.order.iter().map(|&i| y[i as usize]));
         (self.cx, self.cy, self.periodic) = (cx, cy, per);
         self.size = [lx, ly];
         self.r2_cut = r_cut * r_cut;
     }
 
     /// Fold `visit(acc, i, j, r)` over every unordered pair i ≠ j at distance
-    /// r < r_cut (positions as given to [`CellList::build`]): each chunk of rows
+    /// r < r_cut (of the positions last given to [`CellList::build`]): each chunk of rows
     /// folds into its own `zero()`, and the chunks are merged in order.
-    pub fn fold_pairs<A, Z, V, M>(&self, x: &[f64], y: &[f64], zero: Z, visit: V, merge: M) -> A
+    pub fn fold_pairs<A, Z, V, M>(&self, zero: Z, visit: V, merge: M) -> A
     where
         A: Send,
         Z: Fn() -> A + Sync,
@@ -80,59 +88,74 @@ impl CellList {
     {
         let (cx, cy, per) = (self.cx, self.cy, self.periodic);
         let [lx, ly] = self.size;
-        let (hx, hy) = (0.5 * lx, 0.5 * ly);
-        let image = |d: f64, l: f64, h: f64, p: bool| {
-            if !p {
-                d
-            } else if d > h {
+        // A periodic axis of one cell needs the minimum image for every pair
+        // along it; with 3 or more cells (never 2) a pair closer than r_cut lies
+        // in the same or adjacent cells, and crossing the edge is a shift by ±L.
+        let image = [per[0] && cx == 1, per[1] && cy == 1];
+        let min_image = |d: f64, l: f64, on: bool| {
+            if on && d > 0.5 * l {
                 d - l
-            } else if d < -h {
+            } else if on && d < -0.5 * l {
                 d + l
             } else {
                 d
             }
         };
-        let pair = |acc: &mut A, i: usize, j: usize| {
-            let dx = image(x[j] - x[i], lx, hx, per[0]);
-            let dy = image(y[j] - y[i], ly, hy, per[1]);
-            let r2 = dx * dx + dy * dy;
-            if r2 < self.r2_cut {
-                visit(acc, i, j, r2.sqrt());
+        let (xs, ys, order, r2_cut) = (&self.xs[..], &self.ys[..], &self.order[..], self.r2_cut);
+        // Disc at place `a` against the places `nb` (coordinates shifted by
+        // (sx, sy)).
+        let against = |acc: &mut A, a: usize, nb: std::ops::Range<usize>, sx: f64, sy: f64| {
+            let (xa, ya, i) = (xs[a], ys[a], order[a] as usize);
+            let others = xs[nb.clone()].iter().zip(&ys[nb.clone()]).zip(&order[nb]);
+            if image == [false, false] {
+                for ((&xj, &yj), &j) in others {
+                    let (dx, dy) = ((xj - xa) + sx, (yj - ya) + sy);
+                    let r2 = dx * dx + dy * dy;
+                    if r2 < r2_cut {
+                        visit(acc, i, j as usize, r2.sqrt());
+                    }
+                }
+            } else {
+                for ((&xj, &yj), &j) in others {
+                    let dx = min_image((xj - xa) + sx, lx, image[0]);
+                    let dy = min_image((yj - ya) + sy, ly, image[1]);
+                    let r2 = dx * dx + dy * dy;
+                    if r2 < r2_cut {
+                        visit(acc, i, j as usize, r2.sqrt());
+                    }
+                }
             }
         };
         const HALF: [(i64, i64); 4] = [(1, 0), (-1, 1), (0, 1), (1, 1)];
-        let wrap = |k: i64, nc: usize, p: bool| -> Option<usize> {
-            if p {
-                Some(k.rem_euclid(nc as i64) as usize)
-            } else {
-                (0..nc as i64).contains(&k).then_some(k as usize)
+        // The neighbour's index along an axis and the shift of its coordinates.
+        let wrap = |k: i64, nc: usize, p: bool, l: f64| -> Option<(usize, f64)> {
+            let n = nc as i64;
+            match (p, k) {
+                (true, k) if k < 0 => Some(((k + n) as usize, -l)),
+                (true, k) if k >= n => Some(((k - n) as usize, l)),
+                (_, k) => (0..n).contains(&k).then_some((k as usize, 0.0)),
             }
         };
-        let cell = |c: usize| &self.order[self.starts[c] as usize..self.starts[c + 1] as usize];
+        let cell = |c: usize| self.starts[c] as usize..self.starts[c + 1] as usize;
         let row = |acc: &mut A, gy: usize| {
             for gx in 0..cx {
                 let own = cell(gy * cx + gx);
-                for (a, &i) in own.iter().enumerate() {
-                    for &j in &own[a + 1..] {
-                        pair(acc, i as usize, j as usize);
-                    }
+                for a in own.clone() {
+                    against(acc, a, a + 1..own.end, 0.0, 0.0);
                 }
                 for &(ox, oy) in &HALF {
-                    // An axis with one cell has no neighbours along it, a walled
-                    // axis none beyond its ends.
                     if (ox != 0 && cx == 1) || (oy != 0 && cy == 1) {
                         continue;
                     }
-                    let (Some(nx), Some(ny)) = (
-                        wrap(gx as i64 + ox, cx, per[0]),
-                        wrap(gy as i64 + oy, cy, per[1]),
+                    let (Some((nx, sx)), Some((ny, sy))) = (
+                        wrap(gx as i64 + ox, cx, per[0], lx),
+                        wrap(gy as i64 + oy, cy, per[1], ly),
                     ) else {
                         continue;
                     };
-                    for &i in own {
-                        for &j in cell(ny * cx + nx) {
-                            pair(acc, i as usize, j as usize);
-                        }
+                    let nb = cell(ny * cx + nx);
+                    for a in own.clone() {
+                        against(acc, a, nb.clone(), sx, sy);
                     }
                 }
             }

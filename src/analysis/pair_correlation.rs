@@ -108,8 +108,6 @@ impl PairCorrelation {
         let np = self.counts[blk].len();
         // Integer counts: the same sum in any order.
         let local = self.cells.fold_pairs(
-            x,
-            y,
             || vec![vec![0u64; nbins]; np],
             |hist, i, j, r| {
                 let k = ((r * inv_dr) as usize).min(nbins - 1);
