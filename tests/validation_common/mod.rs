@@ -1,8 +1,9 @@
 //! The validation suites' results table (tests/validation.rs,
 //! tests/validation_structure.rs): each case adds rows (value, standard error,
 //! reference, deviation in standard errors, tolerance, pass/fail) and notes,
-//! writes them to `target/tmp/validation/<pid>/` before asserting, and the table
-//! of every case of this process is assembled into `target/tmp/<suite>.md`; with
+//! writes them to `target/tmp/<suite>/<case>.md` before asserting, and the table
+//! of every case last run (in this or an earlier run: a long case can be rerun
+//! alone) is assembled into `target/tmp/<suite>.md`; with
 //! `CAROM_VALIDATION_DOCS=path` it is spliced into that file between the suite's
 //! own generated-section markers (one section per test file).
 #![allow(dead_code)]
@@ -220,9 +221,7 @@ impl Fragment {
 const SUITE: &str = env!("CARGO_CRATE_NAME");
 
 fn fragment_dir() -> PathBuf {
-    Path::new(env!("CARGO_TARGET_TMPDIR"))
-        .join(SUITE)
-        .join(std::process::id().to_string())
+    Path::new(env!("CARGO_TARGET_TMPDIR")).join(SUITE)
 }
 
 fn write_atomic(path: &Path, text: &str) {
@@ -233,7 +232,7 @@ fn write_atomic(path: &Path, text: &str) {
 
 const END: &str = "<!-- END GENERATED -->";
 
-/// Build the table from every fragment of this process and write it.
+/// Build the table from every case's latest fragment and write it.
 fn assemble(dir: &Path) {
     let mut files: Vec<PathBuf> = std::fs::read_dir(dir)
         .expect("read the fragment directory")
