@@ -80,28 +80,31 @@ pub struct ContactTheoremReport {
     pub difference_std_errors: f64,
 }
 
-/// g(σ⁺) from the bins (x, g): exp of the least-squares parabola through
-/// (x, ln g) at `x0` (a straight line with fewer than 4 bins). ln g bends near
-/// contact in a dense fluid; a straight line through it reads g(σ⁺) low
-/// (physics.md §10). Empty bins (g = 0) are left out.
-fn contact_at(x: &[f64], g: &[f64], x0: f64) -> f64 {
+/// g(σ⁺) from the bins (x, g) of width `h`: exp of the least-squares parabola
+/// through (x, ln g) at `x0` (a straight line with fewer than 4 bins). ln g
+/// bends near contact in a dense fluid; a straight line through it reads g(σ⁺)
+/// low (physics.md §10). A bin holds g averaged over its annulus, which for
+/// ln g = f is g(x)(1 + (f'² + f'')h²/24 + f'h²/(12x)) to order h²; that factor
+/// is taken off at x0. Empty bins (g = 0) are left out.
+fn contact_at(x: &[f64], g: &[f64], x0: f64, h: f64) -> f64 {
     let (x, lg): (Vec<f64>, Vec<f64>) = x
         .iter()
         .zip(g)
         .filter(|(_, &g)| g > 0.0)
         .map(|(&x, &g)| (x - x0, g.ln()))
         .unzip();
-    let intercept = if x.len() >= 4 {
-        parabola_at_zero(&x, &lg)
+    let [c0, c1, c2] = if x.len() >= 4 {
+        parabola(&x, &lg)
     } else {
-        line_at(&x, &lg, 0.0)
+        let [c0, c1] = line(&x, &lg);
+        [c0, c1, 0.0]
     };
-    intercept.exp()
+    (c0 - h * h * ((c1 * c1 + 2.0 * c2) / 24.0 + c1 / (12.0 * x0))).exp()
 }
 
-/// Value at x = 0 of the least-squares parabola y = c0 + c1 x + c2 x² (the
-/// normal equations about the mean of x, solved by Cramer's rule).
-fn parabola_at_zero(x: &[f64], y: &[f64]) -> f64 {
+/// Coefficients [c0, c1, c2] of the least-squares parabola y = c0 + c1 x + c2 x²
+/// (the normal equations about the mean of x, solved by Cramer's rule).
+fn parabola(x: &[f64], y: &[f64]) -> [f64; 3] {
     let n = x.len() as f64;
     let m = x.iter().sum::<f64>() / n;
     let (mut s, mut t) = ([0.0; 5], [0.0; 3]);
@@ -130,21 +133,23 @@ fn parabola_at_zero(x: &[f64], y: &[f64]) -> f64 {
         }
         det3(b) / d
     };
-    // y = c0 + c1 u + c2 u², u = x − m; at x = 0, u = −m.
-    let (c0, c1, c2) = (col(0), col(1), col(2));
-    c0 - c1 * m + c2 * m * m
+    // y = b0 + b1 u + b2 u² with u = x − m.
+    let (b0, b1, b2) = (col(0), col(1), col(2));
+    [b0 - b1 * m + b2 * m * m, b1 - 2.0 * b2 * m, b2]
 }
 
-/// Intercept at `x0` of the least-squares line through (x, y).
-fn line_at(x: &[f64], y: &[f64], x0: f64) -> f64 {
+/// Coefficients [c0, c1] of the least-squares line y = c0 + c1 x (a constant
+/// through one point).
+fn line(x: &[f64], y: &[f64]) -> [f64; 2] {
     let n = x.len() as f64;
     if x.len() == 1 {
-        return y[0];
+        return [y[0], 0.0];
     }
     let (mx, my) = (x.iter().sum::<f64>() / n, y.iter().sum::<f64>() / n);
     let sxx: f64 = x.iter().map(|v| (v - mx).powi(2)).sum();
     let sxy: f64 = x.iter().zip(y).map(|(a, b)| (a - mx) * (b - my)).sum();
-    my + sxy / sxx * (x0 - mx)
+    let slope = sxy / sxx;
+    [my - slope * mx, slope]
 }
 
 /// The report from the accumulator; `elastic_periodic` and `pressure` decide the
@@ -188,13 +193,13 @@ pub(super) fn report(
             let xs: Vec<f64> = fit.iter().map(|&k| r[k]).collect();
             let per_block: Vec<f64> = blocks
                 .iter()
-                .map(|g| contact_at(&xs, &fit.iter().map(|&k| g[k]).collect::<Vec<_>>(), sigma))
+                .map(|g| {
+                    let g: Vec<f64> = fit.iter().map(|&k| g[k]).collect();
+                    contact_at(&xs, &g, sigma, pc.dr)
+                })
                 .collect();
-            let value = contact_at(
-                &xs,
-                &fit.iter().map(|&k| pooled[k]).collect::<Vec<_>>(),
-                sigma,
-            );
+            let g: Vec<f64> = fit.iter().map(|&k| pooled[k]).collect();
+            let value = contact_at(&xs, &g, sigma, pc.dr);
             (per_block, value)
         });
         let weight = {
@@ -278,30 +283,66 @@ pub(super) fn report(
 mod tests {
     use super::*;
 
-    #[test]
-    fn line_fit_extrapolates_a_straight_line_exactly() {
-        let x = [1.01, 1.03, 1.05, 1.07, 1.09];
-        let y: Vec<f64> = x.iter().map(|v| 4.0 - 2.5 * (v - 1.0)).collect();
-        assert!((line_at(&x, &y, 1.0) - 4.0).abs() < 1e-12);
-        let g: Vec<f64> = x.iter().map(|v| 3.0 * (-2.0 * (v - 1.0)).exp()).collect();
-        assert!((contact_at(&x[..3], &g[..3], 1.0) - 3.0).abs() < 1e-12);
+    /// Bins of width `h` from `r0` holding g averaged over their annuli (the
+    /// r-weighted mean, by Simpson's rule on 200 intervals).
+    fn binned(g: impl Fn(f64) -> f64, r0: f64, h: f64, n: usize) -> (Vec<f64>, Vec<f64>) {
+        let avg = |a: f64| {
+            let m = 200;
+            let (mut num, mut den) = (0.0, 0.0);
+            for i in 0..=m {
+                let r = a + h * i as f64 / m as f64;
+                let w = if i == 0 || i == m {
+                    1.0
+                } else if i % 2 == 1 {
+                    4.0
+                } else {
+                    2.0
+                };
+                num += w * g(r) * r;
+                den += w * r;
+            }
+            num / den
+        };
+        (0..n)
+            .map(|k| {
+                let a = r0 + h * k as f64;
+                (a + 0.5 * h, avg(a))
+            })
+            .unzip()
     }
 
-    /// ln g with curvature, as near contact in a dense fluid: the parabola
-    /// recovers g(σ) exactly where a straight line through the same bins reads low.
     #[test]
-    fn contact_fit_follows_the_curvature_of_ln_g() {
-        let x: Vec<f64> = (0..10).map(|k| 1.01 + 0.02 * k as f64).collect();
-        let g: Vec<f64> = x
-            .iter()
-            .map(|v| 6.0 * (-8.0 * (v - 1.0) + 12.0 * (v - 1.0).powi(2)).exp())
-            .collect();
-        assert!((contact_at(&x, &g, 1.0) - 6.0).abs() < 1e-10);
-        let line = line_at(&x, &g.iter().map(|v| v.ln()).collect::<Vec<_>>(), 1.0).exp();
-        assert!(line < 5.9, "{line}");
+    fn a_straight_line_in_ln_g_is_recovered_through_two_or_three_bins() {
+        let (x, g) = binned(|r| 3.0 * (-2.0 * (r - 1.0)).exp(), 1.0, 0.02, 3);
+        assert!((contact_at(&x, &g, 1.0, 0.02) / 3.0 - 1.0).abs() < 1e-7);
+        assert!((contact_at(&x[..2], &g[..2], 1.0, 0.02) / 3.0 - 1.0).abs() < 1e-7);
+        let [c0, c1] = line(&[1.0, 2.0, 3.0], &[5.0, 3.0, 1.0]);
+        assert!((c0 - 7.0).abs() < 1e-12 && (c1 + 2.0).abs() < 1e-12);
+    }
+
+    /// ln g with the slope and curvature of a dense fluid at contact (η ≈ 0.65):
+    /// the parabola with the bin correction recovers g(σ) to 10⁻⁶; without the
+    /// correction it reads high (by more than 0.04 %), a straight line low.
+    #[test]
+    fn contact_fit_follows_the_curvature_of_ln_g_and_the_bins_averages() {
+        let f = |r: f64| 6.0 * (-7.0 * (r - 1.0) + 12.0 * (r - 1.0).powi(2)).exp();
+        let (x, g) = binned(f, 1.0, 0.02, 10);
+        let fitted = contact_at(&x, &g, 1.0, 0.02);
+        assert!((fitted / 6.0 - 1.0).abs() < 1e-6, "{fitted}");
+        let uncorrected = contact_at(&x, &g, 1.0, 0.0);
+        assert!(uncorrected / 6.0 - 1.0 > 4e-4, "{uncorrected}");
+        let lg: Vec<f64> = g.iter().map(|v| v.ln()).collect();
+        let straight = line(
+            &x[..5].iter().map(|v| v - 1.0).collect::<Vec<_>>(),
+            &lg[..5],
+        )[0]
+        .exp();
+        assert!(straight < 5.99, "{straight}");
         // An empty bin is left out, not read as ln 0.
         let mut holed = g.clone();
         holed[9] = 0.0;
-        assert!((contact_at(&x, &holed, 1.0) - 6.0).abs() < 1e-10);
+        assert!((contact_at(&x, &holed, 1.0, 0.02) / 6.0 - 1.0).abs() < 1e-5);
+        let [c0, c1, c2] = parabola(&[0.0, 1.0, 2.0, 3.0], &[1.0, 2.0, 5.0, 10.0]);
+        assert!((c0 - 1.0).abs() < 1e-12 && c1.abs() < 1e-12 && (c2 - 1.0).abs() < 1e-12);
     }
 }
