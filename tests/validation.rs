@@ -73,30 +73,11 @@ use carom::analysis::stats::{
 use carom::core::{Axis, Boundary, DVec2, Restitution, Species, WallSide};
 use carom::events::{Engine, EngineError, EngineParams, Event, State, SystemSpec, Velocities};
 use stats_common::{dilute_wall_z, est, Est};
-use validation_common::{fmt_se, Check, Fragment, Row};
+use validation_common::{fmt_se, kolafa_rottner, Check, Fragment, Row};
 
 // ===========================================================================
 // Systems and references
 // ===========================================================================
-
-/// Kolafa–Rottner Z(η) with the spread of other fits (physics.md §7).
-const KOLAFA_ROTTNER: [(f64, f64, f64); 7] = [
-    (0.10, 1.2361, 0.0001),
-    (0.20, 1.5704, 0.0006),
-    (0.30, 2.0633, 0.0020),
-    (0.40, 2.8293, 0.0024),
-    (0.50, 4.1064, 0.0030),
-    (0.55, 5.0874, 0.0030),
-    (0.60, 6.4553, 0.0034),
-];
-
-fn kolafa_rottner(eta: f64) -> (f64, f64) {
-    let r = KOLAFA_ROTTNER
-        .iter()
-        .find(|r| (r.0 - eta).abs() < 1e-9)
-        .expect("η in the physics.md §7 table");
-    (r.1, r.2)
-}
 
 /// βPd² and its error for N = 870, aspect 1 at `eta` from the Li et al. 2022 CSV.
 fn li2022(eta: f64) -> (f64, f64) {
@@ -333,7 +314,12 @@ fn eos_fluid(key: &'static str, title: &str, etas: &[f64], scale: f64) {
             (50.0 * n as f64) as u64,
             (scale * 1e7) as u64,
         );
-        eos_rows(&mut frag, &format!("η = {eta}"), &r, kolafa_rottner(eta));
+        eos_rows(
+            &mut frag,
+            &format!("η = {eta}"),
+            &r,
+            kolafa_rottner(eta).expect("η in the physics.md §7 table"),
+        );
     }
     frag.note(
         "Reference: Kolafa–Rottner fit (physics.md §7); ± is the spread of other fits, \
@@ -694,7 +680,7 @@ fn cooling_run(rule: Restitution, n: usize, eta: f64, seed: u64, per_disc: f64) 
     }
     // 1/t0 = (1 − e²)(1 + 3a2/16) ω_E(T0)/4, ω_E = 2σ n g(σ) √(πT0/m) with
     // g(σ) = (Z − 1)/(2η) from the Kolafa–Rottner Z(η) of physics.md §7.
-    let (z, _) = kolafa_rottner(eta);
+    let (z, _) = kolafa_rottner(eta).expect("η in the physics.md §7 table");
     let g = (z - 1.0) / (2.0 * eta);
     let dens = n as f64 / e.sim_box().area();
     let omega_e = 2.0 * dens * g * (PI * points[0].temp).sqrt();
@@ -1038,13 +1024,13 @@ fn granular(key: &'static str, title: &str, n: usize, seeds: u64, per_disc: f64)
          collision-weighted ⟨|g|²⟩ = 4T/m (normal) + 2T/m (tangential) = 6T/m is 3/2 of the \
          normal model's ⟨u²⟩ = 4T/m, so 1/t0 = (3/2)(1 − R²) ω_E/4 for Maxwellian velocities; \
          predicted ratio to the normal model (with its a2 factor) {predicted:.4}.",
-        (kolafa_rottner(eta).0 - 1.0) / (2.0 * eta),
+        (kolafa_rottner(eta).expect("η in the physics.md §7 table").0 - 1.0) / (2.0 * eta),
         (n as f64 * PI / 4.0 / eta).sqrt(),
         (n as f64 * PI / 4.0 / eta).sqrt()
             * 2.0
             * 2f64.sqrt()
             * (4.0 * eta / PI)
-            * ((kolafa_rottner(eta).0 - 1.0) / (2.0 * eta)),
+            * ((kolafa_rottner(eta).expect("η in the physics.md §7 table").0 - 1.0) / (2.0 * eta)),
     ));
     frag.finish();
 }

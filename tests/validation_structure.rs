@@ -26,16 +26,7 @@ use std::time::Instant;
 use carom::analysis::{AnalysisOptions, Analyzer, Report, RunDescription};
 use carom::core::{Boundary, SimBox, Species};
 use carom::events::{box_size_for, Engine, EngineParams, Event, SystemSpec};
-use validation_common::{fmt_se, Check, Fragment, Row};
-
-/// Kolafa–Rottner Z(η) with the spread of other fits (physics.md §7).
-const KOLAFA_ROTTNER: [(f64, f64, f64); 5] = [
-    (0.20, 1.5704, 0.0006),
-    (0.30, 2.0633, 0.0020),
-    (0.40, 2.8293, 0.0024),
-    (0.50, 4.1064, 0.0030),
-    (0.60, 6.4553, 0.0034),
-];
+use validation_common::{fmt_se, kolafa_rottner, Check, Fragment, Row};
 
 /// A run's analysis and what it cost.
 struct Measured {
@@ -148,7 +139,7 @@ fn contact_theorem(key: &'static str, title: &str, runs: &[(f64, usize, f64, u64
             ct.z_virial,
             ct.z_virial_std_error,
         );
-        if let Some(&(_, r, e)) = KOLAFA_ROTTNER.iter().find(|r| (r.0 - eta).abs() < 1e-9) {
+        if let Some((r, e)) = kolafa_rottner(eta) {
             z = z.reference(r, e);
         }
         frag.row(z);
