@@ -1,7 +1,8 @@
 //! Every pair of discs closer than a cut-off r_c in one snapshot, in O(N): a cell
 //! list with cells at least r_c wide, visited with a half stencil (the own cell
-//! and four neighbours) so that each unordered pair is seen once. Separations
-//! are minimum images along periodic axes (r_c ≤ L/2 there). The rows of cells
+//! and four neighbours) so that each unordered pair is seen once, over positions
+//! copied in cell order. Separations are minimum images along periodic axes
+//! (r_c ≤ L/2 there): a neighbour across the edge is shifted by ±L. The rows of cells
 //! are split into a fixed number of contiguous chunks that run on all cores
 //! (rayon) and are merged in chunk order, so floating-point sums are the same on
 //! every run (g(r), g6(r); physics.md §10–§11).
