@@ -73,3 +73,48 @@ pub(super) fn enskog(
         relation: "Z − 1 = (√π/4) ω τ0, τ0 = σ √(m/kT) (physics.md §7)",
     }))
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::analysis::description::RunDescription;
+    use crate::analysis::AnalysisOptions;
+
+    /// ω per bin counts each logged pair `stride` times and adds the pairs of
+    /// running totals: 2 (stride·logged + totals) / (N Δt), by hand.
+    #[test]
+    fn each_bin_counts_logged_pairs_by_the_stride_and_adds_the_totals() {
+        let run = RunDescription {
+            collision_stride: 3,
+            ..RunDescription::for_tests()
+        };
+        let opts = AnalysisOptions {
+            equilibrate: Some(0.0),
+            ..Default::default()
+        };
+        let mut a = Analyzer::new(run, opts).unwrap();
+        // 2 discs, t in [0, 10): logged pairs at 0.5, 0.55, 1.0 and 9.0; 5 pairs of
+        // running totals spread evenly over [0, 5).
+        for t in [0.5, 0.55, 1.0, 9.0] {
+            a.pair(t, 1.0, 0.0);
+        }
+        a.increment(0.0, 5.0, 0.0, 0.0, 5);
+        let omega = omega_per_bin(&a);
+        let h = a.bin_width;
+        let expected: Vec<f64> = (0..omega.len())
+            .map(|k| {
+                let (lo, hi) = (k as f64 * h, (k + 1) as f64 * h);
+                let logged = [0.5, 0.55, 1.0, 9.0]
+                    .iter()
+                    .filter(|&&t| lo <= t && t < hi)
+                    .count();
+                let totals = 5.0 * (hi.min(5.0) - lo).max(0.0) / 5.0;
+                2.0 * (3.0 * logged as f64 + totals) / (2.0 * h)
+            })
+            .collect();
+        assert!(omega.len() >= 4);
+        for (w, e) in omega.iter().zip(&expected) {
+            assert!((w - e).abs() < 1e-12, "{omega:?} against {expected:?}");
+        }
+    }
+}
