@@ -79,6 +79,7 @@ mod tests {
     use super::*;
     use crate::analysis::description::RunDescription;
     use crate::analysis::AnalysisOptions;
+    use carom_core::Species;
 
     /// ω per bin counts each logged pair `stride` times and adds the pairs of
     /// running totals: 2 (stride·logged + totals) / (N Δt), by hand.
@@ -116,5 +117,47 @@ mod tests {
         for (w, e) in omega.iter().zip(&expected) {
             assert!((w - e).abs() < 1e-12, "{omega:?} against {expected:?}");
         }
+    }
+
+    /// The Enskog rate term (√π/4) ω σ √(m/kT), bin by bin, for discs of
+    /// diameter 1.4 and mass 2 at kT = 0.5 beside a species with no discs (which
+    /// does not make the run a mixture).
+    #[test]
+    fn the_enskog_rate_term_uses_the_species_diameter_and_mass() {
+        let run = RunDescription {
+            species: vec![Species::new(0, 0.3, 1.0), Species::new(50, 0.7, 2.0)],
+            ..RunDescription::for_tests()
+        };
+        let a = Analyzer::new(run, AnalysisOptions::default()).unwrap();
+        let pressure = PressureReport {
+            estimator: "test",
+            z: 3.0,
+            z_std_error: 0.0,
+            beta_p: 0.0,
+            beta_p_std_error: 0.0,
+            p: 0.0,
+            area: 100.0,
+            blocks: 16,
+            block_time: 1.0,
+            converged: true,
+            series: vec![],
+            drift: None,
+        };
+        let n = 64;
+        let z: Vec<f64> = (0..n).map(|k| 3.0 + 0.01 * (k % 3) as f64).collect();
+        let omega: Vec<f64> = (0..n).map(|k| 1.5 + 0.02 * (k % 5) as f64).collect();
+        let kt = vec![0.5; n];
+        let e = enskog(&a, true, Some(&pressure), [&z, &omega, &kt])
+            .unwrap()
+            .expect("one species with discs, periodic, elastic");
+        let c = std::f64::consts::PI.sqrt() / 4.0;
+        let mean_omega = omega.iter().sum::<f64>() / n as f64;
+        let expected = c * mean_omega * 1.4 * (2.0f64 / 0.5).sqrt();
+        assert!(
+            (e.rate_term - expected).abs() < 1e-12,
+            "{} against {expected}",
+            e.rate_term
+        );
+        assert_eq!(e.z_minus_1, 2.0);
     }
 }
