@@ -108,22 +108,12 @@ impl CellList {
         let against = |acc: &mut A, a: usize, nb: std::ops::Range<usize>, sx: f64, sy: f64| {
             let (xa, ya, i) = (xs[a], ys[a], order[a] as usize);
             let others = xs[nb.clone()].iter().zip(&ys[nb.clone()]).zip(&order[nb]);
-            if image == [false, false] {
-                for ((&xj, &yj), &j) in others {
-                    let (dx, dy) = ((xj - xa) + sx, (yj - ya) + sy);
-                    let r2 = dx * dx + dy * dy;
-                    if r2 < r2_cut {
-                        visit(acc, i, j as usize, r2.sqrt());
-                    }
-                }
-            } else {
-                for ((&xj, &yj), &j) in others {
-                    let dx = min_image((xj - xa) + sx, lx, image[0]);
-                    let dy = min_image((yj - ya) + sy, ly, image[1]);
-                    let r2 = dx * dx + dy * dy;
-                    if r2 < r2_cut {
-                        visit(acc, i, j as usize, r2.sqrt());
-                    }
+            for ((&xj, &yj), &j) in others {
+                let dx = min_image((xj - xa) + sx, lx, image[0]);
+                let dy = min_image((yj - ya) + sy, ly, image[1]);
+                let r2 = dx * dx + dy * dy;
+                if r2 < r2_cut {
+                    visit(acc, i, j as usize, r2.sqrt());
                 }
             }
         };
