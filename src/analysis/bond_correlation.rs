@@ -10,10 +10,10 @@
 //! first falls below 3 standard errors) per block;
 //! the errors are the spread of the block fits.
 
-use carom_core::{Boundary, SimBox, Species};
+use carom_core::{SimBox, Species};
 use serde::Serialize;
 
-use super::cell_list::CellList;
+use super::cell_list::{pair_reach, CellList};
 use super::pair_correlation::{mean_se, BLOCKS};
 
 /// Largest r of g6 in units of the largest contact distance.
@@ -64,19 +64,7 @@ pub struct BondCorrelationReport {
 impl BondCorrelation {
     /// An accumulator for `species` in `sim_box` over the window [t0, t1].
     pub fn new(species: &[Species], sim_box: &SimBox, t0: f64, t1: f64) -> Self {
-        let radii = || species.iter().filter(|s| s.count > 0).map(|s| s.radius);
-        let sigma_min = 2.0 * radii().fold(f64::INFINITY, f64::min);
-        let sigma_max = 2.0 * radii().fold(0.0, f64::max);
-        let mut r_max = G6_R_MAX_SIGMA * sigma_max;
-        for (l, b) in [sim_box.size.x, sim_box.size.y]
-            .iter()
-            .zip(sim_box.boundary)
-        {
-            r_max = r_max.min(match b {
-                Boundary::Periodic => 0.5 * l,
-                Boundary::Walls { .. } => l - sigma_min,
-            });
-        }
+        let [sigma_min, sigma_max, r_max] = pair_reach(species, sim_box, G6_R_MAX_SIGMA);
         let dr = G6_BIN_WIDTH_SIGMA * sigma_min;
         let nbins = ((r_max / dr).floor() as usize).max(1);
         BondCorrelation {

@@ -7,8 +7,28 @@
 //! (rayon) and are merged in chunk order, so floating-point sums are the same on
 //! every run (g(r), g6(r); physics.md §10–§11).
 
-use carom_core::SimBox;
+use carom_core::{Boundary, SimBox, Species};
 use rayon::prelude::*;
+
+/// [σ_min, σ_max], the extreme contact diameters among the species with discs,
+/// and r_max, the farthest a pair separation is measured: `r_max_sigma` σ_max at
+/// most, half a periodic edge (the minimum image), a walled edge less σ_min.
+pub fn pair_reach(species: &[Species], sim_box: &SimBox, r_max_sigma: f64) -> [f64; 3] {
+    let radii = || species.iter().filter(|s| s.count > 0).map(|s| s.radius);
+    let sigma_min = 2.0 * radii().fold(f64::INFINITY, f64::min);
+    let sigma_max = 2.0 * radii().fold(0.0, f64::max);
+    let mut r_max = r_max_sigma * sigma_max;
+    for (l, b) in [sim_box.size.x, sim_box.size.y]
+        .iter()
+        .zip(sim_box.boundary)
+    {
+        r_max = r_max.min(match b {
+            Boundary::Periodic => 0.5 * l,
+            Boundary::Walls { .. } => l - sigma_min,
+        });
+    }
+    [sigma_min, sigma_max, r_max]
+}
 
 /// Chunks of rows (fixed, so the merge order does not depend on the threads).
 const CHUNKS: usize = 16;

@@ -12,7 +12,7 @@
 
 use carom_core::{Boundary, SimBox, Species};
 
-use super::cell_list::CellList;
+use super::cell_list::{pair_reach, CellList};
 
 /// Number of equal time blocks over the window (error bars from their spread).
 pub const BLOCKS: usize = 16;
@@ -54,21 +54,7 @@ pub fn pairs(ns: usize) -> Vec<(usize, usize)> {
 impl PairCorrelation {
     /// An accumulator for `species` in `sim_box` over the window [t0, t1].
     pub fn new(species: &[Species], sim_box: &SimBox, t0: f64, t1: f64) -> Self {
-        let present: Vec<&Species> = species.iter().filter(|s| s.count > 0).collect();
-        let radii = || present.iter().map(|s| s.radius);
-        let sigma_min = 2.0 * radii().fold(f64::INFINITY, f64::min);
-        let sigma_max = 2.0 * radii().fold(0.0, f64::max);
-        let r_min_radius = radii().fold(f64::INFINITY, f64::min);
-        let mut r_max = R_MAX_SIGMA * sigma_max;
-        for (l, b) in [sim_box.size.x, sim_box.size.y]
-            .iter()
-            .zip(sim_box.boundary)
-        {
-            r_max = r_max.min(match b {
-                Boundary::Periodic => 0.5 * l,
-                Boundary::Walls { .. } => l - 2.0 * r_min_radius,
-            });
-        }
+        let [sigma_min, _, r_max] = pair_reach(species, sim_box, R_MAX_SIGMA);
         let dr = BIN_WIDTH_SIGMA * sigma_min;
         let nbins = ((r_max / dr).floor() as usize).max(1);
         let r_max = nbins as f64 * dr;
