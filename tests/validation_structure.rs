@@ -18,6 +18,7 @@
 //!     -- --include-ignored --nocapture --test-threads=1
 //! ```
 
+mod analysis_common;
 mod stats_common;
 mod validation_common;
 
@@ -25,7 +26,7 @@ use std::time::Instant;
 
 use carom::analysis::{AnalysisOptions, Analyzer, Report, RunDescription};
 use carom::core::{Boundary, SimBox, Species};
-use carom::events::{box_size_for, Engine, EngineParams, Event, SystemSpec};
+use carom::events::{box_size_for, Engine, EngineParams, SystemSpec};
 use validation_common::{fmt_se, kolafa_rottner, Check, Fragment, Row};
 
 /// A run's analysis and what it cost.
@@ -84,27 +85,7 @@ fn measure_spec(spec: SystemSpec, eq: f64, snapshots: u64, gap: f64) -> Measured
         ..Default::default()
     };
     let mut a = Analyzer::new(run, opts).unwrap();
-    for k in 0..=snapshots {
-        e.schedule(t_eq + k as f64 * dt, k).unwrap();
-    }
-    while let Some(ev) = e.next_event().unwrap() {
-        match ev {
-            Event::Pair(p) => a.pair(p.time, p.virial, p.energy_lost),
-            Event::Wall(w) => a.wall(w.time, w.impulse, w.energy_lost),
-            Event::Scheduled { time, tag } => {
-                let s = e.state();
-                let (vx, vy): (Vec<f64>, Vec<f64>) =
-                    s.velocities.iter().map(|v| (v.x, v.y)).unzip();
-                let (px, py): (Vec<f64>, Vec<f64>) = s.positions.iter().map(|p| (p.x, p.y)).unzip();
-                a.thermo(time, s.kinetic_energy(), Some(0.0));
-                a.snapshot(time, &s.species_of, &vx, &vy).unwrap();
-                a.positions(time, &s.species_of, &px, &py).unwrap();
-                if tag == snapshots {
-                    break;
-                }
-            }
-        }
-    }
+    analysis_common::feed(&mut e, &mut a, t_eq, dt, snapshots);
     Measured {
         report: a.finish().unwrap(),
         t_eq,

@@ -42,9 +42,15 @@ pub fn analyse_state(
     };
     let mut a = Analyzer::new(run, opts).unwrap();
     let mut engine = Engine::new(state, params).unwrap();
-    let steps = (t_end / dt).round() as u64;
+    feed(&mut engine, &mut a, 0.0, dt, (t_end / dt).round() as u64);
+    a.finish().unwrap()
+}
+
+/// Run `engine` from `t0` to `t0 + steps·dt`, feeding every event to `a`, with a
+/// snapshot (positions, velocities and a thermo record) at each multiple of `dt`.
+pub fn feed(engine: &mut Engine, a: &mut Analyzer, t0: f64, dt: f64, steps: u64) {
     for k in 0..=steps {
-        engine.schedule(k as f64 * dt, k).unwrap();
+        engine.schedule(t0 + k as f64 * dt, k).unwrap();
     }
     let mut lost = 0.0;
     while let Some(ev) = engine.next_event().unwrap() {
@@ -59,12 +65,11 @@ pub fn analyse_state(
             }
             Event::Scheduled { time, tag } => {
                 let s = engine.state();
-                let vx: Vec<f64> = s.velocities.iter().map(|v| v.x).collect();
-                let vy: Vec<f64> = s.velocities.iter().map(|v| v.y).collect();
+                let (vx, vy): (Vec<f64>, Vec<f64>) =
+                    s.velocities.iter().map(|v| (v.x, v.y)).unzip();
+                let (px, py): (Vec<f64>, Vec<f64>) = s.positions.iter().map(|p| (p.x, p.y)).unzip();
                 a.thermo(time, s.kinetic_energy(), Some(lost));
                 a.snapshot(time, &s.species_of, &vx, &vy).unwrap();
-                let px: Vec<f64> = s.positions.iter().map(|p| p.x).collect();
-                let py: Vec<f64> = s.positions.iter().map(|p| p.y).collect();
                 a.positions(time, &s.species_of, &px, &py).unwrap();
                 if tag == steps {
                     break;
@@ -72,7 +77,6 @@ pub fn analyse_state(
             }
         }
     }
-    a.finish().unwrap()
 }
 
 pub fn fluid(n: usize, eta: f64, seed: u64, velocities: Velocities) -> SystemSpec {
