@@ -289,4 +289,122 @@ mod tests {
         assert_eq!((w.normal, w.virial, w.kind), (DVec2::Y, 0.2, KIND_WALL));
         assert_eq!(w.ordinal, 1);
     }
+
+    /// Two discs of masses 2 and 3 (radii 0.5 and 0.7) in a box walled in y.
+    fn heavy_snapshot() -> Snapshot {
+        Snapshot {
+            species_mass: vec![2.0, 3.0],
+            ..snapshot()
+        }
+    }
+
+    fn inelastic_facts() -> RunFacts {
+        RunFacts::new(
+            &[Species::new(1, 0.5, 2.0), Species::new(1, 0.7, 3.0)],
+            &SimBox::walled(10.0, 10.0, 0.9),
+            &carom_events::EngineParams {
+                restitution: carom_core::Restitution::Normal(0.8),
+                ..Default::default()
+            },
+            &crate::LogOptions::default(),
+        )
+    }
+
+    #[test]
+    fn an_inelastic_replay_reports_the_kinetic_energy_each_collision_takes() {
+        let mut r = Replay::new(Some(&inelastic_facts()));
+        r.sync_snapshot(&heavy_snapshot());
+        let dp = DVec2::new(-0.9, 0.6);
+        let dpy = 0.4;
+        let b = CompactBatch {
+            time: vec![0.5, 0.75],
+            i: vec![0, 1],
+            j: vec![1, wall_code(Axis::Y, WallSide::Low)],
+            dpx: vec![dp.x, 0.0],
+            dpy: vec![dp.y, dpy],
+            ..CompactBatch::default()
+        };
+        let mut out = CollisionBatch::default();
+        r.expand(&encoded(&b), &mut out).unwrap();
+        let (p, w) = (out.get(0), out.get(1));
+        // K' − K for v_i + Δp/m_i, v_j − Δp/m_j, expanded:
+        // Δp·(v_i − v_j) + |Δp|²(1/m_i + 1/m_j)/2; the energy lost is its negative.
+        let (vi, vj) = (DVec2::new(1.0, 0.25), DVec2::new(-0.5, 0.1));
+        let lost = -dp.dot(vi - vj) - 0.5 * dp.length_squared() * (1.0 / 2.0 + 1.0 / 3.0);
+        assert!(
+            (p.energy_lost - lost).abs() < 1e-14,
+            "{} {lost}",
+            p.energy_lost
+        );
+        assert!(lost > 0.0);
+        // The wall on the low side: normal −y; disc 1 (mass 3) arrives with
+        // v_y = 0.1 − 0.6/3 = −0.1 and loses −Δp v_y − Δp²/(2m) > 0.
+        assert_eq!(w.normal, DVec2::new(0.0, -1.0));
+        let vy = 0.1 - 0.6 / 3.0;
+        let wall_lost = -dpy * vy - dpy * dpy / (2.0 * 3.0);
+        assert!(wall_lost > 0.0);
+        assert!(
+            (w.energy_lost - wall_lost).abs() < 1e-14,
+            "{} {wall_lost}",
+            w.energy_lost
+        );
+        assert_eq!(w.vi_after.y, w.vi_before.y + dpy / 3.0);
+    }
+
+    #[test]
+    fn an_empty_compact_batch_needs_no_velocities() {
+        let mut out = CollisionBatch::default();
+        Replay::new(None)
+            .expand(&encoded(&CompactBatch::default()), &mut out)
+            .unwrap();
+        assert!(out.is_empty());
+    }
+
+    /// A checkpoint stores discs in the engine's order with their labels; replay
+    /// must give each label its own velocity, mass and radius.
+    #[test]
+    fn a_checkpoint_gives_each_labelled_disc_its_velocity_and_species() {
+        use carom_events::{box_size_for, Engine, Placement, SystemSpec, Velocities};
+        let species = vec![Species::new(6, 0.5, 2.0), Species::new(6, 0.7, 3.0)];
+        let size = box_size_for(&species, 0.3, 1.0);
+        let spec = SystemSpec {
+            sim_box: SimBox::periodic(size.x, size.y),
+            species,
+            temperature: 1.5,
+            seed: 9,
+            placement: Placement::Lattice,
+            velocities: Velocities::MaxwellBoltzmann,
+        };
+        let mut e = Engine::new(spec.build().unwrap(), Default::default()).unwrap();
+        e.run_collisions(40).unwrap();
+        let mut cp = LogCheckpoint {
+            driver: Default::default(),
+            engine: e.checkpoint(),
+        };
+        // Reverse the engine's order consistently: a different, valid storage order.
+        let c = &mut cp.engine;
+        c.labels.reverse();
+        c.velocities.reverse();
+        c.species_of.reverse();
+        let mut r = Replay::new(None);
+        r.sync_checkpoint(&cp);
+        let (i, j) = (1u32, 9u32); // one disc of each species
+        let dp = DVec2::new(0.25, -0.5);
+        let b = CompactBatch {
+            time: vec![e.now()],
+            i: vec![i],
+            j: vec![j],
+            dpx: vec![dp.x],
+            dpy: vec![dp.y],
+            ..CompactBatch::default()
+        };
+        let mut out = CollisionBatch::default();
+        r.expand(&encoded(&b), &mut out).unwrap();
+        let p = out.get(0);
+        let (vi, vj) = (e.velocity(i as usize), e.velocity(j as usize));
+        assert_eq!((p.vi_before, p.vj_before), (vi, vj));
+        assert_eq!((p.vi_after, p.vj_after), (vi + dp / 2.0, vj - dp / 3.0));
+        // virial −σ_ij n̂·Δp with n̂ = −Δp/|Δp|: σ_ij |Δp| = 1.2 |Δp|.
+        assert!((p.virial - 1.2 * dp.length()).abs() < 1e-15);
+    }
 }
