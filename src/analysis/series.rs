@@ -91,3 +91,112 @@ pub(super) fn drift(x: &[f64]) -> Option<DriftReport> {
         drifting: d.abs() > DRIFT_STD_ERRORS,
     })
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Sixteen values about `mean` whose blocked standard error is exactly `se`
+    /// (an integer). Pairs of deviations ±a·se with a = 6, 6, 4, 4, 2, 2, 2, 2,
+    /// the sign of each pair flipped from the last: every pair averages to the
+    /// mean, so the blocking analysis' coarser levels have no variance and its
+    /// statistic is the first level's, n (γ/σ²)² with σ² = 2·120 se²/16 = 15 se²
+    /// and 16 γ = (−120 + 96) se² (within pairs −Σa², between pairs
+    /// +Σ a_i a_{i+1}): 16 · 0.1² = 0.16, far below the χ²(3) 99 % quantile
+    /// 11.3. So the first level is taken, SE = √(σ²/(n − 1)) = √(15 se²/15) = se.
+    fn half(mean: f64, se: f64) -> Vec<f64> {
+        let mut x = Vec::new();
+        for (k, a) in [6.0, 6.0, 4.0, 4.0, 2.0, 2.0, 2.0, 2.0]
+            .into_iter()
+            .enumerate()
+        {
+            let d = if k % 2 == 0 { a * se } else { -a * se };
+            x.extend([mean + d, mean - d]);
+        }
+        x
+    }
+
+    #[test]
+    fn the_constructed_half_has_the_standard_error_it_was_built_for() {
+        let b = blocked(&half(100.0, 3.0)).unwrap();
+        assert!(b.converged);
+        assert_eq!(
+            (b.mean, b.std_error, b.blocks, b.block_len),
+            (100.0, 3.0, 16, 1)
+        );
+    }
+
+    /// (5.13) with halves of means 100 and 115 and errors 3 and 4:
+    /// d = 15/√(9 + 16) = 3 exactly, on the threshold, which is not drifting
+    /// (|d| > 3 is); means 130 and 100 give d = ±6, drifting either way.
+    #[test]
+    fn drift_is_the_difference_of_the_halves_in_combined_standard_errors() {
+        let series = |m1: f64, m2: f64| [half(m1, 3.0), half(m2, 4.0)].concat();
+        let d = drift(&series(100.0, 115.0)).unwrap();
+        assert_eq!(
+            (
+                d.first_half,
+                d.first_half_std_error,
+                d.second_half,
+                d.second_half_std_error
+            ),
+            (100.0, 3.0, 115.0, 4.0)
+        );
+        assert_eq!(d.difference_std_errors, 3.0);
+        assert!(!d.drifting);
+        let d = drift(&series(100.0, 130.0)).unwrap();
+        assert_eq!(d.difference_std_errors, 6.0);
+        assert!(d.drifting);
+        let d = drift(&series(130.0, 100.0)).unwrap();
+        assert_eq!(d.difference_std_errors, -6.0);
+        assert!(d.drifting);
+        // A half of 15 values is too short to block (the other has 16).
+        assert_eq!(drift(&series(100.0, 115.0)[1..]), None);
+    }
+
+    /// Constant halves have no error: equal means are no drift (d = 0), unequal
+    /// ones are infinitely many errors apart, with the sign of m₂ − m₁.
+    #[test]
+    fn constant_halves_drift_only_when_their_values_differ() {
+        let steps = |m1: f64, m2: f64| [vec![m1; 16], vec![m2; 16]].concat();
+        let d = drift(&steps(2.5, 2.5)).unwrap();
+        assert_eq!((d.difference_std_errors, d.drifting), (0.0, false));
+        let d = drift(&steps(5.0, 2.0)).unwrap();
+        assert_eq!(
+            (d.difference_std_errors, d.drifting),
+            (f64::NEG_INFINITY, true)
+        );
+        let d = drift(&steps(2.0, 5.0)).unwrap();
+        assert_eq!((d.difference_std_errors, d.drifting), (f64::INFINITY, true));
+    }
+
+    /// Five points at most two: every third (step ⌈5/2⌉ = 3), points 0 and 3, and
+    /// the last, 4, added; five at most three: step 2, points 0, 2, 4, the last
+    /// already there and not repeated.
+    #[test]
+    fn subsampling_keeps_evenly_spaced_points_and_the_last_once() {
+        let s: Vec<(f64, f64)> = (0..5).map(|k| (k as f64 * 0.5, (k * k) as f64)).collect();
+        assert_eq!(subsample(&s, 2), vec![[0.0, 0.0], [1.5, 9.0], [2.0, 16.0]]);
+        assert_eq!(subsample(&s, 3), vec![[0.0, 0.0], [1.0, 4.0], [2.0, 16.0]]);
+        assert_eq!(subsample(&s, 10).len(), 5);
+        assert!(subsample(&[], 3).is_empty());
+    }
+
+    /// Seven values from t0 = 10 in steps dt = 0.5 in 3 parts: groups of
+    /// ⌊7/3⌋ = 2 and the remainder alone, each at its mid time
+    /// t0 + (first index + len/2)·dt: 10.5, 11.5, 12.5 and 10 + 6.5·0.5 = 13.25,
+    /// with means (1+3)/2, (2+6)/2, (5+5)/2, 8.
+    #[test]
+    fn a_coarse_series_averages_groups_at_their_mid_times() {
+        let x = [1.0, 3.0, 2.0, 6.0, 5.0, 5.0, 8.0];
+        assert_eq!(
+            coarse_series(&x, 10.0, 0.5, 3),
+            vec![[10.5, 2.0], [11.5, 4.0], [12.5, 5.0], [13.25, 8.0]]
+        );
+        // More parts than values: one value per group.
+        assert_eq!(
+            coarse_series(&x[..2], 0.0, 2.0, 5),
+            vec![[1.0, 1.0], [3.0, 3.0]]
+        );
+    }
+}

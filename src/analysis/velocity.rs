@@ -340,4 +340,138 @@ mod tests {
         assert!(!bad.passed);
         assert_eq!(bad.min_p_value, bad.ks_vx.p_value);
     }
+
+    /// Two discs, two snapshots, components with non-zero means (v_x 2, v_y −3),
+    /// worked by hand: deviations v_x (1, −2) then (3, −2), v_y (2, 0) then
+    /// (−1, −1); Σab = 3 + 4 − 2 + 0 = 5, Σa² = 1 + 4 + 4 + 0 = 9,
+    /// Σb² = 9 + 4 + 1 + 1 = 15, so ρ = 5/√135 = √15/9.
+    #[test]
+    fn the_snapshot_correlation_is_taken_about_each_components_mean() {
+        let vx = [3.0, 0.0, 5.0, 0.0];
+        let vy = [-1.0, -3.0, -4.0, -4.0];
+        let rho = snapshot_correlation(&vx, &vy, 2).unwrap();
+        assert!((rho - 15f64.sqrt() / 9.0).abs() < 1e-15, "{rho}");
+        // Fewer values than one snapshot, or no disc per snapshot: nothing to
+        // correlate (and no slice past the end).
+        assert_eq!(snapshot_correlation(&[1.0], &[2.0], 2), None);
+        assert_eq!(snapshot_correlation(&vx, &vy, 0), None);
+        // ρ = 0.2: ln 0.05/ln 0.2 = 1.86, so every second snapshot (0.2² = 0.04).
+        assert_eq!(snapshot_step(Some(0.2)), 2);
+    }
+
+    /// `n` discs of mass `m` at `kt` with Maxwellian speeds, deterministic: the
+    /// speed at the quantile (i + ½)/n of the Rayleigh CDF (6.3),
+    /// v = √(−2 (kT/m) ln(1 − u)), in a direction turned by the golden angle from
+    /// disc to disc and by `turn` as a whole.
+    fn maxwellian(n: usize, m: f64, kt: f64, turn: f64) -> (Vec<f64>, Vec<f64>) {
+        let golden = std::f64::consts::PI * (3.0 - 5f64.sqrt());
+        (0..n)
+            .map(|i| {
+                let u = (i as f64 + 0.5) / n as f64;
+                let v = (-2.0 * kt / m * (-u).ln_1p()).sqrt();
+                let phi = golden * i as f64 + turn;
+                (v * phi.cos(), v * phi.sin())
+            })
+            .unzip()
+    }
+
+    /// An analyzer holding `snapshots` snapshots of every species (`discs`
+    /// Maxwellian velocities each at `kt`, turned from snapshot to snapshot), with
+    /// the spacing asked for (`every_default` false) unless `default_spacing`.
+    fn holding(
+        species: Vec<Species>,
+        snapshots: usize,
+        kt: f64,
+        default_spacing: bool,
+    ) -> Analyzer {
+        let mut r = run();
+        r.species = species;
+        r.sim_box = SimBox::periodic(40.0, 40.0);
+        let opts = AnalysisOptions {
+            equilibrate: Some(0.0),
+            every: Some(0.0),
+            ..Default::default()
+        };
+        let mut a = Analyzer::new(r.clone(), opts).unwrap();
+        a.every_default = default_spacing;
+        for k in 0..snapshots {
+            a.snapshots_used.push(k as f64);
+            for (s, sp) in r.species.iter().enumerate() {
+                let (vx, vy) = maxwellian(sp.count, sp.mass, kt, 0.7 * k as f64);
+                a.speeds[s].extend(vx.iter().zip(&vy).map(|(x, y)| x.hypot(*y)));
+                a.vx[s].extend(vx);
+                a.vy[s].extend(vy);
+            }
+        }
+        a
+    }
+
+    /// Two species tested at kT = 2 (masses 0.5 and 4.5, unequal counts) and one
+    /// without discs between them: the verdict counts 4 tests per species tested,
+    /// m = 8, threshold α/m = 0.01/8; each species is reported with its own
+    /// snapshots (3), samples (3 × count) and component range ±4.5 √(kT/m):
+    /// √(2/0.5) = 2 gives ±9, √(2/4.5) = 2/3 gives ±3.
+    #[test]
+    fn every_species_tested_counts_in_the_verdict_with_its_own_range() {
+        let kt = 2.0;
+        let species = vec![
+            Species::new(60, 0.3, 0.5),
+            Species::new(0, 0.5, 1.0),
+            Species::new(40, 0.9, 4.5),
+        ];
+        let mut a = holding(species, 3, kt, false);
+        let (tested, untested) = maxwell_boltzmann(&mut a, Some(kt), false).unwrap();
+        assert!(untested.is_empty(), "{untested:?}");
+        let [light, heavy] = &tested[..] else {
+            panic!("two species tested: {tested:?}");
+        };
+        for (m, s, count, mass, radius, l) in
+            [(light, 0, 60, 0.5, 0.3, 9.0), (heavy, 2, 40, 4.5, 0.9, 3.0)]
+        {
+            assert_eq!((m.species, m.mass, m.radius, m.kt), (s, mass, radius, kt));
+            assert_eq!((m.snapshots, m.samples, m.snapshot_step), (3, 3 * count, 1));
+            assert_eq!((m.tests, m.p_threshold), (8, 0.01 / 8.0));
+            assert!(!m.scaled_to_snapshot_temperature);
+            for h in [&m.vx_histogram, &m.vy_histogram] {
+                let (lo, hi) = (h.edges[0], h.edges[h.edges.len() - 1]);
+                assert!(
+                    (lo + l).abs() < 1e-12 && (hi - l).abs() < 1e-12,
+                    "{lo} {hi}"
+                );
+                assert_eq!(h.counts.iter().sum::<u64>(), 3 * count as u64);
+            }
+            // The smallest of the four p-values, and the verdict against it.
+            let p = [
+                m.chi_square.p_value,
+                m.ks.p_value,
+                m.ks_vx.p_value,
+                m.ks_vy.p_value,
+            ];
+            assert_eq!(m.min_p_value, p.into_iter().fold(1.0, f64::min));
+            assert_eq!(m.passed, m.min_p_value >= 0.01 / 8.0);
+        }
+    }
+
+    /// A species with one disc in two snapshots (2 speeds: one χ² bin, no degree
+    /// of freedom) is reported untested with its 2 samples; a species without discs
+    /// is in neither list; at kT = 0 every species with speeds is untested.
+    #[test]
+    fn species_with_too_few_speeds_or_no_motion_are_untested() {
+        let species = vec![Species::new(1, 0.5, 2.0), Species::new(0, 0.5, 1.0)];
+        let mut a = holding(species.clone(), 2, 1.5, false);
+        let (tested, untested) = maxwell_boltzmann(&mut a, Some(1.5), false).unwrap();
+        assert!(tested.is_empty(), "{tested:?}");
+        assert_eq!(untested.len(), 1, "{untested:?}");
+        assert_eq!((untested[0].species, untested[0].samples), (0, 2));
+        let mut a = holding(species, 2, 1.5, false);
+        let (tested, untested) = maxwell_boltzmann(&mut a, Some(0.0), false).unwrap();
+        assert!(tested.is_empty());
+        assert_eq!(untested.len(), 1, "{untested:?}");
+        assert!(untested[0].reason.contains("no thermal motion"));
+        let mut a = holding(vec![Species::new(50, 0.5, 2.0)], 2, 1.5, false);
+        assert_eq!(
+            maxwell_boltzmann(&mut a, None, false).unwrap(),
+            (vec![], vec![])
+        );
+    }
 }
