@@ -138,19 +138,32 @@ mod tests {
     fn bins_edges_and_centres_off_the_origin() {
         // [−1.5, 2.5) in 8 bins: width 4/8 = 0.5, edges −1.5 + 0.5 k, centres
         // −1.25 + 0.5 k (all exact in binary). Bin of x: ⌊(x + 1.5)/0.5⌋:
-        // −1.5 → 0, −1.4 → 0, 0.2 → ⌊3.4⌋ = 3 (twice), 1.0 → 5, 2.4 → ⌊7.8⌋ = 7;
-        // −2 below; 2.5, 3 and NaN above.
-        let xs = [-2.0, -1.5, -1.4, 0.2, 0.2, 1.0, 2.4, 2.5, 3.0, f64::NAN];
+        // −1.5 (on the lower edge) → 0, −1.4 → 0, 0.2 → ⌊3.4⌋ = 3 (twice),
+        // 1.0 → 5, 2.4 → ⌊7.8⌋ = 7; −2 and −1.6 below; 2.5 (on the upper edge),
+        // 3 and NaN above.
+        let xs = [
+            -2.0,
+            -1.6,
+            -1.5,
+            -1.4,
+            0.2,
+            0.2,
+            1.0,
+            2.4,
+            2.5,
+            3.0,
+            f64::NAN,
+        ];
         let h = Histogram::from_values(xs, -1.5, 2.5, 8).unwrap();
         assert_eq!(h.counts, vec![2, 0, 0, 2, 0, 1, 0, 1]);
-        assert_eq!((h.underflow, h.overflow, h.total()), (1, 3, 10));
+        assert_eq!((h.underflow, h.overflow, h.total()), (2, 3, 11));
         assert_eq!((h.bins(), h.width()), (8, 0.5));
         let edges: Vec<f64> = (0..=8).map(|k| -1.5 + 0.5 * k as f64).collect();
         assert_eq!(h.edges(), edges);
         let centres: Vec<f64> = (0..8).map(|k| -1.25 + 0.5 * k as f64).collect();
         assert_eq!(h.centres(), centres);
-        // Density count/(total · width) = count/5.
-        let want = [0.4, 0.0, 0.0, 0.4, 0.0, 0.2, 0.0, 0.2];
+        // Density count/(total · width) = count/5.5.
+        let want = [2.0, 0.0, 0.0, 2.0, 0.0, 1.0, 0.0, 1.0].map(|c| c / 5.5);
         for (d, w) in h.density().iter().zip(want) {
             assert!((d - w).abs() < 1e-15, "{:?}", h.density());
         }
