@@ -269,6 +269,15 @@ mod tests {
         // Exactly one sample per block is enough: 7 blocks of 1.
         assert_eq!(block_average(&x, 7).unwrap().block_len, 1);
         assert!(block_average(&x, 8).is_err());
+        // Shifting the data by c shifts the mean and leaves the error unchanged.
+        // With c = 2⁵¹ every sum, block mean and deviation above is still an
+        // exact double, so the SE must be √(13/3) to rounding, not Σv² − n·mean²
+        // with its cancellation (products ~2⁵³, spaced by 2).
+        let c = 2f64.powi(51);
+        let shifted: Vec<f64> = x.iter().map(|v| v + c).collect();
+        let b = block_average(&shifted, 3).unwrap();
+        assert_eq!(b.mean, c + 5.0);
+        assert!(close(b.std_error, (13.0f64 / 3.0).sqrt()), "{b:?}");
     }
 
     /// 99 % quantiles of χ²(k), k = 1…4 (standard tables).

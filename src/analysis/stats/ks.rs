@@ -76,7 +76,7 @@ pub fn kolmogorov_p_value(d: f64, n: usize) -> f64 {
 pub fn kolmogorov_survival(lambda: f64) -> f64 {
     if lambda < 0.2 {
         // The alternating series converges slowly here and the value is 1 to
-        // better than 1e-20.
+        // within 5e-13 (1 − Q_KS(0.2) ≈ 5.0e-13, 3e-23 at 0.15).
         return 1.0;
     }
     let mut sum = 0.0;
