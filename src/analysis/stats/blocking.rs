@@ -245,4 +245,131 @@ mod tests {
         assert!((b.mean - 3.0).abs() < 4.0 * b.std_error);
         assert!(blocking(&x[..10]).is_err());
     }
+
+    /// |a − b| ≤ 1e-12 (1 + |b|).
+    fn close(a: f64, b: f64) -> bool {
+        (a - b).abs() <= 1e-12 * (1.0 + b.abs())
+    }
+
+    #[test]
+    fn block_average_of_a_short_series_by_hand() {
+        // 7 samples in 3 blocks: block length ⌊7/3⌋ = 2, the last sample (100)
+        // dropped. Block means 2, 4, 9: mean 5, deviations −3, −1, 4, unbiased
+        // variance (9 + 1 + 16)/2 = 13, SE = √(13/3).
+        let x = [1.0, 3.0, 2.0, 6.0, 7.0, 11.0, 100.0];
+        let b = block_average(&x, 3).unwrap();
+        assert_eq!((b.blocks, b.block_len), (3, 2));
+        assert!(close(b.mean, 5.0), "{b:?}");
+        assert!(close(b.std_error, (13.0f64 / 3.0).sqrt()), "{b:?}");
+        // Two blocks (the fewest allowed) of 3: means 2 and 8, mean 5, variance
+        // (9 + 9)/1 = 18, SE = √(18/2) = 3.
+        let b = block_average(&x, 2).unwrap();
+        assert_eq!((b.blocks, b.block_len), (2, 3));
+        assert!(close(b.mean, 5.0) && close(b.std_error, 3.0), "{b:?}");
+        // Exactly one sample per block is enough: 7 blocks of 1.
+        assert_eq!(block_average(&x, 7).unwrap().block_len, 1);
+        assert!(block_average(&x, 8).is_err());
+        // Shifting the data by c shifts the mean and leaves the error unchanged.
+        // With c = 2⁵¹ every sum, block mean and deviation above is still an
+        // exact double, so the SE must be √(13/3) to rounding, not Σv² − n·mean²
+        // with its cancellation (products ~2⁵³, spaced by 2).
+        let c = 2f64.powi(51);
+        let shifted: Vec<f64> = x.iter().map(|v| v + c).collect();
+        let b = block_average(&shifted, 3).unwrap();
+        assert_eq!(b.mean, c + 5.0);
+        assert!(close(b.std_error, (13.0f64 / 3.0).sqrt()), "{b:?}");
+    }
+
+    /// 99 % quantiles of χ²(k), k = 1…4 (standard tables).
+    const CHI2_99: [f64; 4] = [6.635, 9.210, 11.345, 13.277];
+
+    #[test]
+    fn blocking_a_ramp_matches_its_closed_form() {
+        // x_k = 2.5 + 0.75 k, k = 0…36: the levels use the first 2⁵ = 32 samples
+        // (4 levels, n = 32, 16, 8, 4 blocks); the mean is over all 37, 2.5 +
+        // 0.75·18 = 16. The block means of level i are again a ramp, of step
+        // s = 0.75·2^i and n points, so (with the population variance and lag-1
+        // autocovariance of a centred ramp z_j = s (j − (n−1)/2):
+        // Σ z² = s² n (n² − 1)/12, Σ z_j z_{j+1} = s² (n² − 1)(n − 3)/12)
+        //   σ² = s² (n² − 1)/12, SE = √(σ²/(n − 1)) = s √((n + 1)/12),
+        //   γ/σ² = (n − 3)/n, M-term n (γ/σ²)² = (n − 3)²/n.
+        let x: Vec<f64> = (0..37).map(|k| 2.5 + 0.75 * k as f64).collect();
+        let b = blocking(&x).unwrap();
+        assert!(close(b.mean, 16.0), "{}", b.mean);
+        assert_eq!(b.levels.len(), 4);
+        let mut m = Vec::new();
+        for (i, level) in b.levels.iter().enumerate() {
+            let n = 32 >> i;
+            let (nf, s) = (n as f64, 0.75 * (1 << i) as f64);
+            assert_eq!((level.block_len, level.blocks), (1 << i, n), "{level:?}");
+            let se = s * ((nf + 1.0) / 12.0).sqrt();
+            assert!(close(level.std_error, se), "{i}: {level:?} vs {se}");
+            let see = se / (2.0 * (nf - 1.0)).sqrt();
+            assert!(close(level.std_error_error, see), "{i}: {level:?}");
+            m.push((nf - 3.0).powi(2) / nf);
+        }
+        // M-terms 26.28, 10.56, 3.125, 0.25: M_0 = 40.2 ≥ 13.28 (χ²₄), M_1 =
+        // 13.94 ≥ 11.35 (χ²₃), M_2 = 3.375 < 9.21 (χ²₂): level 2 is chosen.
+        let tails: Vec<f64> = (0..4).map(|j| m[j..].iter().sum()).collect();
+        assert!(tails[0] >= CHI2_99[3] && tails[1] >= CHI2_99[2] && tails[2] < CHI2_99[1]);
+        assert_eq!(b.chosen, 2);
+        assert!(b.converged);
+        assert!(close(b.std_error, 3.0 * 0.75f64.sqrt()), "{}", b.std_error);
+    }
+
+    #[test]
+    fn blocking_anticorrelated_pairs_by_hand() {
+        // Pairs (p + 4, p − 4) around p = 1, 3, 2, 6, 4, 0, 5, 3 (16 samples, the
+        // fewest allowed; 3 levels). μ = 3, δp = p − 3 = −2, 0, −1, 3, 1, −3, 2, 0
+        // (Σδp² = 28, Σδp_k δp_{k+1} = −9).
+        // Level 0: σ² = (2·28 + 16·16)/16 = 19.5; Σ lag-1 products = within pairs
+        //   Σ(δp² − 16) = −100, across pairs −9 + 4(δp_0 − δp_7) − 7·16 = −129,
+        //   γ = −229/16; SE = √(19.5/15) = √1.3.
+        // Level 1 (the p): σ² = 28/8 = 3.5, γ = −9/8, SE = √(3.5/7) = √0.5.
+        // Level 2: 2, 4, 2, 4: σ² = 1, γ = −3/4, SE = √(1/3).
+        let p = [1.0, 3.0, 2.0, 6.0, 4.0, 0.0, 5.0, 3.0];
+        let x: Vec<f64> = p.iter().flat_map(|&q| [q + 4.0, q - 4.0]).collect();
+        let b = blocking(&x).unwrap();
+        assert!(close(b.mean, 3.0));
+        let want_se = [1.3f64.sqrt(), 0.5f64.sqrt(), (1.0f64 / 3.0).sqrt()];
+        assert_eq!(b.levels.len(), 3);
+        for (level, se) in b.levels.iter().zip(want_se) {
+            assert!(close(level.std_error, se), "{level:?} vs {se}");
+        }
+        // M-terms 16 (229/16/19.5)² = 8.62, 8 (1.125/3.5)² = 0.83, 4 (3/4)² =
+        // 2.25: M_0 = 11.70 ≥ 11.345 (χ²₃) but M_1 = 3.08 < 9.21 (χ²₂): level 1.
+        let m = [
+            16.0 * (229.0f64 / 16.0 / 19.5).powi(2),
+            8.0 * (1.125f64 / 3.5).powi(2),
+            2.25,
+        ];
+        assert!(m.iter().sum::<f64>() >= CHI2_99[2] && m[1] + m[2] < CHI2_99[1]);
+        assert_eq!(b.chosen, 1);
+        assert!(b.converged);
+        assert!(close(b.std_error, 0.5f64.sqrt()));
+        assert!(blocking(&x[..15]).is_err());
+    }
+
+    #[test]
+    fn a_constant_series_has_no_error_and_level_0() {
+        // Every variance is 0: no correlation to test (the M-terms are 0, not
+        // 0/0), so level 0 passes and the standard error is 0.
+        let b = blocking(&[2.5; 20]).unwrap();
+        assert_eq!(b.mean, 2.5);
+        assert_eq!((b.chosen, b.converged, b.std_error), (0, true, 0.0));
+        assert!(b.levels.iter().all(|l| l.std_error == 0.0));
+    }
+
+    #[test]
+    fn without_a_passing_level_the_coarsest_is_taken_unconverged() {
+        // The last level (4 blocks) always passes for finite data: M = 4 (γ/σ²)²
+        // ≤ 4 < 6.635 by Cauchy–Schwarz. Only NaN M-terms fail every level: here
+        // the squares of deviations ~1e201 overflow, σ² = ∞ and γ/σ² = ∞/∞ at
+        // every level. Then the coarsest level (index 2 of 3) is reported.
+        let x: Vec<f64> = (0..16).map(|k| 1e200 * k as f64).collect();
+        let b = blocking(&x).unwrap();
+        assert_eq!(b.levels.len(), 3);
+        assert_eq!((b.chosen, b.converged), (2, false));
+        assert_eq!(b.std_error, b.levels[2].std_error);
+    }
 }

@@ -143,4 +143,79 @@ mod tests {
         assert!(chi_square_test(&[1.0, 2.0], &[2.0, 1.0], 0).is_err());
         assert!(chi_square_test(&[1.0], &[2.0, 1.0], 0).is_err());
     }
+
+    /// |a − b| ≤ 1e-12 (1 + |b|).
+    fn close(a: f64, b: f64) -> bool {
+        (a - b).abs() <= 1e-12 * (1.0 + b.abs())
+    }
+
+    #[test]
+    fn chi_square_with_two_degrees_of_freedom_has_p_exp_minus_half() {
+        // O = 3, 12, 9 against E = 8 each: X² = (25 + 16 + 1)/8 = 5.25, dof 2, and
+        // for 2 degrees of freedom the survival function is exp(−X²/2).
+        let t = chi_square_test(&[3.0, 12.0, 9.0], &[8.0; 3], 0).unwrap();
+        assert_eq!((t.bins, t.dof), (3, 2));
+        assert!(close(t.statistic, 5.25), "{t:?}");
+        assert!(close(t.p_value, (-2.625f64).exp()), "{t:?}");
+        // Expected counts need not be equal: O = 7, 1, 12 against E = 4, 6, 10
+        // (each ≥ 5 except the first, merged into the second: 8 against 10):
+        // X² = 4/10 + 4/10 = 0.8, one bin fewer, dof 1 (2 bins − 1).
+        let t = chi_square_test(&[7.0, 1.0, 12.0], &[4.0, 6.0, 10.0], 0).unwrap();
+        assert_eq!((t.bins, t.dof), (2, 1));
+        assert!(close(t.statistic, 0.8), "{t:?}");
+    }
+
+    #[test]
+    fn a_short_remainder_joins_the_last_bin_even_if_one_side_is_zero() {
+        // E = 6, 6, 2 and O = 8, 6, 0: the remainder (O 0, E 2) joins the second
+        // bin, (6, 8): X² = 4/6 + 4/8 = 7/6 (without it, 4/6).
+        let t = chi_square_test(&[8.0, 6.0, 0.0], &[6.0, 6.0, 2.0], 0).unwrap();
+        assert_eq!((t.bins, t.dof), (2, 1));
+        assert!(close(t.statistic, 7.0 / 6.0), "{t:?}");
+        // Counts where nothing is expected (E = 0, O = 3) are not lost either:
+        // last bin (7, 6), X² = 1/6 + 1/6 = 1/3 (without them, 1/6 + 4/6).
+        let t = chi_square_test(&[5.0, 4.0, 3.0], &[6.0, 6.0, 0.0], 0).unwrap();
+        assert!(close(t.statistic, 1.0 / 3.0), "{t:?}");
+        // A leading bin expecting 0 is allowed and merged into the next: E = 0,
+        // 6, 6 and O = 0, 5, 7 → bins (5, 6), (7, 6), X² = 2/6.
+        let t = chi_square_test(&[0.0, 5.0, 7.0], &[0.0, 6.0, 6.0], 0).unwrap();
+        assert_eq!(t.bins, 2);
+        assert!(close(t.statistic, 1.0 / 3.0), "{t:?}");
+    }
+
+    #[test]
+    fn invalid_expected_counts_and_too_few_bins_are_refused() {
+        let o = [5.0, 5.0, 5.0];
+        for bad in [-1.0, f64::INFINITY, f64::NAN] {
+            let e = [6.0, bad, 6.0];
+            assert!(
+                matches!(
+                    chi_square_test(&o, &e, 0),
+                    Err(StatsError::InvalidArgument(_))
+                ),
+                "{bad}"
+            );
+        }
+        assert!(chi_square_test(&o, &[6.0, 6.0], 0).is_err());
+        // Two merged bins leave one degree of freedom, none with a fitted
+        // parameter; three bins with one fitted parameter leave one again.
+        let e = [6.0, 6.0, 6.0];
+        let not_enough =
+            |r: Result<ChiSquareTest, StatsError>| matches!(r, Err(StatsError::NotEnoughData(_)));
+        assert_eq!(chi_square_test(&o[..2], &e[..2], 0).unwrap().dof, 1);
+        assert!(not_enough(chi_square_test(&o[..2], &e[..2], 1)));
+        assert!(not_enough(chi_square_test(&o[..1], &e[..1], 0)));
+        assert_eq!(chi_square_test(&o, &e, 1).unwrap().dof, 1);
+        assert!(not_enough(chi_square_test(&o, &e, 2)));
+    }
+
+    #[test]
+    fn a_good_fit_of_many_counts_keeps_its_precision() {
+        // O = 10⁸ ± 3 against E = 10⁸ (equal totals): X² = 2·9/10⁸ = 1.8e-7, each
+        // term exact to rounding. The algebraically equal (for equal totals)
+        // Σ (O + E)(O − E)/E = Σ O²/E − N would lose it to cancellation (terms
+        // ±6.0000001 summing to 1.8e-7).
+        let t = chi_square_test(&[1e8 + 3.0, 1e8 - 3.0], &[1e8, 1e8], 0).unwrap();
+        assert!((t.statistic / 1.8e-7 - 1.0).abs() < 1e-12, "{t:?}");
+    }
 }

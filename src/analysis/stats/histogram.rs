@@ -133,4 +133,71 @@ mod tests {
         assert!(Histogram::new(1.0, 1.0, 3).is_err());
         assert!(Histogram::new(0.0, 1.0, 0).is_err());
     }
+
+    #[test]
+    fn bins_edges_and_centres_off_the_origin() {
+        // [−1.5, 2.5) in 8 bins: width 4/8 = 0.5, edges −1.5 + 0.5 k, centres
+        // −1.25 + 0.5 k (all exact in binary). Bin of x: ⌊(x + 1.5)/0.5⌋:
+        // −1.5 (on the lower edge) → 0, −1.4 → 0, 0.2 → ⌊3.4⌋ = 3 (twice),
+        // 1.0 → 5, 2.4 → ⌊7.8⌋ = 7; −2 and −1.6 below; 2.5 (on the upper edge),
+        // 3 and NaN above.
+        let xs = [
+            -2.0,
+            -1.6,
+            -1.5,
+            -1.4,
+            0.2,
+            0.2,
+            1.0,
+            2.4,
+            2.5,
+            3.0,
+            f64::NAN,
+        ];
+        let h = Histogram::from_values(xs, -1.5, 2.5, 8).unwrap();
+        assert_eq!(h.counts, vec![2, 0, 0, 2, 0, 1, 0, 1]);
+        assert_eq!((h.underflow, h.overflow, h.total()), (2, 3, 11));
+        assert_eq!((h.bins(), h.width()), (8, 0.5));
+        let edges: Vec<f64> = (0..=8).map(|k| -1.5 + 0.5 * k as f64).collect();
+        assert_eq!(h.edges(), edges);
+        let centres: Vec<f64> = (0..8).map(|k| -1.25 + 0.5 * k as f64).collect();
+        assert_eq!(h.centres(), centres);
+        // Density count/(total · width) = count/5.5.
+        let want = [2.0, 0.0, 0.0, 2.0, 0.0, 1.0, 0.0, 1.0].map(|c| c / 5.5);
+        for (d, w) in h.density().iter().zip(want) {
+            assert!((d - w).abs() < 1e-15, "{:?}", h.density());
+        }
+        assert_eq!(h.density().len(), 8);
+        // An empty histogram has density 0, not 0/0.
+        let empty = Histogram::new(-1.5, 2.5, 8).unwrap();
+        assert_eq!(empty.density(), vec![0.0; 8]);
+    }
+
+    #[test]
+    fn a_value_just_below_the_top_is_in_the_last_bin() {
+        // [−1, 1) in 2 bins: x = 1 − 2⁻⁵³ (the largest double below 1) gives
+        // x + 1 = 2 − 2⁻⁵³, which rounds (to even) to 2, and 2/1 = bin 2, one past
+        // the last: it must still count in bin 1, not overflow.
+        let x = 1.0 - f64::EPSILON / 2.0;
+        assert!(x < 1.0);
+        let h = Histogram::from_values([x], -1.0, 1.0, 2).unwrap();
+        assert_eq!((h.counts.clone(), h.overflow), (vec![0, 1], 0));
+    }
+
+    #[test]
+    fn expected_counts_of_a_uniform_distribution_by_hand() {
+        // Uniform on [−2.5, 4.5), F(x) = (x + 2.5)/7, against [−1.5, 2.5) in 8
+        // bins of 0.5, with N = 10 values counted: each bin expects 10·0.5/7 =
+        // 5/7, the underflow 10 F(−1.5) = 10/7, the overflow 10 (1 − F(2.5)) =
+        // 10·2/7 = 20/7; together 10.
+        let xs = [-2.0, -1.5, -1.4, 0.2, 0.2, 1.0, 2.4, 2.5, 3.0, 4.0];
+        let h = Histogram::from_values(xs, -1.5, 2.5, 8).unwrap();
+        let (inner, under, over) = h.expected_counts(|x| ((x + 2.5) / 7.0).clamp(0.0, 1.0));
+        assert_eq!(inner.len(), 8);
+        for e in &inner {
+            assert!((e - 5.0 / 7.0).abs() < 1e-12, "{inner:?}");
+        }
+        assert!((under - 10.0 / 7.0).abs() < 1e-12, "{under}");
+        assert!((over - 20.0 / 7.0).abs() < 1e-12, "{over}");
+    }
 }

@@ -176,4 +176,68 @@ mod tests {
         let f = below as f64 / 200.0;
         assert!((f - 0.1).abs() < 0.065, "{f}");
     }
+
+    /// |a − b| ≤ 1e-14 (1 + |b|).
+    fn close(a: f64, b: f64) -> bool {
+        (a - b).abs() <= 1e-14 * (1.0 + b.abs())
+    }
+
+    #[test]
+    fn mb_formulas_at_unequal_mass_and_temperature() {
+        // m = 3, kT = 2: m/kT = 1.5. At v = 3 (physics.md 6.2–6.3):
+        // f = 1.5·3 exp(−1.5·9/2) = 4.5 e^−6.75, F = 1 − e^−6.75.
+        let mb = MaxwellBoltzmann2d::new(3.0, 2.0).unwrap();
+        assert!(close(mb.speed_pdf(3.0), 4.5 * (-6.75f64).exp()));
+        assert!(close(mb.speed_cdf(3.0), 1.0 - (-6.75f64).exp()));
+        // And at v = 0.4: f = 0.6 e^−0.12, F = 1 − e^−0.12.
+        assert!(close(mb.speed_pdf(0.4), 0.6 * (-0.12f64).exp()));
+        assert!(close(mb.speed_cdf(0.4), 1.0 - (-0.12f64).exp()));
+        // No negative speeds.
+        assert_eq!((mb.speed_pdf(-1.0), mb.speed_cdf(-1.0)), (0.0, 0.0));
+        // Scale √(kT/m) = √(2/3), mean speed √(π kT/(2m)) = √(π/3).
+        assert!(close(mb.scale(), (2.0f64 / 3.0).sqrt()));
+        assert!(close(mb.mean_speed(), (std::f64::consts::PI / 3.0).sqrt()));
+        // Component pdf (6.1) √(m/(2π kT)) exp(−m v²/(2kT)) at v = 0.5:
+        // √(3/(4π)) e^−0.1875; symmetric.
+        let want = (3.0 / (4.0 * std::f64::consts::PI)).sqrt() * (-0.1875f64).exp();
+        assert!(close(mb.component_pdf(0.5), want));
+        assert!(close(mb.component_pdf(-0.5), want));
+        // Component CDF at ±one and two standard deviations: Φ(1) =
+        // 0.8413447460685429, Φ(−2) = 0.02275013194817921 (tables; statrs' erfc
+        // is good to ~1e-11 here).
+        let s = mb.scale();
+        assert!((mb.component_cdf(s) - 0.841_344_746_068_542_9).abs() < 1e-10);
+        assert!((mb.component_cdf(-2.0 * s) - 0.022_750_131_948_179_21).abs() < 1e-10);
+    }
+
+    #[test]
+    fn mb_mean_speed_is_the_first_moment_of_the_pdf() {
+        // ⟨v⟩ = ∫ v f(v) dv (midpoint rule up to 12 √(kT/m), the tail beyond
+        // being e^−72 small), m = 0.7, kT = 2.3.
+        let mb = MaxwellBoltzmann2d::new(0.7, 2.3).unwrap();
+        let (end, steps) = (12.0 * mb.scale(), 40_000);
+        let h = end / steps as f64;
+        let mean: f64 = (0..steps)
+            .map(|k| {
+                let v = (k as f64 + 0.5) * h;
+                v * mb.speed_pdf(v) * h
+            })
+            .sum();
+        assert!((mean / mb.mean_speed() - 1.0).abs() < 1e-8, "{mean}");
+    }
+
+    #[test]
+    fn mb_speed_test_histogram_spans_four_and_a_half_scales() {
+        // m = 3, kT = 2: the histogram is over [0, 4.5 √(2/3)) in 10 bins; the
+        // speeds 0.1 and 1.0 fall in bins ⌊0.1/0.367⌋ = 0 and ⌊1.0/0.367⌋ = 2,
+        // 4 above.
+        let speeds: Vec<f64> = [0.1, 1.0, 4.0].repeat(10);
+        let t = mb_speed_test(&speeds, 3.0, 2.0, 10, false).unwrap();
+        let hi = 4.5 * (2.0f64 / 3.0).sqrt();
+        assert!(close(t.histogram.hi, hi), "{}", t.histogram.hi);
+        assert_eq!(t.histogram.bins(), 10);
+        assert_eq!((t.histogram.counts[0], t.histogram.counts[2]), (10, 10));
+        assert_eq!(t.histogram.overflow, 10);
+        assert_eq!(t.reference, MaxwellBoltzmann2d { mass: 3.0, kt: 2.0 });
+    }
 }
