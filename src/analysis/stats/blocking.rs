@@ -88,7 +88,11 @@ pub struct Blocking {
     /// Index into `levels` of the level used.
     pub chosen: usize,
     /// False when no level passed the decorrelation test and the coarsest usable
-    /// level was taken: the series is too short for its correlation time.
+    /// level was taken. For finite data this cannot happen: the coarsest level
+    /// has 4 blocks and |γ| ≤ σ², so its term M ≤ 4 < χ²₀.₉₉(1) = 6.63 always
+    /// passes; only NaN (overflowing squares) leaves it false. A series too short
+    /// for its correlation time shows instead as a `chosen` level with few blocks
+    /// (and a large `std_error_error`).
     pub converged: bool,
 }
 
