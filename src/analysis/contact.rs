@@ -428,22 +428,36 @@ mod tests {
     /// 0.9). Two snapshots, in blocks 0 and 3, place pairs in the middle of bins
     /// 52 (A–A), 66 (A–B) and 80 (B–B); every other pair lies outside its fit range.
     fn two_snapshots() -> PairCorrelation {
+        scaled_snapshots(1.0)
+    }
+
+    /// [`two_snapshots`] with every length (radii, box, positions) times `l`.
+    fn scaled_snapshots(l: f64) -> PairCorrelation {
         let sp = [
-            Species::new(3, 0.3, 2.0),
-            Species::new(2, 0.45, 0.5),
-            Species::new(0, 0.2, 1.0),
+            Species::new(3, 0.3 * l, 2.0),
+            Species::new(2, 0.45 * l, 0.5),
+            Species::new(0, 0.2 * l, 1.0),
         ];
-        let mut pc = PairCorrelation::new(&sp, &SimBox::periodic(9.0, 7.0), 0.0, 16.0);
+        let mut pc = PairCorrelation::new(&sp, &SimBox::periodic(9.0 * l, 7.0 * l), 0.0, 16.0);
         let mid = |k: usize| (k as f64 + 0.5) * 0.012;
         let (aa, ab, bb) = (mid(52), mid(66), mid(80));
         let species = [0, 0, 0, 1, 1];
-        // A0–A1 and B0–B1 side by side, A2 beyond B1 (A2–B0: 1.76).
-        let x = [1.0, 1.0 + aa, 1.0 + bb + ab, 1.0, 1.0 + bb];
-        pc.add(0.5, &species, &x, &[1.0, 1.0, 3.0, 3.0, 3.0]);
-        // An A triangle of side aa, B0 left of A0, B1 above B0.
-        let h = aa * 3f64.sqrt() / 2.0;
-        let x = [1.0, 1.0 + aa, 1.0 + aa / 2.0, 1.0 - ab, 1.0 - ab];
-        pc.add(3.5, &species, &x, &[1.0, 1.0, 1.0 + h, 1.0, 1.0 + bb]);
+        let at = |v: [f64; 5]| v.map(|v| v * l);
+        // A0–A1 side by side; B0–B1 side by side above, A2 above B1.
+        let x = at([1.0, 1.0 + aa, 1.0 + bb, 1.0, 1.0 + bb]);
+        pc.add(0.5, &species, &x, &at([1.0, 1.0, 3.2 + ab, 3.2, 3.2]));
+        // A0–A1–A2 at a right angle (A0–A2 = 0.89), B0 from A2 at 30° from the
+        // x axis, B1 from B0 at 120°: every other pair further apart than its
+        // fit range (and than σ_ab), none within 0.15 bins of a bin edge.
+        let (c, s) = (3f64.sqrt() / 2.0, 0.5);
+        let b0 = [1.0 + aa + ab * c, 1.0 + aa + ab * s];
+        let x = at([1.0, 1.0 + aa, 1.0 + aa, b0[0], b0[0] - bb * s]);
+        pc.add(
+            3.5,
+            &species,
+            &x,
+            &at([1.0, 1.0, 1.0 + aa, b0[1], b0[1] + bb * c]),
+        );
         pc
     }
 
@@ -482,8 +496,8 @@ mod tests {
         assert_eq!(who, [(0, 0), (0, 1), (1, 1)]);
         let close = |u: f64, v: f64| (u / v - 1.0).abs() < 1e-12;
         let p = |k: usize| std::f64::consts::PI * dr * dr * (2 * k + 1) as f64 / 63.0;
-        // A–A in bin 52: 1 then 3 pairs of 3 → g 1/(3P), 1/P, pooled 2/(3P).
-        let (g0, g1) = (1.0 / (3.0 * p(52)), 1.0 / p(52));
+        // A–A in bin 52: 1 then 2 pairs of 3 → g 1/(3P), 2/(3P), pooled 1/(2P).
+        let (g0, g1) = (1.0 / (3.0 * p(52)), 2.0 / (3.0 * p(52)));
         // (sigma, fit bins, bin, per-block contact values)
         let expected = [
             (0.6, 10, 52, [g0, g1]),
@@ -562,5 +576,35 @@ mod tests {
         one.add(0.5, &[0], &[1.0], &[1.0]);
         let rep = report(&one, true, Some(&p)).unwrap();
         assert!(rep.pairs.is_empty() && rep.contact_theorem.is_none());
+    }
+
+    /// g, the contact values and Z are numbers without units: the same run with
+    /// every length 10⁻⁵ or 10⁵ times as large reports them unchanged, with the
+    /// same fit bins (the fit range's edges have a tolerance relative to σ).
+    #[test]
+    fn the_report_does_not_depend_on_the_unit_of_length() {
+        let p = pressure(1.05, 0.02);
+        let one = report(&two_snapshots(), true, Some(&p)).unwrap();
+        for l in [1e-5, 1e5] {
+            let rep = report(&scaled_snapshots(l), true, Some(&p)).unwrap();
+            assert!((rep.bin_width / (0.012 * l) - 1.0).abs() < 1e-14, "{l}");
+            for (a, b) in rep.pairs.iter().zip(&one.pairs) {
+                assert!((a.sigma / (b.sigma * l) - 1.0).abs() < 1e-14);
+                for (u, v) in a.g.iter().zip(&b.g) {
+                    assert!((u - v).abs() <= 1e-9 * v, "{l}: {u} vs {v}");
+                }
+                let (ca, cb) = (a.contact.as_ref().unwrap(), b.contact.as_ref().unwrap());
+                assert_eq!(ca.fit_bins, cb.fit_bins, "{l}: {a:?}");
+                assert!(
+                    (ca.value / cb.value - 1.0).abs() < 1e-9,
+                    "{l}: {ca:?} vs {cb:?}"
+                );
+            }
+            let (za, zb) = (
+                rep.contact_theorem.unwrap(),
+                one.contact_theorem.as_ref().unwrap(),
+            );
+            assert!((za.z_structure / zb.z_structure - 1.0).abs() < 1e-9, "{l}");
+        }
     }
 }

@@ -415,6 +415,28 @@ mod tests {
         assert!((r[0] - 0.006).abs() < 1e-15 && (r[57] - mid(57)).abs() < 1e-14);
     }
 
+    /// A pair closer than r_max by one rounding counts in the last bin, even
+    /// where r/dr rounds up to the number of bins (radius 0.55 in a periodic
+    /// 6 × 6 box: dr = 0.022, 136 bins, r_max = 2.992).
+    #[test]
+    fn a_pair_just_inside_r_max_counts_in_the_last_bin() {
+        let sp = [Species::new(2, 0.55, 1.0)];
+        let mut pc = PairCorrelation::new(&sp, &SimBox::periodic(6.0, 6.0), 0.0, 1.0);
+        assert_eq!(pc.nbins, 136);
+        let mut d = pc.r_max;
+        while d * d >= pc.r_max * pc.r_max {
+            d = f64::from_bits(d.to_bits() - 1);
+        }
+        assert!(
+            d * (1.0 / pc.dr) >= 136.0,
+            "this distance's bin index rounds up"
+        );
+        pc.add(0.5, &[0, 0], &[0.0, d], &[1.0, 1.0]);
+        let mut want = vec![0; 136];
+        want[135] = 1;
+        assert_eq!(pc.counts[8][0], want);
+    }
+
     /// Periodic box: P = π(r₂² − r₁²)/A (10.1) and the ideal count per bin is
     /// M_ab P with M_aa = N_a(N_a − 1)/2 and M_ab = N_a N_b; g per block is the
     /// block's count per snapshot over it, the pooled g all counts over all
