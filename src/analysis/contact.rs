@@ -282,6 +282,7 @@ pub(super) fn report(
 #[cfg(test)]
 mod tests {
     use super::*;
+    use carom_core::{SimBox, Species};
 
     /// Bins of width `h` from `r0` holding g averaged over their annuli (the
     /// r-weighted mean, by Simpson's rule on 200 intervals).
@@ -344,5 +345,266 @@ mod tests {
         assert!((contact_at(&x, &holed, 1.0, 0.02) / 6.0 - 1.0).abs() < 1e-5);
         let [c0, c1, c2] = parabola(&[0.0, 1.0, 2.0, 3.0], &[1.0, 2.0, 5.0, 10.0]);
         assert!((c0 - 1.0).abs() < 1e-12 && c1.abs() < 1e-12 && (c2 - 1.0).abs() < 1e-12);
+    }
+
+    /// The least-squares fits satisfy their normal equations: the residuals are
+    /// orthogonal to 1, x (and x² for the parabola) — on uneven, off-centre x and
+    /// data no low polynomial fits exactly; an exact quadratic is recovered.
+    #[test]
+    fn the_fits_satisfy_their_normal_equations() {
+        let x = [0.1, 0.4, 0.5, 1.3, 2.2, 2.9];
+        let y = [3.0, -1.0, 0.5, 2.0, 7.5, 4.0];
+        let [c0, c1, c2] = parabola(&x, &y);
+        let res: Vec<f64> = x
+            .iter()
+            .zip(&y)
+            .map(|(x, y)| y - c0 - c1 * x - c2 * x * x)
+            .collect();
+        for p in 0..3 {
+            let dot: f64 = x.iter().zip(&res).map(|(x, r)| r * x.powi(p)).sum();
+            assert!(dot.abs() < 1e-10, "parabola, x^{p}: {dot}");
+        }
+        assert!(
+            res.iter().map(|r| r * r).sum::<f64>() > 1.0,
+            "the data are not a parabola"
+        );
+        let [d0, d1] = line(&x, &y);
+        let res: Vec<f64> = x.iter().zip(&y).map(|(x, y)| y - d0 - d1 * x).collect();
+        for p in 0..2 {
+            let dot: f64 = x.iter().zip(&res).map(|(x, r)| r * x.powi(p)).sum();
+            assert!(dot.abs() < 1e-10, "line, x^{p}: {dot}");
+        }
+        // y = 2 − 3x + 0.5x² on the same x.
+        let q: Vec<f64> = x.iter().map(|x| 2.0 - 3.0 * x + 0.5 * x * x).collect();
+        let [c0, c1, c2] = parabola(&x[1..], &q[1..]);
+        assert!((c0 - 2.0).abs() < 1e-10 && (c1 + 3.0).abs() < 1e-10 && (c2 - 0.5).abs() < 1e-10);
+        // Through one point: the constant.
+        assert_eq!(line(&[0.7], &[-2.5]), [-2.5, 0.0]);
+    }
+
+    /// With ln g exactly c0 + c1 u + c2 u² (u = r − σ) at the bin centres, the fit
+    /// is exact and the contact value is exp(c0 − h²((c1² + 2c2)/24 + c1/(12σ)))
+    /// ((10.4) taken off at σ), here with σ = 0.9, h = 0.05: a parabola from 4
+    /// bins on, a straight line (c2 = 0) below; through 3 bins of curved data the
+    /// line is the least-squares one, slope (y₂ − y₀)/2h through the means.
+    #[test]
+    fn the_contact_value_is_the_fit_at_sigma_less_the_bin_average() {
+        let (s, h) = (0.9, 0.05);
+        let want = |c0: f64, c1: f64, c2: f64| {
+            (c0 - h * h * ((c1 * c1 + 2.0 * c2) / 24.0 + c1 / (12.0 * s))).exp()
+        };
+        let bins = |n: usize, c: [f64; 3]| -> (Vec<f64>, Vec<f64>) {
+            (0..n)
+                .map(|k| {
+                    let r = s + (k as f64 + 0.5) * h;
+                    let u = r - s;
+                    (r, (c[0] + c[1] * u + c[2] * u * u).exp())
+                })
+                .unzip()
+        };
+        let close = |u: f64, v: f64| (u / v - 1.0).abs() < 1e-10;
+        let c = [1.3, -4.0, 9.0];
+        for n in [4, 6] {
+            let (x, g) = bins(n, c);
+            let v = contact_at(&x, &g, s, h);
+            assert!(close(v, want(c[0], c[1], c[2])), "{n} bins: {v}");
+        }
+        let (x, g) = bins(3, [1.3, -4.0, 0.0]);
+        assert!(close(contact_at(&x, &g, s, h), want(1.3, -4.0, 0.0)));
+        let (x, g) = bins(3, c);
+        let y: Vec<f64> = g.iter().map(|g| g.ln()).collect();
+        let slope = (y[2] - y[0]) / (2.0 * h);
+        let c0 = (y[0] + y[1] + y[2]) / 3.0 - slope * (x[1] - s);
+        assert!(close(contact_at(&x, &g, s, h), want(c0, slope, 0.0)));
+        // An empty bin among 5 is left out: the other 4 still fit exactly.
+        let (x, mut g) = bins(5, c);
+        g[2] = 0.0;
+        assert!(close(contact_at(&x, &g, s, h), want(c[0], c[1], c[2])));
+    }
+
+    /// Three A discs (radius 0.3, mass 2), two B discs (radius 0.45), no C disc,
+    /// periodic 9 × 7, window [0, 16] (blocks of 1): bins 0.012 wide, fit ranges
+    /// [σ, 1.2σ] = bins 50–59 (A–A, σ = 0.6), 63–74 (A–B, 0.75), 75–89 (B–B,
+    /// 0.9). Two snapshots, in blocks 0 and 3, place pairs in the middle of bins
+    /// 52 (A–A), 66 (A–B) and 80 (B–B); every other pair lies outside its fit range.
+    fn two_snapshots() -> PairCorrelation {
+        scaled_snapshots(1.0)
+    }
+
+    /// [`two_snapshots`] with every length (radii, box, positions) times `l`.
+    fn scaled_snapshots(l: f64) -> PairCorrelation {
+        let sp = [
+            Species::new(3, 0.3 * l, 2.0),
+            Species::new(2, 0.45 * l, 0.5),
+            Species::new(0, 0.2 * l, 1.0),
+        ];
+        let mut pc = PairCorrelation::new(&sp, &SimBox::periodic(9.0 * l, 7.0 * l), 0.0, 16.0);
+        let mid = |k: usize| (k as f64 + 0.5) * 0.012;
+        let (aa, ab, bb) = (mid(52), mid(66), mid(80));
+        let species = [0, 0, 0, 1, 1];
+        let at = |v: [f64; 5]| v.map(|v| v * l);
+        // A0–A1 side by side; B0–B1 side by side above, A2 above B1.
+        let x = at([1.0, 1.0 + aa, 1.0 + bb, 1.0, 1.0 + bb]);
+        pc.add(0.5, &species, &x, &at([1.0, 1.0, 3.2 + ab, 3.2, 3.2]));
+        // A0–A1–A2 at a right angle (A0–A2 = 0.89), B0 from A2 at 30° from the
+        // x axis, B1 from B0 at 120°: every other pair further apart than its
+        // fit range (and than σ_ab), none within 0.15 bins of a bin edge.
+        let (c, s) = (3f64.sqrt() / 2.0, 0.5);
+        let b0 = [1.0 + aa + ab * c, 1.0 + aa + ab * s];
+        let x = at([1.0, 1.0 + aa, 1.0 + aa, b0[0], b0[0] - bb * s]);
+        pc.add(
+            3.5,
+            &species,
+            &x,
+            &at([1.0, 1.0, 1.0 + aa, b0[1], b0[1] + bb * c]),
+        );
+        pc
+    }
+
+    fn pressure(z: f64, z_std_error: f64) -> PressureReport {
+        PressureReport {
+            estimator: "collision virial",
+            z,
+            z_std_error,
+            beta_p: 0.0,
+            beta_p_std_error: 0.0,
+            p: 0.0,
+            area: 63.0,
+            blocks: 16,
+            block_time: 1.0,
+            converged: true,
+            series: Vec::new(),
+            drift: None,
+        }
+    }
+
+    /// g (10.1) with P_k = π dr²(2k + 1)/A, M_AA = 3, M_AB = 6, M_BB = 1; a
+    /// contact value from one occupied fit bin is g there (the line through one
+    /// point is flat: no bin correction); the contact theorem (10.3) sums over
+    /// ordered pairs x_a x_b σ_ab² g_ab, per block for its error (two blocks: SE
+    /// = half their difference).
+    #[test]
+    fn the_report_gives_each_pair_its_g_contact_value_and_the_contact_theorem() {
+        let pc = two_snapshots();
+        let rep = report(&pc, true, Some(&pressure(1.05, 0.02))).unwrap();
+        let dr = rep.bin_width;
+        assert!((dr - 0.012).abs() < 1e-15);
+        assert!((rep.r_max - 291.0 * dr).abs() < 1e-12 && rep.r.len() == 291);
+        assert!((rep.r[66] - 66.5 * dr).abs() < 1e-14);
+        assert_eq!((rep.snapshots, rep.blocks), (2, 2));
+        let who: Vec<(usize, usize)> = rep.pairs.iter().map(|p| (p.a, p.b)).collect();
+        assert_eq!(who, [(0, 0), (0, 1), (1, 1)]);
+        let close = |u: f64, v: f64| (u / v - 1.0).abs() < 1e-12;
+        let p = |k: usize| std::f64::consts::PI * dr * dr * (2 * k + 1) as f64 / 63.0;
+        // A–A in bin 52: 1 then 2 pairs of 3 → g 1/(3P), 2/(3P), pooled 1/(2P).
+        let (g0, g1) = (1.0 / (3.0 * p(52)), 2.0 / (3.0 * p(52)));
+        // (sigma, fit bins, bin, per-block contact values)
+        let expected = [
+            (0.6, 10, 52, [g0, g1]),
+            (0.75, 12, 66, [1.0 / (6.0 * p(66)); 2]),
+            (0.9, 15, 80, [1.0 / p(80); 2]),
+        ];
+        for (pr, (sigma, fit_bins, k, g)) in rep.pairs.iter().zip(expected) {
+            let mean = 0.5 * (g[0] + g[1]);
+            let se = 0.5 * (g[1] - g[0]);
+            assert!((pr.sigma - sigma).abs() < 1e-15, "{pr:?}");
+            assert_eq!(pr.g.len(), 291);
+            assert!(close(pr.g[k], mean) && pr.g[k + 1] == 0.0 && pr.g[k - 1] == 0.0);
+            assert!((pr.std_error[k] - se).abs() <= 1e-12 * mean && pr.std_error[k + 1] == 0.0);
+            let c = pr.contact.as_ref().unwrap();
+            assert_eq!(c.fit_bins, fit_bins, "{pr:?}");
+            assert!(close(c.value, mean), "{c:?} vs {mean}");
+            assert!((c.std_error - se).abs() <= 1e-12 * mean, "{c:?} vs {se}");
+        }
+        // Z = 1 + (π/2)(5/63) Σ x_a x_b σ² g over ordered pairs, x = 3/5, 2/5.
+        let z = |gaa: f64| {
+            let (xa, xb) = (0.6, 0.4);
+            let s = xa * xa * 0.36 * gaa
+                + 2.0 * xa * xb * 0.5625 * expected[1].3[0]
+                + xb * xb * 0.81 * expected[2].3[0];
+            1.0 + std::f64::consts::FRAC_PI_2 * 5.0 / 63.0 * s
+        };
+        let ct = rep.contact_theorem.unwrap();
+        let (zs, se) = (z(0.5 * (g0 + g1)), 0.5 * (z(g1) - z(g0)));
+        assert!(
+            close(ct.z_structure, zs) && close(ct.z_structure_std_error, se),
+            "{ct:?}"
+        );
+        assert_eq!((ct.z_virial, ct.z_virial_std_error), (1.05, 0.02));
+        assert!(close(ct.difference, zs - 1.05));
+        assert!(close(
+            ct.difference_std_errors,
+            (zs - 1.05) / (se * se + 0.0004).sqrt()
+        ));
+    }
+
+    /// No contact theorem for a run with walls or inelastic (the caller's flag),
+    /// without a pressure, or when a pair has no contact value (its fit range
+    /// beyond r_max); no report at all without snapshots; a species of one disc
+    /// has no pair with itself.
+    #[test]
+    fn the_contact_theorem_needs_every_contact_value_and_a_periodic_elastic_pressure() {
+        let pc = two_snapshots();
+        let p = pressure(1.05, 0.02);
+        assert!(report(&pc, false, Some(&p))
+            .unwrap()
+            .contact_theorem
+            .is_none());
+        assert!(report(&pc, true, None).unwrap().contact_theorem.is_none());
+        // B of radius 2: σ_BB = 4, fit range [4, 4.8] beyond r_max = 3.5.
+        let sp = [Species::new(3, 0.3, 2.0), Species::new(2, 2.0, 1.0)];
+        let mut big = PairCorrelation::new(&sp, &SimBox::periodic(9.0, 7.0), 0.0, 16.0);
+        assert!(report(&big, true, Some(&p)).is_none());
+        let x = [1.0, 1.63, 1.0, 1.0, 5.0];
+        big.add(0.5, &[0, 0, 0, 1, 1], &x, &[1.0, 1.0, 1.6, 5.0, 5.0]);
+        let rep = report(&big, true, Some(&p)).unwrap();
+        let contacts: Vec<bool> = rep.pairs.iter().map(|p| p.contact.is_some()).collect();
+        assert_eq!(contacts, [true, true, false]);
+        assert!(rep.contact_theorem.is_none());
+        // One disc of each species: only the A–B pair, which has its contact.
+        let sp = [Species::new(1, 0.3, 2.0), Species::new(1, 0.45, 0.5)];
+        let mut two = PairCorrelation::new(&sp, &SimBox::periodic(9.0, 7.0), 0.0, 16.0);
+        two.add(0.5, &[0, 1], &[1.0, 1.798], &[1.0, 1.0]);
+        let rep = report(&two, true, Some(&p)).unwrap();
+        assert_eq!(
+            rep.pairs.iter().map(|p| (p.a, p.b)).collect::<Vec<_>>(),
+            [(0, 1)]
+        );
+        assert!(rep.contact_theorem.is_some());
+        let sp = [Species::new(1, 0.3, 2.0)];
+        let mut one = PairCorrelation::new(&sp, &SimBox::periodic(9.0, 7.0), 0.0, 16.0);
+        one.add(0.5, &[0], &[1.0], &[1.0]);
+        let rep = report(&one, true, Some(&p)).unwrap();
+        assert!(rep.pairs.is_empty() && rep.contact_theorem.is_none());
+    }
+
+    /// g, the contact values and Z are numbers without units: the same run with
+    /// every length 10⁻⁵ or 10⁵ times as large reports them unchanged, with the
+    /// same fit bins (the fit range's edges have a tolerance relative to σ).
+    #[test]
+    fn the_report_does_not_depend_on_the_unit_of_length() {
+        let p = pressure(1.05, 0.02);
+        let one = report(&two_snapshots(), true, Some(&p)).unwrap();
+        for l in [1e-5, 1e5] {
+            let rep = report(&scaled_snapshots(l), true, Some(&p)).unwrap();
+            assert!((rep.bin_width / (0.012 * l) - 1.0).abs() < 1e-14, "{l}");
+            for (a, b) in rep.pairs.iter().zip(&one.pairs) {
+                assert!((a.sigma / (b.sigma * l) - 1.0).abs() < 1e-14);
+                for (u, v) in a.g.iter().zip(&b.g) {
+                    assert!((u - v).abs() <= 1e-9 * v, "{l}: {u} vs {v}");
+                }
+                let (ca, cb) = (a.contact.as_ref().unwrap(), b.contact.as_ref().unwrap());
+                assert_eq!(ca.fit_bins, cb.fit_bins, "{l}: {a:?}");
+                assert!(
+                    (ca.value / cb.value - 1.0).abs() < 1e-9,
+                    "{l}: {ca:?} vs {cb:?}"
+                );
+            }
+            let (za, zb) = (
+                rep.contact_theorem.unwrap(),
+                one.contact_theorem.as_ref().unwrap(),
+            );
+            assert!((za.z_structure / zb.z_structure - 1.0).abs() < 1e-9, "{l}");
+        }
     }
 }

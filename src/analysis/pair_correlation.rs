@@ -363,4 +363,214 @@ mod tests {
         }
         assert_eq!(ps.len(), 10);
     }
+
+    /// Species of unequal size and number in a periodic 9 × 7 box (σ_min = 0.6,
+    /// bins 0.012 wide, r_max = 3.5 → 291 bins), over the window [2, 10]
+    /// (blocks 0.5 long).
+    fn two_species() -> PairCorrelation {
+        let sp = [Species::new(3, 0.3, 2.0), Species::new(2, 0.45, 0.5)];
+        PairCorrelation::new(&sp, &SimBox::periodic(9.0, 7.0), 2.0, 10.0)
+    }
+
+    /// The middle of bin k (bins 0.012 wide).
+    fn mid(k: usize) -> f64 {
+        (k as f64 + 0.5) * 0.012
+    }
+
+    /// A snapshot goes into block ⌊(t − t0)/(window/16)⌋ (the window's end into
+    /// the last), one before the window or in an empty window nowhere; a pair is
+    /// counted in the bin of its minimum-image distance.
+    #[test]
+    fn snapshots_fall_in_their_time_block_and_pairs_in_their_distance_bin() {
+        let mut pc = two_species();
+        assert!((pc.dr - 0.012).abs() < 1e-15 && pc.nbins == 291);
+        // Two A discs at x = 0.2 and 9.2 − r: r apart through the periodic edge.
+        let place = |k: usize| (vec![0.2, 9.0 - (mid(k) - 0.2)], vec![3.0, 3.0]);
+        let shots = [(1.9, 10), (2.0, 20), (5.3, 57), (10.0, 70)];
+        for (t, k) in shots {
+            let (x, y) = place(k);
+            pc.add(t, &[0, 0], &x, &y);
+        }
+        // 1.9 < t0: ignored; 2 → block 0; (5.3 − 2)/0.5 = 6.6 → 6; 10 → 16 → 15.
+        let mut want = [0; BLOCKS];
+        (want[0], want[6], want[15]) = (1, 1, 1);
+        assert_eq!(pc.snapshots, want);
+        assert_eq!(pc.snapshot_count(), 3);
+        for (blk, k) in [(0, 20), (6, 57), (15, 70)] {
+            let mut bins = vec![0; pc.nbins];
+            bins[k] = 1;
+            assert_eq!(pc.counts[blk][0], bins, "block {blk}");
+            assert!(pc.counts[blk][1..].iter().flatten().all(|&c| c == 0));
+        }
+        // A window of no length takes nothing.
+        let sp = [Species::new(2, 0.3, 2.0)];
+        let mut empty = PairCorrelation::new(&sp, &SimBox::periodic(9.0, 7.0), 3.0, 3.0);
+        let (x, y) = place(20);
+        empty.add(3.0, &[0, 0], &x, &y);
+        assert_eq!(empty.snapshot_count(), 0);
+        assert!(empty.counts.iter().flatten().flatten().all(|&c| c == 0));
+        // Bin centres (k + 1/2) dr.
+        let r = pc.r();
+        assert_eq!(r.len(), 291);
+        assert!((r[0] - 0.006).abs() < 1e-15 && (r[57] - mid(57)).abs() < 1e-14);
+    }
+
+    /// A pair closer than r_max by one rounding counts in the last bin, even
+    /// where r/dr rounds up to the number of bins (radius 0.55 in a periodic
+    /// 6 × 6 box: dr = 0.022, 136 bins, r_max = 2.992).
+    #[test]
+    fn a_pair_just_inside_r_max_counts_in_the_last_bin() {
+        let sp = [Species::new(2, 0.55, 1.0)];
+        let mut pc = PairCorrelation::new(&sp, &SimBox::periodic(6.0, 6.0), 0.0, 1.0);
+        assert_eq!(pc.nbins, 136);
+        let mut d = pc.r_max;
+        while d * d >= pc.r_max * pc.r_max {
+            d = f64::from_bits(d.to_bits() - 1);
+        }
+        assert!(
+            d * (1.0 / pc.dr) >= 136.0,
+            "this distance's bin index rounds up"
+        );
+        pc.add(0.5, &[0, 0], &[0.0, d], &[1.0, 1.0]);
+        let mut want = vec![0; 136];
+        want[135] = 1;
+        assert_eq!(pc.counts[8][0], want);
+    }
+
+    /// Periodic box: P = π(r₂² − r₁²)/A (10.1) and the ideal count per bin is
+    /// M_ab P with M_aa = N_a(N_a − 1)/2 and M_ab = N_a N_b; g per block is the
+    /// block's count per snapshot over it, the pooled g all counts over all
+    /// snapshots, and a block without snapshots has none.
+    #[test]
+    fn g_is_the_count_per_snapshot_over_the_ideal_gas_count() {
+        let mut pc = two_species();
+        let area = 63.0;
+        let p = |r1: f64, r2: f64| std::f64::consts::PI * (r2 * r2 - r1 * r1) / area;
+        assert!((pc.shell_probability(0, 1, 0.3, 1.1) / p(0.3, 1.1) - 1.0).abs() < 1e-14);
+        for (a, b, m) in [(0, 0, 3.0), (0, 1, 6.0), (1, 1, 1.0)] {
+            let ideal = pc.ideal_counts(a, b);
+            assert_eq!(ideal.len(), 291);
+            for k in [0, 1, 52, 290] {
+                let want = m * p(k as f64 * 0.012, (k + 1) as f64 * 0.012);
+                assert!((ideal[k] / want - 1.0).abs() < 1e-12, "{a}{b} bin {k}");
+            }
+        }
+        // Block 0 (t = 2.2): the A–A pair in bin 52; block 3 (t = 3.6 and 3.9):
+        // once in bin 52, once in bin 60. The third A disc is beyond r_max of
+        // both; B–B 3.2 apart (bin 266) in every snapshot.
+        let shot = |pc: &mut PairCorrelation, t: f64, k: usize| {
+            let x = [1.0, 1.0 + mid(k), 6.0, 6.0, 6.0];
+            let y = [1.0, 1.0, 3.5, 1.0, 4.2];
+            pc.add(t, &[0, 0, 0, 1, 1], &x, &y);
+        };
+        shot(&mut pc, 2.2, 52);
+        shot(&mut pc, 3.6, 52);
+        shot(&mut pc, 3.9, 60);
+        let ideal = pc.ideal_counts(0, 0);
+        let (blocks, pooled) = pc.g(0, 0);
+        assert_eq!(blocks.len(), BLOCKS);
+        assert!(blocks
+            .iter()
+            .enumerate()
+            .all(|(k, b)| b.is_some() == (k == 0 || k == 3)));
+        let (b0, b3) = (blocks[0].as_ref().unwrap(), blocks[3].as_ref().unwrap());
+        let close = |u: f64, v: f64| (u / v - 1.0).abs() < 1e-12;
+        assert!(close(b0[52], 1.0 / ideal[52]) && b0[60] == 0.0);
+        assert!(close(b3[52], 1.0 / (2.0 * ideal[52])) && close(b3[60], 1.0 / (2.0 * ideal[60])));
+        assert!(close(pooled[52], 2.0 / (3.0 * ideal[52])));
+        assert!(close(pooled[60], 1.0 / (3.0 * ideal[60])));
+        let (_, bb) = pc.g(1, 1);
+        assert!(close(bb[266], 3.0 / (3.0 * pc.ideal_counts(1, 1)[266])));
+    }
+
+    /// The separation density of two uniform intervals (widths 5 and 2) is the
+    /// trapezoid min(W_a, W_b, (W_a + W_b)/2 − |d|)⁺/(W_a W_b): 2/10 up to
+    /// |d| = 1.5, then falling to 0 at 3.5; it integrates to 1 over all d; an
+    /// interval of width ≤ 0 holds no centre.
+    #[test]
+    fn the_separation_density_is_the_trapezoid_of_two_intervals() {
+        for (wa, wb) in [(5.0, 2.0), (2.0, 5.0)] {
+            for (d, want) in [(0.0, 0.2), (1.4, 0.2), (2.5, 0.1), (3.0, 0.05), (3.6, 0.0)] {
+                let v = separation_density(d, wa, wb);
+                assert!((v - want).abs() < 1e-15, "{wa} {wb} {d}: {v}");
+            }
+            // Midpoint rule over [0, 4] (exact on each linear piece, kinks at
+            // 1.5 and 3.5 on cell edges), both signs of d.
+            let n = 4000;
+            let total: f64 = (0..n)
+                .map(|i| 2.0 * separation_density((i as f64 + 0.5) * 4.0 / n as f64, wa, wb))
+                .sum::<f64>()
+                * 4.0
+                / n as f64;
+            assert!((total - 1.0).abs() < 1e-12, "{total}");
+        }
+        for (wa, wb) in [(0.0, 2.0), (2.0, 0.0), (-1.0, 2.0), (2.0, -1.0)] {
+            assert_eq!(separation_density(0.1, wa, wb), 0.0);
+        }
+    }
+
+    /// With walls the shell probability (10.2) for a thin shell r ≤ the flat
+    /// part of both trapezoids is π(r₂² − r₁²) times the flat density of each
+    /// axis, 1/max(W_a, W_b) (1/L along a periodic axis); beyond it, a direct
+    /// polar integral of the trapezoids written as min(…)⁺ agrees (over bins
+    /// of the usual width: 4 points in r do not resolve a kink of f inside one).
+    #[test]
+    fn the_walled_shell_probability_uses_each_species_reach() {
+        // Radii 0.3 and 1.2 in 9 × 7: W = 8.4, 6.6 along x (flat to 0.9) and
+        // 6.4, 4.6 along y (flat to 0.9).
+        let sp = [Species::new(4, 0.3, 1.0), Species::new(3, 1.2, 3.0)];
+        let walled = PairCorrelation::new(&sp, &SimBox::walled(9.0, 7.0, 1.0), 0.0, 1.0);
+        let mut channel = SimBox::walled(9.0, 7.0, 1.0);
+        channel.boundary[0] = Boundary::Periodic;
+        let channel = PairCorrelation::new(&sp, &channel, 0.0, 1.0);
+        let ring = std::f64::consts::PI * (0.6f64.powi(2) - 0.2f64.powi(2));
+        let close = |u: f64, v: f64, tol: f64| (u / v - 1.0).abs() < tol;
+        let w = walled.shell_probability(0, 1, 0.2, 0.6);
+        assert!(close(w, ring / (8.4 * 6.4), 1e-12), "{w}");
+        let c = channel.shell_probability(1, 0, 0.2, 0.6);
+        assert!(close(c, ring / (9.0 * 6.4), 1e-12), "{c}");
+        // Same species: W = 6.6 and 4.6 (equal widths: no flat part).
+        let trap = |d: f64, wa: f64, wb: f64| {
+            (wa.min(wb).min(0.5 * (wa + wb) - d.abs())).max(0.0) / (wa * wb)
+        };
+        let direct = |r1: f64, r2: f64, wx: [f64; 2], wy: [f64; 2]| {
+            // Midpoint rule, 10 radii × 4000 angles over the full turn.
+            let (nr, nt) = (10, 4000);
+            let (dr, dt) = ((r2 - r1) / nr as f64, std::f64::consts::TAU / nt as f64);
+            let mut s = 0.0;
+            for i in 0..nr {
+                let r = r1 + (i as f64 + 0.5) * dr;
+                for j in 0..nt {
+                    let th = (j as f64 + 0.5) * dt;
+                    s += r * trap(r * th.cos(), wx[0], wx[1]) * trap(r * th.sin(), wy[0], wy[1]);
+                }
+            }
+            s * dr * dt
+        };
+        for (a, b, wx, wy) in [
+            (0, 1, [8.4, 6.6], [6.4, 4.6]),
+            (1, 1, [6.6, 6.6], [4.6, 4.6]),
+            (1, 0, [6.6, 8.4], [4.6, 6.4]),
+        ] {
+            for (r1, r2) in [(0.95, 0.962), (2.0, 2.012), (4.4, 4.412)] {
+                let (num, want) = (
+                    walled.shell_probability(a, b, r1, r2),
+                    direct(r1, r2, wx, wy),
+                );
+                assert!(close(num, want, 1e-4), "{a}{b} {r1}..{r2}: {num} vs {want}");
+            }
+        }
+    }
+
+    /// Mean and standard error of the mean: 1, 2, 4, 9 have mean 4, sample
+    /// variance (9 + 4 + 0 + 25)/3 and SE √(38/3/4); one value has no error.
+    #[test]
+    fn mean_and_standard_error_of_the_mean() {
+        let (m, se) = mean_se(&[1.0, 2.0, 4.0, 9.0]);
+        assert!((m - 4.0).abs() < 1e-15 && (se - (38.0f64 / 12.0).sqrt()).abs() < 1e-15);
+        let (m, se) = mean_se(&[2.5]);
+        assert!(m == 2.5 && se.is_nan());
+        let (m, se) = mean_se(&[3.0, 3.0]);
+        assert!(m == 3.0 && se == 0.0);
+    }
 }
