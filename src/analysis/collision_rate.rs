@@ -159,5 +159,54 @@ mod tests {
             e.rate_term
         );
         assert_eq!(e.z_minus_1, 2.0);
+        // The difference (Z − 1) − rate term, bin by bin, averages to
+        // ⟨Z⟩ − 1 − the mean rate term.
+        let mean_z = z.iter().sum::<f64>() / n as f64;
+        assert!((e.difference - (mean_z - 1.0 - expected)).abs() < 1e-12);
+    }
+
+    /// The Enskog check needs one species with discs, a pressure, a periodic box
+    /// and elastic collisions: a channel, an inelastic run, a mixture and a run
+    /// without a pressure get none.
+    #[test]
+    fn the_enskog_check_is_made_only_for_periodic_elastic_one_species_runs() {
+        use carom_core::{Boundary, SimBox};
+        let channel = SimBox {
+            boundary: [Boundary::Periodic, Boundary::Walls { restitution: 1.0 }],
+            ..SimBox::periodic(10.0, 10.0)
+        };
+        let pressure = PressureReport {
+            estimator: "test",
+            z: 2.0,
+            z_std_error: 0.0,
+            beta_p: 0.0,
+            beta_p_std_error: 0.0,
+            p: 0.0,
+            area: 100.0,
+            blocks: 16,
+            block_time: 1.0,
+            converged: true,
+            series: vec![],
+            drift: None,
+        };
+        let (z, omega, kt) = (vec![2.0; 16], vec![1.0; 16], vec![1.0; 16]);
+        let check = |run: RunDescription, elastic, pr: Option<&PressureReport>| {
+            let a = Analyzer::new(run, AnalysisOptions::default()).unwrap();
+            enskog(&a, elastic, pr, [&z, &omega, &kt]).unwrap()
+        };
+        let base = RunDescription::for_tests;
+        assert!(check(base(), true, Some(&pressure)).is_some());
+        assert!(check(base(), false, Some(&pressure)).is_none());
+        assert!(check(base(), true, None).is_none());
+        let walled = RunDescription {
+            sim_box: channel,
+            ..base()
+        };
+        assert!(check(walled, true, Some(&pressure)).is_none());
+        let mixture = RunDescription {
+            species: vec![Species::reference(2), Species::new(3, 0.7, 2.0)],
+            ..base()
+        };
+        assert!(check(mixture, true, Some(&pressure)).is_none());
     }
 }

@@ -63,3 +63,100 @@ pub(super) fn report(
         drift: drift(z_bins),
     }))
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::analysis::description::RunDescription;
+    use crate::analysis::AnalysisOptions;
+    use carom_core::{SimBox, Species};
+
+    /// 16 bins over [2, 10], 0.5 wide.
+    fn analyzer(run: RunDescription) -> Analyzer {
+        let opts = AnalysisOptions {
+            equilibrate: Some(2.0),
+            time_bins: 16,
+            ..Default::default()
+        };
+        Analyzer::new(run, opts).unwrap()
+    }
+
+    /// Periodic, N = 4: Z = 1 + (Σ r·Δp/(2Δt))/(N kT) per bin, Δt = 0.5: bin 0
+    /// (virial 3, kT 1.5) 1 + 3/6 = 1.5; bin 4 (virial 1 + 2, kT 0.5) 1 + 3/2 = 2.5;
+    /// the others 1.
+    #[test]
+    fn a_periodic_bin_has_z_from_its_collision_virial() {
+        let run = RunDescription {
+            species: vec![Species::new(4, 0.3, 2.0)],
+            sim_box: SimBox::periodic(10.0, 8.0),
+            ..RunDescription::for_tests()
+        };
+        let mut a = analyzer(run);
+        for (t, w) in [(2.1, 3.0), (4.3, 1.0), (4.4, 2.0)] {
+            a.pair(t, w, 0.0);
+        }
+        let kt: Vec<f64> = (0..16).map(|k| if k == 4 { 0.5 } else { 1.5 }).collect();
+        let z = z_per_bin(&a, &kt);
+        let want: Vec<f64> = (0..16)
+            .map(|k| match k {
+                0 => 1.5,
+                4 => 2.5,
+                _ => 1.0,
+            })
+            .collect();
+        assert_eq!(z, want);
+    }
+
+    /// Walls on both axes of an 11 × 9 box, 2 discs of radius 0.5 (centres reach
+    /// 10 × 8) and 1 of radius 1 (9 × 7): Z = J/(2Δt kT Σ_k Σ_s N_s/ℓ_k(a_s)) with
+    /// Σ = 2/10 + 1/9 + 2/8 + 1/7; bin 1 has J = 2.7 at kT 2, the others none.
+    #[test]
+    fn a_walled_bin_has_z_from_its_wall_impulse() {
+        let run = RunDescription {
+            species: vec![Species::new(2, 0.5, 2.0), Species::new(1, 1.0, 0.5)],
+            sim_box: SimBox::walled(11.0, 9.0, 1.0),
+            ..RunDescription::for_tests()
+        };
+        let mut a = analyzer(run);
+        a.wall(2.7, 1.2, 0.0);
+        a.wall(2.8, 1.5, 0.0);
+        let z = z_per_bin(&a, &[2.0; 16]);
+        let sum = 2.0 / 10.0 + 1.0 / 9.0 + 2.0 / 8.0 + 1.0 / 7.0;
+        let z1 = 2.7 / (2.0 * 0.5 * 2.0 * sum);
+        assert_eq!(z.len(), 16);
+        for (k, z) in z.iter().enumerate() {
+            let want = if k == 1 { z1 } else { 0.0 };
+            assert!((z - want).abs() < 1e-14, "bin {k}: {z} against {want}");
+        }
+    }
+
+    /// N = 5 in a periodic 10 × 8 box (A = 80): Z the mean of the bins, βP = Z N/A
+    /// (and its error the same multiple of Z's), P = Z N ⟨kT⟩/A with ⟨kT⟩ = (8·1 +
+    /// 8·2)/16 = 1.5; the blocks tile the window [2, 10]. A bin without a finite Z
+    /// (no temperature) gives no report.
+    #[test]
+    fn the_report_averages_z_and_converts_it_to_the_pressure() {
+        let run = RunDescription {
+            species: vec![Species::new(5, 0.3, 2.0)],
+            sim_box: SimBox::periodic(10.0, 8.0),
+            ..RunDescription::for_tests()
+        };
+        let a = analyzer(run);
+        let z: Vec<f64> = (0..16)
+            .map(|k| 2.0 + 0.1 * ((k * k) % 7) as f64 - 0.05 * (k % 3) as f64)
+            .collect();
+        let kt: Vec<f64> = (0..16).map(|k| if k < 8 { 1.0 } else { 2.0 }).collect();
+        let r = report(&a, &z, &kt).unwrap().unwrap();
+        let z_mean = z.iter().sum::<f64>() / 16.0;
+        assert!((r.z - z_mean).abs() < 1e-14);
+        assert_eq!(r.area, 80.0);
+        assert!((r.beta_p - z_mean * 5.0 / 80.0).abs() < 1e-14);
+        assert!(r.z_std_error > 0.0);
+        assert!((r.beta_p_std_error - r.z_std_error * 5.0 / 80.0).abs() < 1e-15);
+        assert!((r.p - z_mean * 5.0 * 1.5 / 80.0).abs() < 1e-14);
+        assert!((r.blocks as f64 * r.block_time - 8.0).abs() < 1e-12);
+        let mut z_nan = z.clone();
+        z_nan[3] = f64::NAN;
+        assert!(report(&a, &z_nan, &kt).unwrap().is_none());
+    }
+}
