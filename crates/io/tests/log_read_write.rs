@@ -1827,9 +1827,20 @@ fn flushes_follow_flush_every() {
 }
 
 /// Dropping a writer without finishing still ends the file properly, without a
-/// summary; on a writer thread too, by the time the drop returns.
+/// summary; on a writer thread too, by the time the drop returns (here with
+/// messages still queued for the thread when the writer is dropped).
 #[test]
 fn a_dropped_writer_leaves_a_finished_file() {
+    // 256 KiB of text that compresses, but not to nothing.
+    let mut x = 1u64;
+    let big: Vec<u8> = (0..256 << 10)
+        .map(|_| {
+            x = x
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            b"0123456789abcdef"[(x >> 60) as usize]
+        })
+        .collect();
     for background in [false, true] {
         let path = tmp("drop");
         let mut w = LogWriter::create(
@@ -1842,12 +1853,20 @@ fn a_dropped_writer_leaves_a_finished_file() {
             Default::default(),
         )
         .unwrap();
-        for k in 0..200 {
-            w.write_thermo(&thermo_at(k as f64)).unwrap();
+        for k in 0..12 {
+            w.copy_message(CH_THERMO, k, 1000 * k as u64, 1000 * k as u64, &big)
+                .unwrap();
         }
         drop(w);
-        let mut r = open(&path);
-        assert_eq!(r.thermo().count(), 200);
+        // The file as it is the moment the drop returns.
+        let bytes = std::fs::read(&path).unwrap();
+        let mut r = reader(bytes, false).unwrap();
+        let mut n = 0;
+        while let Some(m) = r.next_raw().unwrap() {
+            assert_eq!((m.sequence, m.data.len()), (n, big.len()));
+            n += 1;
+        }
+        assert_eq!(n, 12);
         assert_eq!(r.end(), &LogEnd::Complete);
         assert_eq!(r.summary().unwrap(), None);
         std::fs::remove_file(&path).unwrap();
