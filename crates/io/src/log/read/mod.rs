@@ -551,3 +551,18 @@ impl ReadProgress {
         }
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// 64 × the file's size, at least 64 MiB, at most 16 GiB.
+    #[test]
+    fn the_record_length_limit_follows_the_file_size_within_bounds() {
+        assert_eq!(record_length_limit(0), 64 << 20);
+        assert_eq!(record_length_limit(1 << 20), 64 << 20);
+        assert_eq!(record_length_limit(3 << 20), 192 << 20);
+        assert_eq!(record_length_limit(1 << 30), 16 << 30);
+        assert_eq!(record_length_limit(u64::MAX), 16 << 30);
+    }
+}

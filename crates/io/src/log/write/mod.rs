@@ -408,3 +408,51 @@ impl Drop for LogWriter {
         }
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The bound adds up its documented parts: the queued and gathered batches
+    /// (128 bytes a collision), the chunk, twice the largest message, 1/512 of the
+    /// file for the chunk index, and 1 MiB.
+    #[test]
+    fn the_finish_bound_adds_up_what_may_still_be_written() {
+        let path =
+            std::env::temp_dir().join(format!("carom-io-finish-bound-{}.mcap", std::process::id()));
+        let opts = WriterOptions {
+            batch_size: 10,
+            chunk_size: 1000,
+            background: false,
+            ..WriterOptions::default()
+        };
+        let mut w =
+            LogWriter::create(&path, opts, &BTreeMap::new(), WriterPosition::default()).unwrap();
+        assert_eq!(QUEUE_DEPTH, 8);
+        let batches = 9 * 10 * 128;
+        assert_eq!(w.finish_bound(0), batches + 1000 + (1 << 20));
+        assert_eq!(
+            w.finish_bound(512 * 7 + 100),
+            batches + 1000 + 7 + (1 << 20)
+        );
+        let thermo = Thermo {
+            time: 0.5,
+            kinetic_energy: 1.0,
+            temperature: 1.0,
+            collisions: 0,
+            pair_collisions: 0,
+            wall_collisions: 0,
+            energy_lost: 0.0,
+            virial_sum: 0.0,
+            wall_impulse: 0.0,
+            pressure: None,
+            z: None,
+            collision_rate: None,
+        };
+        let json = serde_json::to_vec(&thermo).unwrap().len() as u64;
+        w.write_thermo(&thermo).unwrap();
+        assert_eq!(w.finish_bound(0), batches + 1000 + 2 * json + (1 << 20));
+        drop(w);
+        std::fs::remove_file(&path).unwrap();
+    }
+}
