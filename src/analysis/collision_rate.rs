@@ -81,6 +81,24 @@ mod tests {
     use crate::analysis::AnalysisOptions;
     use carom_core::Species;
 
+    /// A pressure report with only Z set (the Enskog check reads nothing else).
+    fn pressure_report(z: f64) -> PressureReport {
+        PressureReport {
+            estimator: "test",
+            z,
+            z_std_error: 0.0,
+            beta_p: 0.0,
+            beta_p_std_error: 0.0,
+            p: 0.0,
+            area: 100.0,
+            blocks: 16,
+            block_time: 1.0,
+            converged: true,
+            series: vec![],
+            drift: None,
+        }
+    }
+
     /// ω per bin counts each logged pair `stride` times and adds the pairs of
     /// running totals: 2 (stride·logged + totals) / (N Δt), by hand.
     #[test]
@@ -129,20 +147,7 @@ mod tests {
             ..RunDescription::for_tests()
         };
         let a = Analyzer::new(run, AnalysisOptions::default()).unwrap();
-        let pressure = PressureReport {
-            estimator: "test",
-            z: 3.0,
-            z_std_error: 0.0,
-            beta_p: 0.0,
-            beta_p_std_error: 0.0,
-            p: 0.0,
-            area: 100.0,
-            blocks: 16,
-            block_time: 1.0,
-            converged: true,
-            series: vec![],
-            drift: None,
-        };
+        let pressure = pressure_report(3.0);
         let n = 64;
         let z: Vec<f64> = (0..n).map(|k| 3.0 + 0.01 * (k % 3) as f64).collect();
         let omega: Vec<f64> = (0..n).map(|k| 1.5 + 0.02 * (k % 5) as f64).collect();
@@ -175,20 +180,7 @@ mod tests {
             boundary: [Boundary::Periodic, Boundary::Walls { restitution: 1.0 }],
             ..SimBox::periodic(10.0, 10.0)
         };
-        let pressure = PressureReport {
-            estimator: "test",
-            z: 2.0,
-            z_std_error: 0.0,
-            beta_p: 0.0,
-            beta_p_std_error: 0.0,
-            p: 0.0,
-            area: 100.0,
-            blocks: 16,
-            block_time: 1.0,
-            converged: true,
-            series: vec![],
-            drift: None,
-        };
+        let pressure = pressure_report(2.0);
         let (z, omega, kt) = (vec![2.0; 16], vec![1.0; 16], vec![1.0; 16]);
         let check = |run: RunDescription, elastic, pr: Option<&PressureReport>| {
             let a = Analyzer::new(run, AnalysisOptions::default()).unwrap();

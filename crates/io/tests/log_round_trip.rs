@@ -92,32 +92,7 @@ fn a_full_record_log_reads_back_exactly_what_was_written() {
     assert_eq!(check_events(&mut r, &w, false), w.items.len());
 
     // Whole messages: the batches as batched.
-    let mut r = open(&w.path);
-    let (mut b, mut others) = (0, 0);
-    let others_want: Vec<Item> = w
-        .items
-        .iter()
-        .filter(|i| !matches!(i, Item::Collision(_)))
-        .cloned()
-        .collect();
-    while let Some(m) = r.next_message().unwrap() {
-        match m {
-            LogMessage::Collisions(batch) => {
-                assert!(b < w.batches.len());
-                let want = &w.batches[b];
-                assert_eq!(batch.len(), want.len(), "batch #{b}");
-                for (e, c) in want.iter().enumerate() {
-                    check_collision(&batch.get(e), c, false, e);
-                }
-                b += 1;
-            }
-            m => {
-                check_message(&m, &others_want[others], false);
-                others += 1;
-            }
-        }
-    }
-    assert_eq!((b, others), (w.batches.len(), others_want.len()));
+    check_whole_messages(&w, false);
 }
 
 /// A compact log replays into the full records: velocities bit for bit, the
@@ -170,31 +145,7 @@ fn a_compact_log_with_scene_frames_replays_every_collision() {
     assert_eq!(k, w.raw.len());
 
     // Whole messages skip the scene.
-    let mut r = open(&w.path);
-    let (mut b, mut others) = (0, 0);
-    let others_want: Vec<Item> = w
-        .items
-        .iter()
-        .filter(|i| !matches!(i, Item::Collision(_) | Item::Scene(_)))
-        .cloned()
-        .collect();
-    while let Some(m) = r.next_message().unwrap() {
-        match m {
-            LogMessage::Collisions(batch) => {
-                let want = &w.batches[b];
-                assert_eq!(batch.len(), want.len(), "batch #{b}");
-                for (e, c) in want.iter().enumerate() {
-                    check_collision(&batch.get(e), c, true, e);
-                }
-                b += 1;
-            }
-            m => {
-                check_message(&m, &others_want[others], true);
-                others += 1;
-            }
-        }
-    }
-    assert_eq!((b, others), (w.batches.len(), others_want.len()));
+    check_whole_messages(&w, true);
 
     // The snapshots alone, in a compact log with scene frames.
     let want = w.of(CH_SNAPSHOT);
@@ -296,4 +247,36 @@ fn a_log_without_collisions_still_defines_its_channels() {
     assert_eq!(info.logged_collisions, 0);
     assert_eq!(info.time_span[CH_COLLISIONS], None);
     assert_eq!(info.channels, [true, true, true, true, false]);
+}
+
+/// `next_message` gives the collision batches as batched (each record checked,
+/// `compact` as in [`check_collision`]) and every other message but the scene
+/// frames in writing order.
+fn check_whole_messages(w: &Written, compact: bool) {
+    let mut r = open(&w.path);
+    let (mut b, mut others) = (0, 0);
+    let others_want: Vec<Item> = w
+        .items
+        .iter()
+        .filter(|i| !matches!(i, Item::Collision(_) | Item::Scene(_)))
+        .cloned()
+        .collect();
+    while let Some(m) = r.next_message().unwrap() {
+        match m {
+            LogMessage::Collisions(batch) => {
+                assert!(b < w.batches.len());
+                let want = &w.batches[b];
+                assert_eq!(batch.len(), want.len(), "batch #{b}");
+                for (e, c) in want.iter().enumerate() {
+                    check_collision(&batch.get(e), c, compact, e);
+                }
+                b += 1;
+            }
+            m => {
+                check_message(&m, &others_want[others], compact);
+                others += 1;
+            }
+        }
+    }
+    assert_eq!((b, others), (w.batches.len(), others_want.len()));
 }
