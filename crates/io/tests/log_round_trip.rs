@@ -35,13 +35,7 @@ fn a_full_record_log_reads_back_exactly_what_was_written() {
     assert_eq!(r.summary().unwrap(), None);
     let mut k = 0;
     while let Some(m) = r.next_raw().unwrap() {
-        let got = Raw {
-            channel: m.channel,
-            sequence: m.sequence,
-            log_time: m.log_time,
-            publish_time: m.publish_time,
-        };
-        assert_eq!(got, w.raw[k], "raw message #{k}");
+        assert_eq!(Raw::of(&m), w.raw[k], "raw message #{k}");
         k += 1;
         assert_eq!(r.messages_read(), k as u64);
     }
@@ -133,13 +127,7 @@ fn a_compact_log_with_scene_frames_replays_every_collision() {
     let mut r = open(&w.path);
     let mut k = 0;
     while let Some(m) = r.next_raw().unwrap() {
-        let got = Raw {
-            channel: m.channel,
-            sequence: m.sequence,
-            log_time: m.log_time,
-            publish_time: m.publish_time,
-        };
-        assert_eq!(got, w.raw[k], "raw message #{k}");
+        assert_eq!(Raw::of(&m), w.raw[k], "raw message #{k}");
         k += 1;
     }
     assert_eq!(k, w.raw.len());

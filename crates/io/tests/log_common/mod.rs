@@ -112,6 +112,18 @@ pub struct Raw {
     pub publish_time: u64,
 }
 
+impl Raw {
+    /// The header fields of a message as read.
+    pub fn of(m: &carom_io::RawMessage<'_>) -> Raw {
+        Raw {
+            channel: m.channel,
+            sequence: m.sequence,
+            log_time: m.log_time,
+            publish_time: m.publish_time,
+        }
+    }
+}
+
 /// What a test log holds, from the writing side.
 pub struct Written {
     pub path: PathBuf,
