@@ -276,6 +276,79 @@ fn a_full_disk_is_reported_as_such() {
     }
 }
 
+/// A disk that fills while the run is writing: the error the caller gets is the
+/// operating system's ("File too large", EFBIG), from the writer thread or inline,
+/// and every later call says the log is finished. The disk is made to fill with a
+/// file-size limit (`ulimit -f`, SIGXFSZ ignored so that the write fails instead
+/// of killing the process) on a child process, this test binary run again.
+#[cfg(unix)]
+#[test]
+fn a_disk_that_fills_mid_run_reports_the_os_error() {
+    const CHILD: &str = "CAROM_IO_FSIZE_CHILD";
+    const LIMIT_KIB: u64 = 64;
+    if let Some(dir) = std::env::var_os(CHILD) {
+        for background in [false, true] {
+            let path = Path::new(&dir).join(format!("fills-{background}.mcap"));
+            let opts = WriterOptions {
+                background,
+                compression: Compression::None,
+                chunk_size: 4 << 10,
+                flush_every: Duration::ZERO,
+                ..WriterOptions::default()
+            };
+            let mut w = LogWriter::create(&path, opts, &small_meta(), Default::default())
+                .expect("the header fits under the limit");
+            // Each thermo record takes about 300 bytes: the limit is reached after
+            // a few hundred, long before the 10⁵ offered.
+            let (k, e) = (0..100_000)
+                .find_map(|k| w.write_thermo(&thermo_at(k as f64)).err().map(|e| (k, e)))
+                .expect("a write beyond the file-size limit fails");
+            let shown = e.to_string();
+            assert!(
+                matches!(e, WriteError::Io { .. } | WriteError::Mcap { .. })
+                    && shown.contains("too large"),
+                "background {background}: {e:?} ({shown})"
+            );
+            // Nothing flushed is lost: every message was flushed when written, so the
+            // records before the failing one are on disk, less, with the writer
+            // thread, the queue (at most 8 messages, docs/log-format.md) and the one
+            // being written when the limit was hit.
+            let kept = thermo_on_disk(&path);
+            let lost_at_most = if background { 9 } else { 0 };
+            assert!(
+                kept + lost_at_most >= k,
+                "failed at record {k}, {kept} on disk"
+            );
+            let later = w.write_thermo(&thermo_at(0.0)).unwrap_err();
+            assert!(matches!(later, WriteError::Finished(_)), "{later:?}");
+            println!("carom-io child: background {background} failed as expected");
+        }
+        return;
+    }
+    let dir = tmp("fills-dir");
+    std::fs::create_dir_all(&dir).unwrap();
+    let out = std::process::Command::new("sh")
+        .arg("-c")
+        .arg(format!(
+            r#"trap '' XFSZ; ulimit -f {}; exec "$0" "$@""#,
+            LIMIT_KIB * 2
+        ))
+        .arg(std::env::current_exe().unwrap())
+        .args(["--exact", "a_disk_that_fills_mid_run_reports_the_os_error"])
+        .args(["--nocapture", "--test-threads", "1"])
+        .env(CHILD, &dir)
+        .output()
+        .expect("sh runs");
+    std::fs::remove_dir_all(&dir).unwrap();
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    assert!(
+        out.status.success() && stdout.matches("failed as expected").count() == 2,
+        "child: {}\n{stdout}\n{}",
+        out.status,
+        String::from_utf8_lossy(&out.stderr)
+    );
+}
+
 /// The documented defaults and the mapping of the user's log options.
 #[test]
 fn writer_options_follow_the_log_options() {

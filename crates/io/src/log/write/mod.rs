@@ -137,11 +137,12 @@ impl LogWriter {
         match &mut self.backend {
             Backend::Inline(sink) => {
                 let (pending, cdr) = (&mut self.pending, &mut self.cdr);
-                sink.handle(cmd, &mut |spent| match spent {
+                let sent = sink.handle(cmd, &mut |spent| match spent {
                     // Inline: hand the (cleared) buffer straight back.
                     Spent::Records(mut v) => std::mem::swap(pending, &mut v),
                     Spent::Bytes(v) => cdr.reuse(v),
-                })
+                });
+                self.stop_on_error(sent)
             }
             Backend::Thread { tx, .. } => {
                 if tx.send(cmd).is_err() {
@@ -359,10 +360,20 @@ impl LogWriter {
     pub fn maybe_flush(&mut self) -> Result<(), WriteError> {
         if let Backend::Inline(sink) = &mut self.backend {
             if sink.dirty && sink.last_flush.elapsed() >= sink.flush_every {
-                sink.flush()?;
+                let flushed = sink.flush();
+                return self.stop_on_error(flushed);
             }
         }
         Ok(())
+    }
+
+    /// After the inline backend's first error the writer is finished, as it is when
+    /// the writer thread stops on one: every later call says so.
+    fn stop_on_error(&mut self, r: Result<(), WriteError>) -> Result<(), WriteError> {
+        if r.is_err() {
+            self.backend = Backend::Done;
+        }
+        r
     }
 
     /// Send the pending collisions and the `carom.summary` metadata record, write
