@@ -124,10 +124,10 @@ pub fn scan_indexed(path: &Path) -> Result<Option<LogInfo>, ReadError> {
         let mut pick = |chunk: &mcap::records::ChunkIndex,
                         want_last: bool|
          -> Result<Option<RawOwned>, ReadError> {
+            // The reader needs only the chunk's index: it looks at the summary's
+            // channels only to filter by topic, which is not asked for here.
             let one = mcap::Summary {
                 chunk_indexes: vec![chunk.clone()],
-                channels: summary.channels.clone(),
-                schemas: summary.schemas.clone(),
                 ..Default::default()
             };
             let Ok(mut reader) = IndexedReader::new_with_options(
