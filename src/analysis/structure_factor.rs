@@ -279,4 +279,185 @@ mod tests {
         let r = sf.report().unwrap();
         assert!((r.translational - 1.0).abs() < 1e-9);
     }
+
+    const TP: f64 = 2.0 * std::f64::consts::PI;
+
+    /// A box 4π × 8π: Δk_x = 1/2 and Δk_y = 1/4 exactly (k = (n/2, m/4)), shells
+    /// 2π/4π = 1/2 wide; with σ_min = 1.25, k_max = min(10/1.25, 511·2π/8π) = 8.
+    fn exact_box() -> SimBox {
+        SimBox::periodic(2.0 * TP, 4.0 * TP)
+    }
+
+    /// S(k) of two discs r_1, r_2: |e^{−ik·r_1} + e^{−ik·r_2}|²/2 = 1 + cos(k·d),
+    /// d = r_2 − r_1.
+    fn two_disc_s(kx: f64, ky: f64, d: (f64, f64)) -> f64 {
+        1.0 + (kx * d.0 + ky * d.1).cos()
+    }
+
+    /// Shell sums, counts and the peak of two discs in `exact_box` at k_max = 8,
+    /// from the whole k-plane: every vector 0 < |k| ≤ 8 (k = (n/2, m/4)) counts ½
+    /// towards shell round(2|k|), since k and −k give the same S. The peak is
+    /// the largest 1 + cos(k·d) over the half plane (n > 0, or n = 0 < m).
+    fn two_disc_expected(d: (f64, f64)) -> (Vec<f64>, Vec<f64>, (f64, f64, f64)) {
+        let (mut sums, mut counts) = (vec![0.0; 17], vec![0.0; 17]);
+        let mut best = (f64::NEG_INFINITY, 0.0, 0.0);
+        let mut second = f64::NEG_INFINITY;
+        for n in -20i64..=20 {
+            for m in -40i64..=40 {
+                let (kx, ky) = (n as f64 * 0.5, m as f64 * 0.25);
+                let k = kx.hypot(ky);
+                if k == 0.0 || k > 8.0 {
+                    continue;
+                }
+                let s = two_disc_s(kx, ky, d);
+                let sh = (2.0 * k).round() as usize;
+                sums[sh] += 0.5 * s;
+                counts[sh] += 0.5;
+                if n > 0 || (n == 0 && m > 0) {
+                    if s > best.0 {
+                        second = best.0;
+                        best = (s, kx, ky);
+                    } else if s > second {
+                        second = s;
+                    }
+                }
+            }
+        }
+        // The largest stands out of the next, beyond the NUFFT's rounding.
+        assert!(best.0 - second > 1e-6, "{best:?} vs {second}");
+        (sums, counts, best)
+    }
+
+    /// The shell parameters worked by hand in a non-square box, with k_max set
+    /// by σ_min and by the mode cap, and the shell of a vector.
+    #[test]
+    fn shells_follow_the_box_and_the_smallest_diameter() {
+        // 9 × 7, σ_min = 0.8: Δk = 2π/7; k_max = min(10/0.8 = 12.5, 511·2π/9 ≈ 357);
+        // k_max/Δk = 87.5/2π = 13.93 → 14 shells after shell 0.
+        let (dk, nshell, k_max) = shells(&SimBox::periodic(9.0, 7.0), 0.8);
+        assert!((dk - TP / 7.0).abs() < 1e-15, "{dk}");
+        assert_eq!(nshell, 15);
+        assert!((k_max - 12.5).abs() < 1e-14, "{k_max}");
+        // 300 × 400, σ_min = 0.01: Δk = 2π/300; k_max = min(1000, 511·2π/400)
+        // = 511π/200; k_max/Δk = 511·300/400 = 383.25 → 383 → 384 shells.
+        let (dk, nshell, k_max) = shells(&SimBox::periodic(300.0, 400.0), 0.01);
+        assert!((dk - TP / 300.0).abs() < 1e-17, "{dk}");
+        assert_eq!(nshell, 384);
+        let cap = 511.0 * std::f64::consts::PI / 200.0;
+        assert!((k_max - cap).abs() < 1e-13, "{k_max} vs {cap}");
+        // Exact box: Δk = 1/2, k_max = 8, 8/(1/2) + 1 = 17 shells.
+        assert_eq!(shells(&exact_box(), 1.25), (0.5, 17, 8.0));
+        // Shell s holds round(k/Δk) = s: 1.24/0.5 = 2.48 → 2, 1.26/0.5 = 2.52 → 3,
+        // 0.2/0.5 = 0.4 → 0, k_max = 8 → 16.
+        assert_eq!(shell_of(1.24, 0.5, 17), 2);
+        assert_eq!(shell_of(1.26, 0.5, 17), 3);
+        assert_eq!(shell_of(0.2, 0.5, 17), 0);
+        assert_eq!(shell_of(8.0, 0.5, 17), 16);
+    }
+
+    /// Two discs at d = (2.3, 4.1): S = 1 + cos(k·d) on every vector, the shells
+    /// counted over the half plane including the two vectors exactly at k_max
+    /// ((8, 0) and (0, 8), both in shell 16), and the peak vector.
+    #[test]
+    fn two_discs_give_one_plus_cos_on_every_vector() {
+        let d = (2.3, 4.1);
+        let (x, y) = ([0.7, 0.7 + d.0], [1.9, 1.9 + d.1]);
+        let got = snapshot_sk(&exact_box(), 1.25, &x, &y);
+        let (sums, counts, best) = two_disc_expected(d);
+        assert_eq!(got.n, 2);
+        // Shell 0 holds no vector (the shortest, (0, 1/4), rounds to 1); shell 1
+        // (|k| in [1/4, 3/4)) holds (0, 1/4), (0, 1/2), (1/2, 0), (1/2, ±1/4),
+        // (1/2, ±1/2): 7.
+        assert_eq!((got.counts[0], got.counts[1]), (0, 7));
+        assert_eq!(got.counts.len(), 17);
+        for sh in 0..17 {
+            assert_eq!(got.counts[sh] as f64, counts[sh], "shell {sh}");
+            assert!((got.sums[sh] - sums[sh]).abs() < 1e-9, "shell {sh}");
+        }
+        // The two vectors at |k| = k_max count: without them shell 16 has 2 fewer.
+        assert!(counts[16] >= 2.0);
+        assert!(
+            (got.peak.0 - best.0).abs() < 1e-9,
+            "{:?} vs {best:?}",
+            got.peak
+        );
+        assert_eq!((got.peak.1, got.peak.2), (best.1, best.2));
+    }
+
+    /// One disc: S = |e^{−ik·r}|² = 1 at every vector, wherever the disc is
+    /// (also outside the box, by a period).
+    #[test]
+    fn one_disc_has_s_one_at_every_vector() {
+        for (x, y) in [(0.0, 0.0), (3.3, 20.1), (3.3 - 2.0 * TP, 20.1 + 4.0 * TP)] {
+            let got = snapshot_sk(&exact_box(), 1.25, &[x], &[y]);
+            for sh in 0..17 {
+                let c = got.counts[sh] as f64;
+                assert!((got.sums[sh] - c).abs() < 1e-9 * c.max(1.0), "shell {sh}");
+            }
+            assert!((got.peak.0 - 1.0).abs() < 1e-9);
+        }
+    }
+
+    /// Snapshots enter by time block, [2, 6] in 16 blocks of 1/4: the first of
+    /// each block only, none before t0 or without discs, the one at t1 in the
+    /// last block; the report averages S per shell over them.
+    #[test]
+    fn the_report_averages_the_first_snapshot_of_each_block() {
+        let sb = exact_box();
+        let mut sf = StructureFactor::new(&sb, 1.25, 2.0, 6.0).unwrap();
+        let pair = |d: (f64, f64)| ([0.7, 0.7 + d.0], [1.9, 1.9 + d.1]);
+        let (da, db, dc, dd) = ((0.4, 0.3), (2.3, 4.1), (1.1, 13.7), (5.2, 0.6));
+        let (a, b, c, e) = (pair(da), pair(db), pair(dc), pair(dd));
+        sf.add(1.9, &a.0, &a.1); // before t0
+        sf.add(2.0, &b.0, &b.1); // t0: block 0
+        sf.add(2.1, &a.0, &a.1); // block 0 again
+        sf.add(2.3, &[], &[]); // block 1, no discs
+        sf.add(2.3, &c.0, &c.1); // block 1
+        sf.add(6.0, &e.0, &e.1); // t1: block 15
+        sf.add(7.0, &a.0, &a.1); // after t1: block 15 again
+        let r = sf.report().unwrap();
+        assert_eq!(r.snapshots, 3);
+        let exp: Vec<_> = [db, dc, dd].map(two_disc_expected).into();
+        let counts = &exp[0].1;
+        // Shell 0 is empty, so the shells reported are 1..=16 at k = s/2.
+        let ks: Vec<f64> = (1..17).map(|s| s as f64 * 0.5).collect();
+        assert_eq!(r.k, ks);
+        let mut top = (0, f64::NEG_INFINITY);
+        for (sh, &count) in counts.iter().enumerate().skip(1) {
+            let i = sh - 1;
+            assert_eq!(r.vectors[i] as f64, count);
+            // Per snapshot the shell mean is its sum over its count.
+            let per: Vec<f64> = exp.iter().map(|e| e.0[sh] / count).collect();
+            let mean = per.iter().sum::<f64>() / 3.0;
+            let var = per.iter().map(|p| (p - mean).powi(2)).sum::<f64>() / 2.0;
+            assert!(
+                (r.s[i] - mean).abs() < 1e-9,
+                "shell {sh}: {} vs {mean}",
+                r.s[i]
+            );
+            assert!((r.std_error[i] - (var / 3.0).sqrt()).abs() < 1e-9);
+            if mean > top.1 {
+                top = (sh, mean);
+            }
+        }
+        assert_eq!(r.peak_k, top.0 as f64 * 0.5);
+        assert!((r.peak_s - top.1).abs() < 1e-9);
+        // ψ_T = √(S_max/N) per snapshot, N = 2; its vector from the last (dd).
+        let psi: Vec<f64> = exp.iter().map(|e| (e.2 .0 / 2.0).sqrt()).collect();
+        let mean = psi.iter().sum::<f64>() / 3.0;
+        assert!((r.translational - mean).abs() < 1e-9);
+        assert_eq!(r.translational_k, [exp[2].2 .1, exp[2].2 .2]);
+    }
+
+    /// A window of no length (t0 = t1) or an undefined one (t1 NaN) takes no
+    /// snapshot.
+    #[test]
+    fn a_window_without_length_takes_no_snapshot() {
+        for t1 in [3.0, f64::NAN] {
+            let mut sf = StructureFactor::new(&exact_box(), 1.25, 3.0, t1).unwrap();
+            sf.add(3.0, &[1.0, 2.0], &[1.0, 5.0]);
+            sf.add(3.5, &[1.0, 2.0], &[1.0, 5.0]);
+            assert!(sf.report().is_none(), "t1 = {t1}");
+        }
+    }
 }
