@@ -154,6 +154,7 @@ impl BondOrder {
 mod tests {
     use super::super::test_lattice::triangular;
     use super::*;
+    use std::f64::consts::{PI, SQRT_2};
 
     #[test]
     fn sixfold_is_the_sixth_power_of_the_bond_direction() {
@@ -186,5 +187,188 @@ mod tests {
         let r = bo.report().unwrap();
         assert!((r.global - 1.0).abs() < 1e-12 && (r.local - 1.0).abs() < 1e-12);
         assert!(r.susceptibility.abs() < 1e-9);
+    }
+
+    /// z = (3 + 4i)/5 by hand: z² = (−7 + 24i)/25, z⁴ = (z²)² = (−527 − 336i)/625,
+    /// z⁶ = z⁴ z² = (3689 + 8064 + (−12648 + 2352)i)/15625 = (11753 − 10296i)/15625
+    /// (|z⁶|² = 15625²/15625² checks it). The bond's length, 5 or 0.35, drops out;
+    /// the mirror image (3, −4) is the conjugate.
+    #[test]
+    fn sixfold_of_a_three_four_five_bond_is_worked_by_hand() {
+        let exact = [11753.0 / 15625.0, -10296.0 / 15625.0];
+        for (k, [dx, dy]) in [[3.0, 4.0], [0.21, 0.28], [3.0, -4.0]]
+            .into_iter()
+            .enumerate()
+        {
+            let z = sixfold(dx, dy);
+            let im = if k == 2 { -exact[1] } else { exact[1] };
+            assert!(
+                (z[0] - exact[0]).abs() < 1e-15 && (z[1] - im).abs() < 1e-15,
+                "{z:?}"
+            );
+        }
+    }
+
+    /// Hand-built neighbour lists, with bonds whose e^{6iθ} is exact: θ = 0 → 1,
+    /// 45° → e^{3πi/2} = −i, 90° → e^{3πi} = −1, 135° → e^{9πi/2} = i.
+    /// Disc 0: facets 1 and 3 on the bonds at 0 and 45°: (1 − 3i)/4.
+    /// Disc 1: a hull bond (NaN facet) makes all three weigh equally:
+    /// (1 + i − 1)/3 = i/3. Disc 2: a vanishing edge (facet 0) weighs nothing
+    /// beside facet 2 at 135°: ψ6 = i. Disc 3: no neighbours, ψ6 = 0.
+    #[test]
+    fn local_order_weighs_bonds_by_their_voronoi_edges() {
+        let nb = Neighbours {
+            start: vec![0, 2, 5, 7, 7],
+            list: vec![
+                (1, [2.0, 0.0], 1.0),
+                (2, [0.5, 0.5], 3.0),
+                (0, [2.0, 0.0], f64::NAN),
+                (2, [-1.0, 1.0], 5.0),
+                (3, [0.0, 1.5], 2.0),
+                (0, [3.0, 0.0], 0.0),
+                (1, [-0.7, 0.7], 2.0),
+            ],
+        };
+        let psi = local_psi6_from(&nb);
+        let expected = [[0.25, -0.75], [0.0, 1.0 / 3.0], [0.0, 1.0], [0.0, 0.0]];
+        assert_eq!(psi.len(), 4);
+        for (p, e) in psi.iter().zip(expected) {
+            assert!(
+                (p[0] - e[0]).abs() < 1e-14 && (p[1] - e[1]).abs() < 1e-14,
+                "{p:?} vs {e:?}"
+            );
+        }
+    }
+
+    /// Ψ6 is the plain mean: (1 + 3.5 + 1.5, 2 − 4 + 0.5)/3 = (2, −0.5); no discs give 0.
+    #[test]
+    fn global_order_is_the_mean_of_the_local_ones() {
+        let g = global_psi6(&[[1.0, 2.0], [3.5, -4.0], [1.5, 0.5]]);
+        assert_eq!(g, [2.0, -0.5]);
+        assert_eq!(global_psi6(&[]), [0.0, 0.0]);
+    }
+
+    /// A parallelogram patch of a triangular lattice rotated by α in a walled box:
+    /// every Delaunay bond, inside or along the hull (equal weights there), lies along
+    /// a lattice direction α + k·60°, so every ψ6 = e^{6iα}, and |Ψ6| = mean |ψ6| = 1.
+    #[test]
+    fn a_rotated_lattice_has_every_psi6_turned_by_six_alpha() {
+        let (alpha, a) = (0.1_f64, 0.9);
+        let (u, v) = (
+            [a * alpha.cos(), a * alpha.sin()],
+            [a * (alpha + PI / 3.0).cos(), a * (alpha + PI / 3.0).sin()],
+        );
+        let (mut x, mut y) = (Vec::new(), Vec::new());
+        for i in 0..7 {
+            for j in 0..6 {
+                x.push(8.0 + i as f64 * u[0] + j as f64 * v[0]);
+                y.push(1.0 + i as f64 * u[1] + j as f64 * v[1]);
+            }
+        }
+        let sb = SimBox::walled(20.0, 12.0, 1.0);
+        let e = [(6.0 * alpha).cos(), (6.0 * alpha).sin()];
+        let psi = local_psi6(&sb, &x, &y);
+        assert_eq!(psi.len(), 42);
+        for p in &psi {
+            assert!(
+                (p[0] - e[0]).abs() < 1e-12 && (p[1] - e[1]).abs() < 1e-12,
+                "{p:?}"
+            );
+        }
+        let mut bo = BondOrder::default();
+        let back = bo.add(2.5, &sb, &x, &y);
+        assert_eq!(back, psi);
+        assert_eq!(bo.n, 42);
+        let (t, g, local) = bo.series[0];
+        assert_eq!(t, 2.5);
+        assert!((g - 1.0).abs() < 1e-12 && (local - 1.0).abs() < 1e-12);
+    }
+
+    /// A square lattice (a = 1.25, 6 × 5 sites filling a periodic box): every cell is
+    /// the square of side a, so the four axis bonds weigh a each, and a diagonal the
+    /// triangulation adds between four cocircular discs crosses a Voronoi edge of
+    /// length 0 (both triangles share the circumcentre; multiples of 1/8, exact) and
+    /// weighs nothing. Then ψ4 = (1 + 1 + 1 + 1)/4 = 1 and ψ6 = (1 − 1 + 1 − 1)/4 = 0
+    /// (e^{6i·90°} = −1) for every disc, whichever diagonals were drawn (±i each).
+    #[test]
+    fn a_square_lattice_has_no_sixfold_order() {
+        let a = 1.25;
+        let sb = SimBox::periodic(6.0 * a, 5.0 * a);
+        let (mut x, mut y) = (Vec::new(), Vec::new());
+        for r in 0..5 {
+            for c in 0..6 {
+                x.push((c as f64 + 0.5) * a);
+                y.push((r as f64 + 0.5) * a);
+            }
+        }
+        let nb = delaunay_neighbours(&sb, &x, &y);
+        let mut diagonals = 0;
+        for i in 0..x.len() {
+            let (mut psi4, mut total) = ([0.0, 0.0], 0.0);
+            for &(_, [dx, dy], facet) in nb.of(i) {
+                if (dx.hypot(dy) - a).abs() < 1e-12 {
+                    assert_eq!(facet, a);
+                } else {
+                    assert!((dx.hypot(dy) - a * SQRT_2).abs() < 1e-12);
+                    assert_eq!(facet, 0.0);
+                    diagonals += 1;
+                }
+                let th = dy.atan2(dx);
+                psi4 = [
+                    psi4[0] + facet * (4.0 * th).cos(),
+                    psi4[1] + facet * (4.0 * th).sin(),
+                ];
+                total += facet;
+            }
+            assert!((psi4[0] / total - 1.0).abs() < 1e-12 && (psi4[1] / total).abs() < 1e-12);
+        }
+        // One diagonal per cell, seen from each end (a cell on the box's edge may
+        // be cut one way at the disc and the other way at its ghost: a degenerate
+        // choice that the zero weight makes harmless).
+        assert!(
+            diagonals > x.len() && diagonals <= 2 * x.len(),
+            "{diagonals}"
+        );
+        for p in local_psi6(&sb, &x, &y) {
+            assert!(p[0].abs() < 1e-12 && p[1].abs() < 1e-12, "{p:?}");
+        }
+    }
+
+    /// No report without two snapshots.
+    #[test]
+    fn one_snapshot_gives_no_report() {
+        let (sb, x, y) = triangular(6, 6, 1.3);
+        let mut bo = BondOrder::default();
+        assert_eq!(bo.report(), None);
+        bo.add(0.0, &sb, &x, &y);
+        assert_eq!(bo.report(), None);
+    }
+
+    /// Four snapshots of N = 50 discs, |Ψ6| = 0.1, 0.3, 0.2, 0.6, local 0.5, 0.7,
+    /// 0.6, 0.8 (too short to block: plain mean and SE). ⟨|Ψ6|⟩ = 0.3, SE
+    /// √(Σ(x − 0.3)²/3/4) = √(0.14/12); local 0.65, SE √(0.05/12).
+    /// χ6 = 50 (⟨|Ψ6|²⟩ − 0.3²) = 50 (0.5/4 − 0.09) = 1.75; per block (min(16, 4/2)
+    /// = 2 blocks of 2): 50 (0.05 − 0.04) = 0.5 and 50 (0.2 − 0.16) = 2, SE of two
+    /// values |2 − 0.5|/2 = 0.75.
+    #[test]
+    fn the_report_has_the_susceptibility_from_the_spread_of_the_order() {
+        let abs = [0.1, 0.3, 0.2, 0.6];
+        let local = [0.5, 0.7, 0.6, 0.8];
+        let bo = BondOrder {
+            series: (0..4).map(|k| (1.5 * k as f64, abs[k], local[k])).collect(),
+            n: 50,
+        };
+        let r = bo.report().unwrap();
+        let close = |a: f64, b: f64| (a - b).abs() < 1e-12;
+        assert_eq!((r.neighbours, r.snapshots), ("delaunay", 4));
+        assert!(close(r.global, 0.3) && close(r.global_std_error, (0.14_f64 / 12.0).sqrt()));
+        assert!(close(r.local, 0.65) && close(r.local_std_error, (0.05_f64 / 12.0).sqrt()));
+        assert!(close(r.susceptibility, 1.75), "{}", r.susceptibility);
+        assert!(close(r.susceptibility_std_error, 0.75));
+        assert_eq!(
+            r.series,
+            vec![[0.0, 0.1], [1.5, 0.3], [3.0, 0.2], [4.5, 0.6]]
+        );
+        assert_eq!(r.drift, None);
     }
 }
