@@ -138,6 +138,10 @@ fn time_key(t: f64) -> Time {
 /// `wrapped + image · L` is the unwrapped position.
 #[inline]
 fn image_shift(sim_box: &SimBox, path: DVec2, wrapped: DVec2, images: [i32; 2]) -> [i32; 2] {
+    if path == wrapped {
+        // Nearly always: the engine keeps every disc inside the box.
+        return images;
+    }
     let k = ((path - wrapped) / sim_box.size).round();
     [images[0] + k.x as i32, images[1] + k.y as i32]
 }
