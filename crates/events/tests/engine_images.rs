@@ -148,7 +148,10 @@ fn a_checkpoint_keeps_the_images() {
     let mut short = a.checkpoint();
     short.images.pop();
     let refused = Engine::from_checkpoint(short).unwrap_err().to_string();
-    assert!(refused.contains("images has 299 entries for 300 discs"), "{refused}");
+    assert!(
+        refused.contains("images has 299 entries for 300 discs"),
+        "{refused}"
+    );
 }
 
 /// Images given with the initial state carry on: the engine starts from them.

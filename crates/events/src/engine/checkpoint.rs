@@ -80,7 +80,11 @@ impl Engine {
             next_seq: self.next_seq,
             labels: self.label.clone(),
             next_reorder: self.next_reorder,
-            images: self.label.iter().map(|&d| self.images[d as usize]).collect(),
+            images: self
+                .label
+                .iter()
+                .map(|&d| self.images[d as usize])
+                .collect(),
         }
     }
 
@@ -103,7 +107,14 @@ impl Engine {
             ("cell", cp.cell.len()),
             ("labels", cp.labels.len()),
             // Checkpoints written before carom counted images have none.
-            ("images", if cp.images.is_empty() { n } else { cp.images.len() }),
+            (
+                "images",
+                if cp.images.is_empty() {
+                    n
+                } else {
+                    cp.images.len()
+                },
+            ),
         ] {
             if len != n {
                 return Err(bad(format!("{name} has {len} entries for {n} discs")));

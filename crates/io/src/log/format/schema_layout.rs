@@ -508,12 +508,20 @@ fn a_format_2_checkpoint_reads_without_images() {
         .collect();
     let mut fields = checkpoint_fields(&c);
     fields.retain(|(n, _)| !n.starts_with("image_"));
-    fields.iter_mut().find(|(n, _)| n == "format_version").unwrap().1 = vec![2];
+    fields
+        .iter_mut()
+        .find(|(n, _)| n == "format_version")
+        .unwrap()
+        .1 = vec![2];
     let read = LogCheckpoint::decode(&encode(&v2, &fields)).unwrap();
     assert!(read.engine.images.is_empty());
     let mut want = c;
     want.engine.images.clear();
     assert_eq!(read, want);
-    fields.iter_mut().find(|(n, _)| n == "format_version").unwrap().1 = vec![1];
+    fields
+        .iter_mut()
+        .find(|(n, _)| n == "format_version")
+        .unwrap()
+        .1 = vec![1];
     assert!(LogCheckpoint::decode(&encode(&v2, &fields)).is_err());
 }

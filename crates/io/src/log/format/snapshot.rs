@@ -240,7 +240,11 @@ impl Snapshot {
                 .zip(&vy)
                 .map(|(&a, &b)| DVec2::new(a, b))
                 .collect(),
-            images: image_x.iter().zip(&image_y).map(|(&a, &b)| [a, b]).collect(),
+            images: image_x
+                .iter()
+                .zip(&image_y)
+                .map(|(&a, &b)| [a, b])
+                .collect(),
         })
     }
 }
