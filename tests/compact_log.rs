@@ -93,7 +93,7 @@ fn compact_and_full_logs_of_one_run_decode_to_the_same_collisions() {
         );
         let full = write("full.mcap", &sys, params, log_opts(CollisionDetail::Full));
         let r = LogReader::open(&compact).unwrap();
-        assert_eq!(r.run().log_format, "2.0");
+        assert_eq!(r.run().log_format, carom::io::LOG_FORMAT_VERSION);
         let mut r = r;
         let _ = r.collisions().next();
         assert!(r.compact_collisions(), "{name}: compact schema expected");

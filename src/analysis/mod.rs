@@ -33,6 +33,7 @@ mod structure_factor;
 mod temperature;
 #[cfg(test)]
 mod test_lattice;
+mod unwrap;
 mod velocity;
 
 pub use analyzer::Analyzer;
@@ -55,4 +56,5 @@ pub use report::{
 };
 pub use series::DRIFT_STD_ERRORS;
 pub use structure_factor::{StructureFactorReport, SK_K_MAX_SIGMA, SK_MAX_MODES, SK_SNAPSHOTS};
+pub use unwrap::Unwrapper;
 pub use velocity::{MAX_SNAPSHOT_CORRELATION, MB_FAMILY_ALPHA, MB_TESTS_PER_SPECIES};

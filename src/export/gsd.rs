@@ -2,12 +2,14 @@
 //! HOOMD's schema (version 1.4): per frame `configuration/step` (the frame's
 //! number), `configuration/dimensions` = 2, `configuration/box` = [L_x, L_y, 1,
 //! 0, 0, 0], and N, `particles/types` (species names), `typeid`, `mass`,
-//! `diameter` (2a), `position` and `velocity` (float32, z = 0), plus the simulated
-//! time as `log/carom/time` (float64).
+//! `diameter` (2a), `position` and `velocity` (float32, z = 0), `image` (the
+//! periodic images of logs of format 2.1 on), plus the simulated time as
+//! `log/carom/time` (float64).
 //!
 //! HOOMD's box spans [−L/2, L/2): positions are shifted, x_HOOMD = x − L/2. A
 //! shifted coordinate that rounds to L/2 in float32 is wrapped to −L/2 on a
-//! periodic axis (the same point) and moved one float32 step inside by a wall.
+//! periodic axis (the same point, its image one higher) and moved one float32 step
+//! inside by a wall. The unwrapped position is x_HOOMD + image · L, as in HOOMD.
 
 use std::path::{Path, PathBuf};
 
@@ -133,6 +135,22 @@ impl GsdWriter {
                 ]
             }),
         )?;
+        if s.images.len() == n {
+            // One more image where `centred` wrapped L/2 to −L/2.
+            let image = |x: f64, l: f64, periodic: bool, m: i32| {
+                m + i32::from(periodic && centred(x, l, periodic) < ((x - l / 2.0) as f32))
+            };
+            f.write_arrays(
+                "particles/image",
+                s.positions.iter().zip(&s.images).map(|(p, m)| {
+                    [
+                        image(p.x, l.x, periodic[0], m[0]),
+                        image(p.y, l.y, periodic[1], m[1]),
+                        0i32,
+                    ]
+                }),
+            )?;
+        }
         f.write_arrays(
             "particles/velocity",
             s.velocities

@@ -122,6 +122,7 @@ pub fn snapshot(s: &Snapshot) -> Value {
         species,
         positions,
         velocities,
+        images,
     } = s;
     json!({
         "time": f(*time), "box_x": f(box_size.x), "box_y": f(box_size.y),
@@ -130,6 +131,7 @@ pub fn snapshot(s: &Snapshot) -> Value {
         "species_mass": fs(species_mass.iter().copied()),
         "species": ints(species.iter().copied()),
         "x": xs(positions), "y": ys(positions), "vx": xs(velocities), "vy": ys(velocities),
+        "image_x": ints(images.iter().map(|m| m[0])), "image_y": ints(images.iter().map(|m| m[1])),
     })
 }
 
@@ -189,6 +191,7 @@ pub fn checkpoint(cp: &LogCheckpoint) -> Value {
         counts,
         epoch,
         event_times,
+        images,
         labels,
         last_collision,
         next_reorder,
@@ -264,6 +267,7 @@ pub fn checkpoint(cp: &LogCheckpoint) -> Value {
         "scheduled_seq": ints(scheduled.iter().map(|s| s.1)),
         "scheduled_tag": ints(scheduled.iter().map(|s| s.2)),
         "next_seq": next_seq, "labels": u(labels), "next_reorder": next_reorder,
+        "image_x": ints(images.iter().map(|m| m[0])), "image_y": ints(images.iter().map(|m| m[1])),
     });
     let mut all = state;
     all.as_object_mut()

@@ -84,6 +84,18 @@ def main():
                 fail(f"gsd frame {k}: positions off by up to {d.max()}")
             if numpy.any(numpy.abs(pos[:, :2]) > numpy.array([lx, ly], dtype=numpy.float32) / 2):
                 fail(f"gsd frame {k}: a position outside HOOMD's box")
+            # Unwrapped positions (log format 2.1 on): HOOMD's position + image * L is
+            # the log's x + image_x * L, shifted by L/2, to float32 rounding.
+            if len(getattr(s, "image_x", [])) == n:
+                lengths = numpy.array([lx, ly])
+                images = frame.particles.image
+                if numpy.any(images[:, 2] != 0):
+                    fail(f"gsd frame {k}: a z image")
+                got = pos[:, :2].astype(numpy.float64) + images[:, :2] * lengths
+                want = centred + numpy.stack([s.image_x, s.image_y], axis=1) * lengths
+                off = numpy.abs(got - want).max()
+                if off > 4e-7 * max(lx, ly):
+                    fail(f"gsd frame {k}: unwrapped positions off by up to {off}")
             v = frame.particles.velocity[:, :2]
             if not numpy.allclose(v, numpy.stack([s.vx, s.vy], axis=1), rtol=1e-6, atol=1e-6):
                 fail(f"gsd frame {k}: velocities differ")

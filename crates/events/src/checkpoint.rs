@@ -82,4 +82,9 @@ pub struct Checkpoint {
     pub labels: Vec<u32>,
     /// Pair-collision count at which the engine next renumbers its discs.
     pub next_reorder: u64,
+    /// Net periodic edges each disc crossed since the run began, per axis (see
+    /// [`State::images`](crate::State::images)); in internal order like the other
+    /// per-disc arrays. Empty in checkpoints written before carom counted them: the
+    /// count then restarts at 0.
+    pub images: Vec<[i32; 2]>,
 }

@@ -18,6 +18,11 @@ pub struct State {
     pub positions: Vec<DVec2>,
     /// Velocities (length/time).
     pub velocities: Vec<DVec2>,
+    /// Periodic image of each disc: its unwrapped position, continuous in time, is
+    /// `positions[i] + images[i] · box size` (the net number of periodic edges it
+    /// crossed since the run began, per axis; 0 along walls). Empty in a state that
+    /// does not track them, which counts as all 0.
+    pub images: Vec<[i32; 2]>,
     /// The time of this state (time).
     pub time: f64,
 }

@@ -112,6 +112,7 @@ fn a_drifting_pair_meets_at_contact_however_far_it_drifted() {
         // Slightly different drift speeds, so that the two origins differ and
         // round differently (B falls behind by 0.01 over the run).
         velocities: vec![DVec2::new(delta, 1.0), DVec2::new(-delta, 1.0 - 1e-9)],
+        images: Vec::new(),
         time: 0.0,
     };
     let mut engine = Engine::new(state, EngineParams::default()).expect("engine");

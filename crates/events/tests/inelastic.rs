@@ -498,6 +498,7 @@ fn a_pair_left_without_normal_velocity_does_not_meet_again_at_once() {
                 species_of: vec![0, 0],
                 positions: vec![r0, r1],
                 velocities: vec![v0, v1],
+                images: Vec::new(),
                 time: 0.0,
             };
             let params = EngineParams {
@@ -598,6 +599,7 @@ fn wedge(tc: f64) -> Engine {
             DVec2::new(-0.0009972062904777955, 0.07450591536383498),
             DVec2::new(0.0, -0.017698938385505084),
         ],
+        images: Vec::new(),
         time: 0.0,
     };
     let params = EngineParams {

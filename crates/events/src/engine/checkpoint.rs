@@ -80,6 +80,11 @@ impl Engine {
             next_seq: self.next_seq,
             labels: self.label.clone(),
             next_reorder: self.next_reorder,
+            images: self
+                .label
+                .iter()
+                .map(|&d| self.images[d as usize])
+                .collect(),
         }
     }
 
@@ -101,6 +106,15 @@ impl Engine {
             ("cell_prev", cp.cell_prev.len()),
             ("cell", cp.cell.len()),
             ("labels", cp.labels.len()),
+            // Checkpoints written before carom counted images have none.
+            (
+                "images",
+                if cp.images.is_empty() {
+                    n
+                } else {
+                    cp.images.len()
+                },
+            ),
         ] {
             if len != n {
                 return Err(bad(format!("{name} has {len} entries for {n} discs")));
@@ -157,8 +171,10 @@ impl Engine {
             index_of[l as usize] = k as u32;
         }
         let mut species_of_ext = vec![0u16; n];
+        let mut images = vec![[0; 2]; n];
         for (k, &l) in cp.labels.iter().enumerate() {
             species_of_ext[l as usize] = cp.species_of[k];
+            images[l as usize] = cp.images.get(k).copied().unwrap_or([0; 2]);
         }
         let bodies: Vec<Body> = memory::collect(
             n,
@@ -235,6 +251,7 @@ impl Engine {
             label: cp.labels,
             index_of,
             species_of: species_of_ext,
+            images,
             next_reorder: cp.next_reorder,
             look_ahead: lookahead::worthwhile(n),
             tuner: lookahead::Tuner::new(n),

@@ -112,6 +112,10 @@ pub struct Engine {
     index_of: Vec<u32>,
     /// Species of each disc in external order.
     species_of: Vec<u16>,
+    /// Periodic edges crossed by each disc, net, in external order (+1 leaving at L,
+    /// −1 leaving at 0, per axis): its unwrapped position is its path plus
+    /// `images` box lengths. Touched only when a disc wraps.
+    images: Vec<[i32; 2]>,
     /// Pair-collision count at which discs are next renumbered along the Z curve.
     next_reorder: u64,
     /// Whether to fetch the next events' memory ahead (see `engine::lookahead`).
@@ -126,6 +130,20 @@ pub struct Engine {
 #[inline]
 fn time_key(t: f64) -> Time {
     NotNan::new(t).expect("event times are never NaN: inputs are validated finite")
+}
+
+/// The image of a disc at `path` (its position on its path) shown at `wrapped`
+/// (the same point wrapped into the box) that had crossed the periodic edges
+/// `images` times: `images` plus the box lengths the wrapping took off, so that
+/// `wrapped + image · L` is the unwrapped position.
+#[inline]
+fn image_shift(sim_box: &SimBox, path: DVec2, wrapped: DVec2, images: [i32; 2]) -> [i32; 2] {
+    if path == wrapped {
+        // Nearly always: the engine keeps every disc inside the box.
+        return images;
+    }
+    let k = ((path - wrapped) / sim_box.size).round();
+    [images[0] + k.x as i32, images[1] + k.y as i32]
 }
 
 impl Engine {
@@ -143,6 +161,13 @@ impl Engine {
     fn with_grids(state: State, params: EngineParams, split: bool) -> Result<Engine, EngineError> {
         let n = state.len();
         let mut grids = Grids::new(&state.sim_box, &state.species, &state.species_of, split);
+        let images = (0..n)
+            .map(|i| {
+                let given = state.images.get(i).copied().unwrap_or([0; 2]);
+                let p = state.positions[i];
+                image_shift(&state.sim_box, p, state.sim_box.wrap(p), given)
+            })
+            .collect();
         let mut bodies: Vec<Body> = memory::collect(
             n,
             (0..n).map(|i| Body {
@@ -168,6 +193,7 @@ impl Engine {
             sim_box: state.sim_box,
             species: state.species,
             species_of: state.species_of,
+            images,
             label: (0..n as u32).collect(),
             index_of: (0..n as u32).collect(),
             next_reorder: reorder_interval(n),
@@ -288,6 +314,7 @@ impl Engine {
             species_of: Vec::new(),
             positions: Vec::new(),
             velocities: Vec::new(),
+            images: Vec::new(),
             time: self.reported,
         };
         self.state_into(&mut s);
@@ -306,10 +333,13 @@ impl Engine {
         out.species_of.clone_from(&self.species_of);
         out.positions.resize(n, DVec2::ZERO);
         out.velocities.resize(n, DVec2::ZERO);
+        out.images.resize(n, [0; 2]);
         out.time = self.reported;
         for (b, &i) in self.bodies.iter().zip(&self.label) {
-            out.positions[i as usize] = self.sim_box.wrap(b.at(self.clock));
-            out.velocities[i as usize] = b.v;
+            let (p, i) = (b.at(self.clock), i as usize);
+            out.positions[i] = self.sim_box.wrap(p);
+            out.velocities[i] = b.v;
+            out.images[i] = image_shift(&self.sim_box, p, out.positions[i], self.images[i]);
         }
     }
 

@@ -263,6 +263,7 @@ impl Engine {
         grid.insert(&mut self.bodies, i as u32, c);
         self.stats.cell_crossings += 1;
         if wrapped {
+            self.images[self.label[i] as usize][k] += if up { 1 } else { -1 };
             self.keep_origin_near([i]);
             // The position moved by one box length: partners' image shifts change.
             self.bodies[i].count = self.bodies[i].count.wrapping_add(1);

@@ -247,6 +247,7 @@ impl SystemSpec {
             sim_box: self.sim_box,
             species: self.species.clone(),
             species_of,
+            images: vec![[0; 2]; positions.len()],
             positions,
             velocities,
             time: 0.0,

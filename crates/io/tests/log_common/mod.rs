@@ -277,6 +277,7 @@ impl Recorder {
             species: s.species_of.clone(),
             positions: s.positions.clone(),
             velocities: s.velocities.clone(),
+            images: s.images.clone(),
         };
         self.w.write_snapshot(&s).unwrap();
         self.message(CH_SNAPSHOT, s.time, Item::Snapshot(expected));

@@ -19,7 +19,7 @@ use carom_events::{Checkpoint, EngineParams, Stats};
 pub const CHECKPOINT_MSG: &str = "\
 # The complete state of a carom run, from which it resumes bit-identically.
 # Per-disc arrays have one entry per disc; units are the run's.
-uint32 format_version             # 2
+uint32 format_version             # 3 (2: without the images at the end)
 # --- run driver ---
 float64 run_start_time            # simulated time at which the run started (time)
 uint64 logged_collisions          # collisions written to /collisions so far
@@ -79,10 +79,13 @@ uint64 next_seq
 # --- internal disc order ---
 uint32[] labels                   # per internal slot: the disc's external index (the per-disc arrays above are in internal order)
 uint64 next_reorder               # pair-collision count at which the engine next renumbers its discs
+# --- periodic images (format_version 3 on) ---
+int32[] image_x                   # net periodic edges crossed since the run began, per disc in internal order:
+int32[] image_y                   #   the unwrapped position now is x + vx * (clock - t) + image_x * box_x
 ";
 
 /// Format version written in `format_version`.
-pub const CHECKPOINT_FORMAT_VERSION: u32 = 2;
+pub const CHECKPOINT_FORMAT_VERSION: u32 = 3;
 
 /// The run driver's state at a checkpoint (what it needs, beyond the engine, to
 /// continue the log exactly as the uninterrupted run would have).
@@ -183,6 +186,8 @@ impl LogCheckpoint {
         w.put(c.next_seq);
         w.seq(&c.labels);
         w.put(c.next_reorder);
+        w.seq_iter(c.images.iter().map(|m| m[0]));
+        w.seq_iter(c.images.iter().map(|m| m[1]));
     }
 
     /// Decode from CDR. Checks the layout and the lengths of paired arrays; the
@@ -190,11 +195,12 @@ impl LogCheckpoint {
     pub fn decode(data: &[u8]) -> Result<Self, CdrError> {
         let mut r = CdrReader::new(data)?;
         let version: u32 = r.get("format_version")?;
-        if version != CHECKPOINT_FORMAT_VERSION {
+        // Version 2 is version 3 without the images.
+        if !(2..=CHECKPOINT_FORMAT_VERSION).contains(&version) {
             return Err(CdrError::Invalid {
                 field: "format_version",
                 problem: format!(
-                    "checkpoint format {version} is not supported (this carom reads {CHECKPOINT_FORMAT_VERSION})"
+                    "checkpoint format {version} is not supported (this carom reads 2 to {CHECKPOINT_FORMAT_VERSION})"
                 ),
             });
         }
@@ -335,6 +341,19 @@ impl LogCheckpoint {
         let next_seq = r.get("next_seq")?;
         let labels = r.seq("labels")?;
         let next_reorder = r.get("next_reorder")?;
+        let images = if version >= 3 {
+            let x: Vec<i32> = r.seq("image_x")?;
+            let y: Vec<i32> = r.seq("image_y")?;
+            if x.len() != y.len() {
+                return Err(CdrError::Invalid {
+                    field: "image_y",
+                    problem: format!("{} entries, but `image_x` has {}", y.len(), x.len()),
+                });
+            }
+            x.into_iter().zip(y).map(|(a, b)| [a, b]).collect()
+        } else {
+            Vec::new()
+        };
         Ok(LogCheckpoint {
             driver,
             engine: Checkpoint {
@@ -363,6 +382,7 @@ impl LogCheckpoint {
                 next_seq,
                 labels,
                 next_reorder,
+                images,
             },
         })
     }

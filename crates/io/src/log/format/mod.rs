@@ -68,8 +68,10 @@ pub const METADATA_SUMMARY: &str = "carom.summary";
 /// impulse), replayed from a snapshot; the log options gain `collision_detail`
 /// and `scene_interval` (the optional `/scene` channel); `carom.run` may hold
 /// `max_time_without_collision`, and `carom.summary` the stop reason
-/// `no_collision`. Readers accept 1.x (full records) and 2.x.
-pub const LOG_FORMAT_VERSION: &str = "2.0";
+/// `no_collision`. 2.1: `/snapshot` and `/checkpoint` (format 3) end with each
+/// disc's periodic image; 2.0 files read with none. Readers accept 1.x (full
+/// records) and 2.x.
+pub const LOG_FORMAT_VERSION: &str = "2.1";
 
 /// Major versions of the log format this carom reads.
 pub const READABLE_MAJOR_VERSIONS: [&str; 2] = ["1", "2"];

@@ -366,6 +366,7 @@ mod tests {
                 DVec2::new(5.5, 2.5),
             ],
             velocities: vec![DVec2::new(0.1, -0.2); 3],
+            images: Vec::new(),
             time: 2.75,
         }
     }

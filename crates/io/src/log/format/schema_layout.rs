@@ -22,7 +22,7 @@ fn size_of(ty: &str) -> usize {
     match ty {
         "uint8" => 1,
         "uint16" => 2,
-        "uint32" => 4,
+        "uint32" | "int32" => 4,
         "uint64" | "float64" => 8,
         _ => panic!("type {ty} is not used by carom's schemas"),
     }
@@ -67,6 +67,11 @@ fn f(v: impl IntoIterator<Item = f64>) -> Vec<u64> {
 
 fn u<T: Into<u64>>(v: impl IntoIterator<Item = T>) -> Vec<u64> {
     v.into_iter().map(Into::into).collect()
+}
+
+/// Signed 32-bit values as their two's-complement words.
+fn i(v: impl IntoIterator<Item = i32>) -> Vec<u64> {
+    v.into_iter().map(|x| x as u32 as u64).collect()
 }
 
 fn named(fields: Vec<(&str, Vec<u64>)>) -> Values {
@@ -292,6 +297,8 @@ fn snapshot_fields(s: &Snapshot) -> Values {
         ("y", f(s.positions.iter().map(|p| p.y))),
         ("vx", f(s.velocities.iter().map(|v| v.x))),
         ("vy", f(s.velocities.iter().map(|v| v.y))),
+        ("image_x", i(s.images.iter().map(|m| m[0]))),
+        ("image_y", i(s.images.iter().map(|m| m[1]))),
     ])
 }
 
@@ -314,6 +321,7 @@ fn snapshots_follow_their_schema() {
             DVec2::new(-1.53125, 0.28125),
             DVec2::new(0.015625, 3.03125),
         ],
+        images: vec![[-3, 0], [7, 0], [-200_000, 0]],
     };
     let fields = snapshot_fields(&s);
     let mut w = CdrWriter::new();
@@ -340,7 +348,7 @@ fn checkpoint_fields(c: &LogCheckpoint) -> Values {
     };
     let b = &e.sim_box.boundary;
     named(vec![
-        ("format_version", vec![2]),
+        ("format_version", vec![3]),
         ("run_start_time", f([d.run_start_time])),
         ("logged_collisions", vec![d.logged_collisions]),
         ("next_sequence", u(d.next_sequence)),
@@ -398,6 +406,8 @@ fn checkpoint_fields(c: &LogCheckpoint) -> Values {
         ("next_seq", vec![e.next_seq]),
         ("labels", u(e.labels.clone())),
         ("next_reorder", vec![e.next_reorder]),
+        ("image_x", i(e.images.iter().map(|m| m[0]))),
+        ("image_y", i(e.images.iter().map(|m| m[1]))),
     ])
 }
 
@@ -427,13 +437,18 @@ fn sample_checkpoint() -> LogCheckpoint {
     let mut e = Engine::new(spec.build().unwrap(), params).unwrap();
     e.run_collisions(300).unwrap();
     e.schedule(e.now() + 1.0, 42).unwrap();
+    let mut engine = e.checkpoint();
+    // Images all distinct and of both signs (300 collisions cross few edges).
+    for (k, m) in engine.images.iter_mut().enumerate() {
+        *m = [-1 - k as i32, 1000 + k as i32];
+    }
     LogCheckpoint {
         driver: DriverState {
             run_start_time: 0.5,
             logged_collisions: 250,
             next_sequence: [11, 12, 13, 14],
         },
-        engine: e.checkpoint(),
+        engine,
     }
 }
 
@@ -468,6 +483,8 @@ fn a_checkpoint_with_unequal_paired_arrays_is_refused() {
         ("cell_row", "cell_row"),
         ("scheduled_seq", "scheduled_tag"),
         ("scheduled_tag", "scheduled_tag"),
+        ("image_x", "image_y"),
+        ("image_y", "image_y"),
     ] {
         let mut cut = fields.clone();
         let values = &mut cut.iter_mut().find(|(n, _)| n == short).unwrap().1;
@@ -477,4 +494,34 @@ fn a_checkpoint_with_unequal_paired_arrays_is_refused() {
             other => panic!("{short} one entry short: {other:?}"),
         }
     }
+}
+
+/// A checkpoint of format 2 is format 3 without the images at the end: it reads
+/// with no images (the engine then counts them from 0).
+#[test]
+fn a_format_2_checkpoint_reads_without_images() {
+    let c = sample_checkpoint();
+    let v2: String = CHECKPOINT_MSG
+        .lines()
+        .filter(|l| !l.starts_with("int32[] image_"))
+        .map(|l| format!("{l}\n"))
+        .collect();
+    let mut fields = checkpoint_fields(&c);
+    fields.retain(|(n, _)| !n.starts_with("image_"));
+    fields
+        .iter_mut()
+        .find(|(n, _)| n == "format_version")
+        .unwrap()
+        .1 = vec![2];
+    let read = LogCheckpoint::decode(&encode(&v2, &fields)).unwrap();
+    assert!(read.engine.images.is_empty());
+    let mut want = c;
+    want.engine.images.clear();
+    assert_eq!(read, want);
+    fields
+        .iter_mut()
+        .find(|(n, _)| n == "format_version")
+        .unwrap()
+        .1 = vec![1];
+    assert!(LogCheckpoint::decode(&encode(&v2, &fields)).is_err());
 }

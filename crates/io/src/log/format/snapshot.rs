@@ -20,6 +20,8 @@ float64[] x               # per disc: centre position (length), inside the box
 float64[] y
 float64[] vx              # per disc: velocity (length/time)
 float64[] vy
+int32[] image_x           # per disc: periodic image; the unwrapped position is x + image_x * box_x
+int32[] image_y           #   (net edges crossed since the run began; 0 along walls; log format 2.1 on)
 ";
 
 /// Boundary code in snapshots and checkpoints: 0 periodic, 1 walls.
@@ -49,10 +51,14 @@ pub struct Snapshot {
     pub positions: Vec<DVec2>,
     /// Velocities (length/time).
     pub velocities: Vec<DVec2>,
+    /// Periodic image of each disc ([`State::images`]): the unwrapped position is
+    /// `positions[k] + images[k] · box_size`. Empty in logs before format 2.1.
+    pub images: Vec<[i32; 2]>,
 }
 
 /// The CDR form of a snapshot (`SNAPSHOT_MSG`): (time, box size, boundary codes),
-/// each species' (radius, mass), then each disc's species, x, y, vx and vy.
+/// each species' (radius, mass), then each disc's species, x, y, vx, vy and
+/// images (all 0 when `images` is empty).
 fn encode_snapshot<'a>(
     w: &mut CdrWriter,
     (time, box_size, boundary): (f64, DVec2, [u8; 2]),
@@ -63,9 +69,10 @@ fn encode_snapshot<'a>(
     species: &[u16],
     positions: &[DVec2],
     velocities: &[DVec2],
+    images: &[[i32; 2]],
 ) {
     w.reset();
-    w.reserve(64 + positions.len() * 34 + radius.len() * 16);
+    w.reserve(72 + positions.len() * 42 + radius.len() * 16);
     w.put(time);
     w.put(box_size.x);
     w.put(box_size.y);
@@ -78,6 +85,13 @@ fn encode_snapshot<'a>(
     w.seq_iter(positions.iter().map(|p| p.y));
     w.seq_iter(velocities.iter().map(|p| p.x));
     w.seq_iter(velocities.iter().map(|p| p.y));
+    for k in 0..2 {
+        if images.is_empty() {
+            w.seq_iter(std::iter::repeat_n(0i32, positions.len()));
+        } else {
+            w.seq_iter(images.iter().map(|m| m[k]));
+        }
+    }
 }
 
 impl Snapshot {
@@ -95,6 +109,11 @@ impl Snapshot {
             species: s.species_of.clone(),
             positions: s.positions.clone(),
             velocities: s.velocities.clone(),
+            images: if s.images.is_empty() {
+                vec![[0; 2]; s.len()]
+            } else {
+                s.images.clone()
+            },
         }
     }
 
@@ -122,6 +141,7 @@ impl Snapshot {
             &self.species,
             &self.positions,
             &self.velocities,
+            &self.images,
         );
     }
 
@@ -144,6 +164,7 @@ impl Snapshot {
             &state.species_of,
             &state.positions,
             &state.velocities,
+            &state.images,
         );
     }
 
@@ -161,14 +182,23 @@ impl Snapshot {
         let y: Vec<f64> = r.seq("y")?;
         let vx: Vec<f64> = r.seq("vx")?;
         let vy: Vec<f64> = r.seq("vy")?;
+        // Snapshots before log format 2.1 end here.
+        let (image_x, image_y): (Vec<i32>, Vec<i32>) = if r.remaining() == 0 {
+            (Vec::new(), Vec::new())
+        } else {
+            (r.seq("image_x")?, r.seq("image_y")?)
+        };
         let n = species.len();
-        for (field, len) in [
-            ("x", x.len()),
-            ("y", y.len()),
-            ("vx", vx.len()),
-            ("vy", vy.len()),
+        let m = if image_x.is_empty() { 0 } else { n };
+        for (field, len, want) in [
+            ("x", x.len(), n),
+            ("y", y.len(), n),
+            ("vx", vx.len(), n),
+            ("vy", vy.len(), n),
+            ("image_x", image_x.len(), m),
+            ("image_y", image_y.len(), m),
         ] {
-            if len != n {
+            if len != want {
                 return Err(CdrError::Invalid {
                     field,
                     problem: format!("{len} entries, but `species` has {n}"),
@@ -210,6 +240,11 @@ impl Snapshot {
                 .zip(&vy)
                 .map(|(&a, &b)| DVec2::new(a, b))
                 .collect(),
+            images: image_x
+                .iter()
+                .zip(&image_y)
+                .map(|(&a, &b)| [a, b])
+                .collect(),
         })
     }
 }
@@ -239,6 +274,7 @@ mod tests {
                 DVec2::new(-1.5, 0.25),
                 DVec2::new(0.0, 3.0),
             ],
+            images: vec![[2, 0], [-1, 0], [40_000, 0]],
             time: 2.75,
         }
     }
@@ -256,6 +292,27 @@ mod tests {
             Snapshot::decode(b.bytes()).unwrap(),
             Snapshot::from_state(&state)
         );
+    }
+
+    /// A snapshot of log format 2.0 ends after `vy`: it reads with no images; one
+    /// of a state without images is written with images 0.
+    #[test]
+    fn images_are_optional_on_reading_and_zero_when_untracked() {
+        let state = state();
+        let mut w = CdrWriter::new();
+        Snapshot::encode_state(&state, &mut w);
+        let old = &w.bytes()[..w.bytes().len() - 2 * (4 + 3 * 4)];
+        let read = Snapshot::decode(old).unwrap();
+        assert!(read.images.is_empty());
+        assert_eq!(read.positions, state.positions);
+        let untracked = State {
+            images: Vec::new(),
+            ..state
+        };
+        Snapshot::encode_state(&untracked, &mut w);
+        let read = Snapshot::decode(w.bytes()).unwrap();
+        assert_eq!(read.images, vec![[0, 0]; 3]);
+        assert_eq!(read, Snapshot::from_state(&untracked));
     }
 
     /// Found missing by mutation testing (docs/testing.md): each disc's mass is its
@@ -293,6 +350,9 @@ mod tests {
         let mut short = good.clone();
         short.velocities.pop();
         assert_eq!(refused(&short), "vx");
+        let mut images = good.clone();
+        images.images.pop();
+        assert_eq!(refused(&images), "image_x");
         let mut masses = good.clone();
         masses.species_mass.push(1.5);
         assert_eq!(refused(&masses), "species_mass");

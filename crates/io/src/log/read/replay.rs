@@ -223,6 +223,7 @@ mod tests {
             species: vec![0, 1],
             positions: vec![DVec2::new(1.0, 1.0), DVec2::new(2.0, 1.0)],
             velocities: vec![DVec2::new(1.0, 0.25), DVec2::new(-0.5, 0.1)],
+            images: Vec::new(),
         }
     }
 
