@@ -29,8 +29,9 @@ fn opts(equilibrate: f64, every: Option<f64>, time_bins: usize) -> AnalysisOptio
     }
 }
 
-fn close(a: f64, b: f64) -> bool {
-    (a - b).abs() <= 1e-12 * a.abs().max(b.abs()).max(1.0)
+/// `got` within a relative 10⁻¹² of the finite `want` (an infinite `got` is not).
+fn close(got: f64, want: f64) -> bool {
+    (got - want).abs() <= 1e-12 * want.abs().max(1.0)
 }
 
 #[test]
