@@ -486,45 +486,5 @@ impl Analyzer {
 }
 
 #[cfg(test)]
-mod tests {
-    use super::*;
-
-    fn run() -> RunDescription {
-        RunDescription::for_tests()
-    }
-
-    #[test]
-    fn inconsistent_snapshots_are_errors_not_panics() {
-        let mut a = Analyzer::new(run(), AnalysisOptions::default()).unwrap();
-        assert!(a.snapshot(1.0, &[0, 1], &[1.0, 1.0], &[0.0, 0.0]).is_err());
-        assert!(a.snapshot(1.0, &[0], &[1.0, 1.0], &[0.0, 0.0]).is_err());
-        assert!(a.snapshot(1.0, &[0, 0], &[1.0, -1.0], &[0.0, 0.0]).is_ok());
-        let mut r = run();
-        r.t_end = 0.0;
-        assert!(Analyzer::new(r, AnalysisOptions::default()).is_err());
-        let opts = AnalysisOptions {
-            equilibrate: Some(20.0),
-            ..Default::default()
-        };
-        assert!(Analyzer::new(run(), opts).is_err());
-    }
-
-    #[test]
-    fn increments_spread_over_time_bins_keep_their_total() {
-        let mut a = Analyzer::new(
-            run(),
-            AnalysisOptions {
-                equilibrate: Some(0.0),
-                time_bins: 16,
-                ..Default::default()
-            },
-        )
-        .unwrap();
-        a.increment(0.3, 7.1, 68.0, 0.0, 34);
-        let v: f64 = a.bins.iter().map(|b| b.virial).sum();
-        let p: f64 = a.bins.iter().map(|b| b.pairs_weighted).sum();
-        assert!((v - 68.0).abs() < 1e-9 && (p - 34.0).abs() < 1e-9);
-        // Bin 0 ([0, 0.625)) holds the overlap 0.325 of 6.8.
-        assert!((a.bins[0].virial - 68.0 * 0.325 / 6.8).abs() < 1e-9);
-    }
-}
+#[path = "analyzer_tests.rs"]
+mod tests;

@@ -278,4 +278,172 @@ mod tests {
         let (d, asked) = describe_quietly(&info("not json", None));
         assert!(asked && d.is_err());
     }
+
+    /// The facts of 4 + 3 discs (N = 7), periodic, elastic.
+    fn facts() -> RunFacts {
+        let species = [Species::new(4, 0.5, 1.0), Species::new(3, 0.7, 2.0)];
+        let sim_box = SimBox::periodic(12.0, 9.0);
+        RunFacts::new(
+            &species,
+            &sim_box,
+            &EngineParams::default(),
+            &LogOptions::default(),
+        )
+    }
+
+    fn summary(sim_time: f64, pair_collisions: u64) -> carom_io::SummaryMetadata {
+        carom_io::SummaryMetadata {
+            end_time: String::new(),
+            stop_reason: carom_io::StopReason::Time,
+            error: None,
+            sim_time,
+            pair_collisions,
+            wall_collisions: 0,
+            logged_collisions: 0,
+            kinetic_energy: 1.0,
+            energy_lost: 0.0,
+            virial_sum: 0.0,
+            wall_seconds: 1.0,
+            collisions_per_second: 1.0,
+        }
+    }
+
+    fn rate_of(info: &LogInfo) -> Option<f64> {
+        describe_quietly(info).0.unwrap().pair_rate
+    }
+
+    /// ω = 2 N_pair/(N t) with N = 7. From the thermo records (1, 100) and
+    /// (5, 900): 2·800/(7·4) = 400/7. From the summary, counted since the log's
+    /// start 0.5 to 4.5: 2·140/(7·4) = 10, used only when the thermo records
+    /// tell nothing (no time or no collision between them).
+    #[test]
+    fn the_pair_rate_comes_from_the_thermo_records_or_else_the_summary() {
+        let mut i = info("not json", Some(facts()));
+        i.time_span = [Some((0.5, 6.0)); carom_io::N_CHANNELS];
+        assert_eq!(describe_quietly(&i).0.unwrap().n(), 7);
+        assert_eq!(rate_of(&i), None);
+        i.summary = Some(summary(4.5, 140));
+        assert_eq!(rate_of(&i), Some(10.0));
+        let thermo = |t1: f64, p1: u64| Some([(1.0, 100, 3), (t1, p1, 4)]);
+        for (counts, rate) in [
+            (thermo(5.0, 900), 400.0 / 7.0),
+            // No time, no collision, or fewer collisions between the records.
+            (thermo(1.0, 900), 10.0),
+            (thermo(0.5, 900), 10.0),
+            (thermo(5.0, 100), 10.0),
+            (thermo(5.0, 40), 10.0),
+        ] {
+            i.thermo_counts = counts;
+            assert!((rate_of(&i).unwrap() - rate).abs() < 1e-12, "{counts:?}");
+        }
+        // A rate that is not finite and positive is unknown: an infinite summary
+        // time gives 0, records 5·10⁻³²⁴ apart give +∞.
+        i.summary = Some(summary(f64::INFINITY, 140));
+        i.thermo_counts = None;
+        assert_eq!(rate_of(&i), None);
+        i.summary = None;
+        i.thermo_counts = Some([(0.0, 100, 3), (5e-324, 900, 4)]);
+        assert_eq!(rate_of(&i), None);
+        // No collision or no time since the start in the summary: unknown.
+        for s in [summary(4.5, 0), summary(0.5, 140), summary(0.25, 140)] {
+            i.summary = Some(s);
+            assert_eq!(rate_of(&i), None);
+        }
+    }
+
+    /// The time span is the union of the channels' spans; a log spanning no time
+    /// (no span, or a single instant) cannot be analysed.
+    #[test]
+    fn the_run_spans_the_union_of_the_channels_times() {
+        let mut i = info("not json", Some(facts()));
+        i.time_span = [None; carom_io::N_CHANNELS];
+        i.time_span[0] = Some((1.5, 4.0));
+        i.time_span[2] = Some((0.5, 3.0));
+        i.time_span[3] = Some((2.0, 6.5));
+        let d = describe_quietly(&i).0.unwrap();
+        assert_eq!((d.t_start, d.t_end), (0.5, 6.5));
+        i.time_span = [None; carom_io::N_CHANNELS];
+        assert!(matches!(
+            describe_quietly(&i).0,
+            Err(AnalysisError::Unusable(_))
+        ));
+        i.time_span[1] = Some((2.0, 2.0));
+        assert!(matches!(
+            describe_quietly(&i).0,
+            Err(AnalysisError::Unusable(_))
+        ));
+    }
+
+    /// Sums come from the logged collisions × stride only when every collision is
+    /// logged, or every k-th without thermo records to take exact totals from.
+    #[test]
+    fn the_totals_come_from_the_thermo_records_unless_every_collision_is_logged() {
+        // (collisions logged, channel present, every, thermo) → (from thermo, stride)
+        let cases = [
+            ((true, true, 1, true), (false, 1)),
+            ((true, false, 1, true), (true, 1)),
+            ((false, true, 1, true), (true, 1)),
+            ((true, true, 3, true), (true, 3)),
+            ((true, true, 3, false), (false, 3)),
+            ((true, true, 1, false), (false, 1)),
+            ((true, true, 0, true), (false, 1)),
+        ];
+        for ((collisions, channel, every, thermo), want) in cases {
+            let mut i = info("not json", Some(facts()));
+            i.run.log.collisions = collisions;
+            i.run.log.collision_every = every;
+            i.run.log.thermo_interval = thermo.then_some(0.25);
+            i.run.log.snapshot_interval = Some(0.75);
+            i.channels[0] = channel;
+            let d = describe_quietly(&i).0.unwrap();
+            let got = (d.totals_from_thermo, d.collision_stride);
+            assert_eq!(got, want, "{collisions} {channel} {every} {thermo}");
+            assert_eq!(d.snapshot_interval, Some(0.75));
+        }
+    }
+
+    /// Neither facts nor a configuration: the first snapshot gives 2 discs of
+    /// species 0 and 3 of species 1 (radii, masses as listed), x periodic and walls
+    /// on y (restitution 1), and elastic collisions; a warning says so.
+    #[test]
+    fn without_facts_or_configuration_the_first_snapshot_describes_the_run() {
+        let snapshot = |species: Vec<u16>| Snapshot {
+            time: 0.0,
+            box_size: carom_core::DVec2::new(12.0, 9.0),
+            boundary: [0, 1],
+            species_radius: vec![0.5, 0.7],
+            species_mass: vec![1.0, 2.5],
+            positions: vec![carom_core::DVec2::ZERO; species.len()],
+            velocities: vec![carom_core::DVec2::ZERO; species.len()],
+            species,
+        };
+        let mut i = info("not json", None);
+        i.run.log.collisions = true;
+        let mut warned = Vec::new();
+        let d = describe(
+            "log.mcap",
+            &i,
+            &mut || Ok(Some(snapshot(vec![0, 1, 1, 0, 1]))),
+            &mut |w| warned.push(w.to_owned()),
+        )
+        .unwrap();
+        assert_eq!(
+            d.species,
+            [Species::new(2, 0.5, 1.0), Species::new(3, 0.7, 2.5)]
+        );
+        assert_eq!(d.n(), 5);
+        let walls = Boundary::Walls { restitution: 1.0 };
+        assert_eq!(d.sim_box.boundary, [Boundary::Periodic, walls]);
+        assert_eq!(d.sim_box.size, carom_core::DVec2::new(12.0, 9.0));
+        assert_eq!(d.restitution, Restitution::Elastic);
+        assert_eq!(warned.len(), 1);
+        // A snapshot naming a species it does not list is refused.
+        let bad = describe(
+            "log.mcap",
+            &i,
+            &mut || Ok(Some(snapshot(vec![0, 2]))),
+            &mut |_| {},
+        );
+        assert!(matches!(bad, Err(AnalysisError::Unusable(_))));
+    }
 }

@@ -105,4 +105,14 @@ mod tests {
         assert_eq!(budget_spacing(100, 200, 9.0, Some(0.5)), Some(9.0));
         assert_eq!(budget_spacing(100, 300, 9.0, Some(0.5)), Some(4.5));
     }
+
+    /// Snapshots 1 apart over a window of 10 are ⌊10/1⌋ + 1 = 11, one more than
+    /// the room for 10 (1000 velocities of 100 discs): the 10 that fit are spaced
+    /// 10/9, the first and last at the window's ends.
+    #[test]
+    fn a_window_holding_one_snapshot_too_many_is_spaced_to_the_room() {
+        assert_eq!(budget_spacing(100, 1000, 10.0, Some(1.0)), Some(10.0 / 9.0));
+        // Spaced 10/9 apart they fit: ⌊10/(10/9)⌋ + 1 ≤ 10 (9 or 10 with rounding).
+        assert_eq!(budget_spacing(100, 1000, 10.0, Some(10.0 / 9.0)), None);
+    }
 }
