@@ -220,7 +220,7 @@ mod tests {
             |acc: &mut Vec<(usize, usize, f64)>, i, j, r| acc.push((i.min(j), i.max(j), r)),
             |a, b| a.extend(b),
         );
-        v.sort_by(|a, b| (a.0, a.1).cmp(&(b.0, b.1)));
+        v.sort_by_key(|a| (a.0, a.1));
         v
     }
 
