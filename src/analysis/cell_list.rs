@@ -263,7 +263,8 @@ mod tests {
     }
 
     /// Random discs in the box, plus discs on the cell edges (x = k L/n, the
-    /// box's edge 0 and the largest double below L).
+    /// box's edge 0, the largest double below L, and L itself: the last cell's
+    /// closed edge, the same point as 0 along a periodic axis).
     fn discs(sb: &SimBox, r_cut: f64, n: usize, rng: &mut Pcg64) -> (Vec<f64>, Vec<f64>) {
         let (lx, ly) = (sb.size.x, sb.size.y);
         let mut x: Vec<f64> = (0..n).map(|_| rng.random_range(0.0..lx)).collect();
@@ -278,8 +279,8 @@ mod tests {
             x.push(rng.random_range(0.0..lx));
             y.push(k as f64 * ly / ny);
         }
-        x.extend([0.0, below(lx), below(lx), 0.0, 0.5 * lx]);
-        y.extend([below(ly), 0.0, below(ly), 0.0, below(ly)]);
+        x.extend([0.0, below(lx), below(lx), 0.0, 0.5 * lx, lx, lx, 0.3 * lx]);
+        y.extend([below(ly), 0.0, below(ly), 0.0, below(ly), ly, 0.5 * ly, ly]);
         (x, y)
     }
 
