@@ -82,10 +82,13 @@ impl BondCorrelation {
         }
     }
 
-    /// Whether a snapshot at `t` is used (after t0, and at least the window over
-    /// [`G6_SNAPSHOTS`] after the last one used).
+    /// Whether a snapshot at `t` is used (after t0, at least the window over
+    /// [`G6_SNAPSHOTS`] after the last one used, and no more than
+    /// [`G6_SNAPSHOTS`] in all: with one at t0 the spacing alone would admit a
+    /// 65th at t1).
     pub fn wants(&self, t: f64) -> bool {
-        t >= self.t0
+        self.snapshots < G6_SNAPSHOTS
+            && t >= self.t0
             && self.block_time > 0.0
             && self
                 .last
@@ -245,15 +248,263 @@ mod tests {
     use super::*;
 
     /// The fits recover the exponent of an exact power law and the length of an
-    /// exact exponential, and pick the right form.
+    /// exact exponential, pick the right form, and the right form's residual
+    /// is 0 (to rounding).
     #[test]
     fn fits_recover_exact_decays() {
         let r: Vec<f64> = (0..400).map(|k| 0.05 * (k as f64 + 0.5)).collect();
         let power: Vec<f64> = r.iter().map(|r| 0.9 * r.powf(-0.2)).collect();
         let (eta, _, rp, re) = decay_fits(&r, &power, 1.0, f64::INFINITY).unwrap();
-        assert!((eta - 0.2).abs() < 1e-9 && rp < re, "{eta} {rp} {re}");
+        assert!(
+            (eta - 0.2).abs() < 1e-9 && rp < 1e-20 && rp < re,
+            "{eta} {rp} {re}"
+        );
         let expo: Vec<f64> = r.iter().map(|r| 0.9 * (-r / 3.0).exp()).collect();
         let (_, xi, rp, re) = decay_fits(&r, &expo, 1.0, f64::INFINITY).unwrap();
-        assert!((xi - 3.0).abs() < 1e-9 && re < rp, "{xi} {rp} {re}");
+        assert!(
+            (xi - 3.0).abs() < 1e-9 && re < 1e-20 && re < rp,
+            "{xi} {rp} {re}"
+        );
+    }
+
+    /// The least-squares line y = a + b x through (x, y) by the normal
+    /// equations in raw sums (not the centred form of `decay_fits`): (b, RSS).
+    fn normal_equations(x: &[f64], y: &[f64]) -> (f64, f64) {
+        let n = x.len() as f64;
+        let (sx, sy) = (x.iter().sum::<f64>(), y.iter().sum::<f64>());
+        let sxx: f64 = x.iter().map(|x| x * x).sum();
+        let sxy: f64 = x.iter().zip(y).map(|(x, y)| x * y).sum();
+        let b = (n * sxy - sx * sy) / (n * sxx - sx * sx);
+        let a = (sy - b * sx) / n;
+        let rss = x.iter().zip(y).map(|(x, y)| (y - a - b * x).powi(2)).sum();
+        (b, rss)
+    }
+
+    /// The envelope is the largest positive g6 in each window [m w, (m+1) w),
+    /// from r = w (inclusive) to r_stop (exclusive), the first of equal maxima;
+    /// NaN, zero and negative values never enter. Here (w = 1.5, r_stop = 9)
+    /// it is the points 1.5, 3.6, 5.0 and 6.2 of f = 0.9 r^−0.4, every other
+    /// point lying below f or outside: η = 0.4 with residual 0, and the
+    /// exponential's fit is the least-squares line through (r, ln f(r)).
+    #[test]
+    fn the_envelope_is_the_largest_value_of_each_window() {
+        let f = |r: f64| 0.9 * r.powf(-0.4);
+        let pts = [
+            (1.0, 5.0), // below w
+            (1.5, f(1.5)),
+            (2.0, 0.5 * f(2.0)),
+            (2.9, f64::NAN),
+            (3.0, 0.7 * f(3.0)), // window 2's first point, not its largest
+            (3.6, f(3.6)),
+            (4.2, -0.3),
+            (4.5, 0.0), // window 3
+            (5.0, f(5.0)),
+            (5.9, 0.8 * f(5.9)),
+            (6.2, f(6.2)), // window 4
+            (7.0, f(6.2)), // a tie: the first stays
+            (8.0, -0.1),   // window 5 has no positive value
+            (9.0, 5.0),    // r_stop
+            (9.5, 5.0),
+        ];
+        let (r, g): (Vec<f64>, Vec<f64>) = pts.iter().copied().unzip();
+        let (eta, xi, rp, re) = decay_fits(&r, &g, 1.5, 9.0).unwrap();
+        assert!(
+            (eta - 0.4).abs() < 1e-12 && rp < 1e-25,
+            "η {eta}, residual {rp}"
+        );
+        let env = [1.5, 3.6, 5.0, 6.2];
+        let ln_f: Vec<f64> = env.iter().map(|&r| f(r).ln()).collect();
+        let (b, rss) = normal_equations(&env, &ln_f);
+        assert!((xi + 1.0 / b).abs() < 1e-9 * xi, "ξ {xi} vs {}", -1.0 / b);
+        assert!((re - rss).abs() < 1e-9 * rss, "residual {re} vs {rss}");
+        assert!(rss > 1e-4);
+    }
+
+    /// Three envelope points make a fit; two do not.
+    #[test]
+    fn a_fit_needs_three_envelope_points() {
+        let f = |r: f64| 0.7 * (-r / 2.2).exp();
+        let r = [1.2, 2.5, 3.9];
+        let g: Vec<f64> = r.iter().map(|&r| f(r)).collect();
+        let (_, xi, _, re) = decay_fits(&r, &g, 1.2, f64::INFINITY).unwrap();
+        assert!(
+            (xi - 2.2).abs() < 1e-12 && re < 1e-25,
+            "ξ {xi}, residual {re}"
+        );
+        assert_eq!(decay_fits(&r[..2], &g[..2], 1.2, f64::INFINITY), None);
+    }
+
+    /// Unequal species (σ_min = 0.6, σ_max = 1.0: bins 0.06 wide) in a
+    /// periodic 9 × 7 box: r_max = min(25, 9/2, 7/2) = 3.5, so 58 bins, pairs
+    /// up to 58 · 0.06 = 3.48; the window [2, 10] has blocks 0.5 long and
+    /// snapshots at least 8/64 = 0.125 apart.
+    fn two_species() -> BondCorrelation {
+        let sp = [Species::new(3, 0.3, 2.0), Species::new(2, 0.5, 0.5)];
+        BondCorrelation::new(&sp, &SimBox::periodic(9.0, 7.0), 2.0, 10.0)
+    }
+
+    /// ψ = m e^{iα} as (Re, Im).
+    fn psi(m: f64, alpha: f64) -> [f64; 2] {
+        [m * alpha.cos(), m * alpha.sin()]
+    }
+
+    /// Two discs 1.23 apart through the periodic edge (x = 0.2 and 8.97): one
+    /// pair in bin ⌊1.23/0.06⌋ = 20 with Re ψ_0 ψ_1* = m_0 m_1 cos(α_0 − α_1):
+    /// 0.8 · 0.5 cos(0.3 − 1.1) at t = 2 (block 0) and 0.9 · 0.7 cos(−0.4 − 2)
+    /// at t = 5.3 (block ⌊3.3/0.5⌋ = 6); g6 pools them, (a + b)/2, and its
+    /// standard error over the two blocks is |a − b|/2. A snapshot before t0
+    /// or 0.05 after the last is skipped; at t = 10 (block 16 → the last) the
+    /// discs are 3.49 apart, beyond the last bin, and make no pair.
+    #[test]
+    fn a_pair_adds_re_psi_psi_star_to_its_distance_bin() {
+        let mut bc = two_species();
+        assert!((bc.dr - 0.06).abs() < 1e-15 && bc.nbins == 58);
+        let (x, y) = ([0.2, 9.0 - (1.23 - 0.2)], [3.0, 3.0]);
+        let (a, b) = (0.4 * (-0.8f64).cos(), 0.63 * (-2.4f64).cos());
+        bc.add(1.9, &x, &y, &[psi(1.0, 0.0); 2]);
+        bc.add(2.0, &x, &y, &[psi(0.8, 0.3), psi(0.5, 1.1)]);
+        bc.add(2.05, &x, &y, &[psi(1.0, 0.0); 2]);
+        bc.add(5.3, &x, &y, &[psi(0.9, -0.4), psi(0.7, 2.0)]);
+        bc.add(10.0, &[0.2, 3.69], &y, &[psi(1.0, 0.0); 2]);
+        let close = |u: f64, v: f64| (u - v).abs() < 1e-14;
+        for (blk, want) in [(0, a), (6, b)] {
+            let s = &bc.sums[blk];
+            assert!(
+                close(s[20].0, want) && s[20].1 == 1,
+                "block {blk}: {:?}",
+                s[20]
+            );
+            assert_eq!(s.iter().map(|v| v.1).sum::<u64>(), 1);
+        }
+        assert!(bc.sums[15].iter().all(|v| *v == (0.0, 0)));
+        let rep = bc.report().unwrap();
+        assert_eq!(rep.snapshots, 3);
+        for (k, &r) in rep.r.iter().enumerate() {
+            assert!(close(r, (k as f64 + 0.5) * 0.06), "r[{k}] = {r}");
+        }
+        assert_eq!(rep.r.len(), 58);
+        assert!(
+            close(rep.g6[20], (a + b) / 2.0),
+            "{} vs {}",
+            rep.g6[20],
+            (a + b) / 2.0
+        );
+        assert!(close(rep.std_error[20], (a - b).abs() / 2.0));
+        assert_eq!(rep.g6.iter().filter(|g| !g.is_nan()).count(), 1);
+        assert_eq!((rep.eta6, rep.xi6, rep.decay), (None, None, None));
+    }
+
+    /// A pair just inside the cut-off whose r/dr rounds up to the number of
+    /// bins goes into the last bin: σ = 0.6 in a periodic 8 × 8 box, r_max = 4,
+    /// ⌊4/0.06⌋ = 66 bins, cut-off 66 · 0.06 = 3.96, and the double just below
+    /// it times 1/0.06 rounds to 66.
+    #[test]
+    fn a_pair_at_the_cut_off_goes_into_the_last_bin() {
+        let sp = [Species::new(2, 0.3, 1.5)];
+        let mut bc = BondCorrelation::new(&sp, &SimBox::periodic(8.0, 8.0), 0.0, 1.0);
+        assert_eq!(bc.nbins, 66);
+        let r = f64::from_bits((66.0 * bc.dr).to_bits() - 1);
+        assert!(r * r < (66.0 * bc.dr).powi(2) && (r * (1.0 / bc.dr)) as usize == 66);
+        bc.add(
+            0.0,
+            &[0.0, r],
+            &[1.0, 1.0],
+            &[psi(0.6, 0.2), psi(0.5, -0.7)],
+        );
+        let want = 0.3 * 0.9f64.cos();
+        let last = bc.sums[0][65];
+        assert!((last.0 - want).abs() < 1e-15 && last.1 == 1, "{last:?}");
+    }
+
+    /// Snapshots are used from t0 on, each at least window/64 after the last
+    /// used (to a relative 10⁻⁹), 64 at most: 641 snapshots evenly over
+    /// [0.5, 24.18] are every 10th 65 times (k = 0, 10, …, 640), the last, at
+    /// t1, refused; in an empty window none is used.
+    #[test]
+    fn snapshots_are_used_at_least_a_64th_of_the_window_apart() {
+        let (t0, t1) = (0.5, 24.18);
+        let s = (t1 - t0) / 64.0;
+        let mut bc = BondCorrelation::new(
+            &[Species::reference(2)],
+            &SimBox::periodic(9.0, 9.0),
+            t0,
+            t1,
+        );
+        assert!(!bc.wants(0.49) && bc.wants(t0));
+        bc.add(3.0, &[1.0, 2.0], &[1.0, 1.0], &[psi(1.0, 0.0); 2]);
+        assert!(!bc.wants(3.0 + s * (1.0 - 1e-8)) && bc.wants(3.0 + s * (1.0 - 1e-10)));
+        assert!(bc.wants(3.0 + s) && bc.wants(t1));
+        let mut bc = BondCorrelation::new(
+            &[Species::reference(2)],
+            &SimBox::periodic(9.0, 9.0),
+            t0,
+            t1,
+        );
+        for k in 0..=640 {
+            let t = t0 + k as f64 * (t1 - t0) / 640.0;
+            assert_eq!(bc.wants(t), k % 10 == 0 && k < 640, "k = {k}");
+            bc.add(t, &[1.0, 2.0], &[1.0, 1.0], &[psi(1.0, 0.0); 2]);
+        }
+        assert_eq!(bc.snapshots, 64);
+        let empty = BondCorrelation::new(
+            &[Species::reference(2)],
+            &SimBox::periodic(9.0, 9.0),
+            t0,
+            t0,
+        );
+        assert!(!empty.wants(t0) && !empty.wants(t0 + 1.0) && empty.report().is_none());
+    }
+
+    /// σ_min = 0.6, σ_max = 1.3 in a periodic 40 × 40 box: 333 bins 0.06 wide
+    /// to r_max = 20, envelope windows 1.3 wide. Every bin has 2 pairs a
+    /// block with g6 = A_b f(r), A_b = 1.5 in the even blocks and 0.5 in the
+    /// odd ones (standard error 0.5 f/√15 < f/3), up to r = 11; then g6
+    /// ends, as empty bins or as bins lost in noise (3 f and −f: mean f,
+    /// standard error 2 f/√15 > f/3); beyond r = 12, a constant 0.9 A_b that
+    /// must not enter. The fits see only [1.3, 11): every block and the
+    /// pooled g6 give f's exponent or length exactly, with 0 spread.
+    fn fitted(f: impl Fn(f64) -> f64, empty: bool) -> BondCorrelationReport {
+        let sp = [Species::new(5, 0.3, 2.0), Species::new(5, 0.65, 1.0)];
+        let mut bc = BondCorrelation::new(&sp, &SimBox::periodic(40.0, 40.0), 0.0, 1.6);
+        assert_eq!(bc.nbins, 333);
+        for (b, blk) in bc.sums.iter_mut().enumerate() {
+            let even = b % 2 == 0;
+            let amp = if even { 1.5 } else { 0.5 };
+            for (k, v) in blk.iter_mut().enumerate() {
+                let r = (k as f64 + 0.5) * 0.06;
+                let g = match r {
+                    r if r < 11.0 => amp * f(r),
+                    r if r < 12.0 => f(r) * if even { 3.0 } else { -1.0 },
+                    _ => 0.9 * amp,
+                };
+                *v = if empty && (11.0..12.0).contains(&r) {
+                    (0.0, 0)
+                } else {
+                    (2.0 * g, 2)
+                };
+            }
+        }
+        bc.snapshots = 16;
+        bc.report().unwrap()
+    }
+
+    #[test]
+    fn the_decay_fits_stop_where_g6_ends() {
+        for empty in [true, false] {
+            let rep = fitted(|r| 0.8 * r.powf(-0.25), empty);
+            let [eta, se] = rep.eta6.unwrap();
+            assert!(
+                (eta - 0.25).abs() < 1e-9 && se < 1e-9,
+                "empty {empty}: η {eta} ± {se}"
+            );
+            assert_eq!(rep.decay, Some("power law"));
+            let rep = fitted(|r| 0.8 * (-r / 2.5).exp(), empty);
+            let [xi, se] = rep.xi6.unwrap();
+            assert!(
+                (xi - 2.5).abs() < 1e-9 && se < 1e-9,
+                "empty {empty}: ξ {xi} ± {se}"
+            );
+            assert_eq!(rep.decay, Some("exponential"));
+        }
     }
 }

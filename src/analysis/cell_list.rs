@@ -189,3 +189,204 @@ impl CellList {
         total
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use carom_core::DVec2;
+    use rand::{RngExt, SeedableRng};
+    use rand_pcg::Pcg64;
+
+    /// A box with `per[k]` telling whether axis k is periodic (else elastic walls).
+    fn boxed(lx: f64, ly: f64, per: [bool; 2]) -> SimBox {
+        let b = |p: bool| {
+            if p {
+                Boundary::Periodic
+            } else {
+                Boundary::Walls { restitution: 1.0 }
+            }
+        };
+        SimBox {
+            size: DVec2::new(lx, ly),
+            boundary: [b(per[0]), b(per[1])],
+        }
+    }
+
+    /// Every pair the cell list visits, as (i < j, r), sorted; each chunk
+    /// collects its own list and the merge appends them.
+    fn visited(cl: &CellList) -> Vec<(usize, usize, f64)> {
+        let mut v = cl.fold_pairs(
+            Vec::new,
+            |acc: &mut Vec<(usize, usize, f64)>, i, j, r| acc.push((i.min(j), i.max(j), r)),
+            |a, b| a.extend(b),
+        );
+        v.sort_by_key(|a| (a.0, a.1));
+        v
+    }
+
+    /// The O(N²) reference: every pair i < j whose minimum-image separation
+    /// (d − L round(d/L) along a periodic axis, d along a walled one) is
+    /// shorter than r_c.
+    fn brute(sb: &SimBox, r_cut: f64, x: &[f64], y: &[f64]) -> Vec<(usize, usize, f64)> {
+        let mut v = Vec::new();
+        for i in 0..x.len() {
+            for j in i + 1..x.len() {
+                let d = sb.minimum_image(DVec2::new(x[j] - x[i], y[j] - y[i]));
+                let r2 = d.x * d.x + d.y * d.y;
+                if r2 < r_cut * r_cut {
+                    v.push((i, j, r2.sqrt()));
+                }
+            }
+        }
+        v
+    }
+
+    /// The cell list's pairs against the brute force: the same pairs (each
+    /// once), at the same distance to rounding.
+    fn check(sb: &SimBox, r_cut: f64, x: &[f64], y: &[f64]) -> usize {
+        let mut cl = CellList::default();
+        cl.build(sb, r_cut, x, y);
+        let (got, want) = (visited(&cl), brute(sb, r_cut, x, y));
+        let ij = |v: &[(usize, usize, f64)]| v.iter().map(|p| (p.0, p.1)).collect::<Vec<_>>();
+        assert_eq!(
+            ij(&got),
+            ij(&want),
+            "{:?} r_c {r_cut}: {} cells x {} cells",
+            sb,
+            cl.cx,
+            cl.cy
+        );
+        for (g, w) in got.iter().zip(&want) {
+            assert!((g.2 - w.2).abs() <= 1e-12 * w.2, "{g:?} vs {w:?}");
+        }
+        want.len()
+    }
+
+    /// Random discs in the box, plus discs on the cell edges (x = k L/n, the
+    /// box's edge 0, the largest double below L, and L itself: the last cell's
+    /// closed edge, the same point as 0 along a periodic axis).
+    fn discs(sb: &SimBox, r_cut: f64, n: usize, rng: &mut Pcg64) -> (Vec<f64>, Vec<f64>) {
+        let (lx, ly) = (sb.size.x, sb.size.y);
+        let mut x: Vec<f64> = (0..n).map(|_| rng.random_range(0.0..lx)).collect();
+        let mut y: Vec<f64> = (0..n).map(|_| rng.random_range(0.0..ly)).collect();
+        let (nx, ny) = ((lx / r_cut).floor(), (ly / r_cut).floor());
+        let below = |l: f64| f64::from_bits(l.to_bits() - 1);
+        for k in 0..nx as usize {
+            x.push(k as f64 * lx / nx);
+            y.push(rng.random_range(0.0..ly));
+        }
+        for k in 0..ny as usize {
+            x.push(rng.random_range(0.0..lx));
+            y.push(k as f64 * ly / ny);
+        }
+        x.extend([0.0, below(lx), below(lx), 0.0, 0.5 * lx, lx, lx, 0.3 * lx]);
+        y.extend([below(ly), 0.0, below(ly), 0.0, below(ly), ly, 0.5 * ly, ly]);
+        (x, y)
+    }
+
+    /// The cell list finds exactly the brute force's pairs in periodic, walled
+    /// and mixed boxes, square and not, with 1, 2 (one cell then), 3 and many
+    /// cells per side, r_c at L/2, more rows than chunks (42 rows: 3 a chunk),
+    /// and a walled box with r_c > L/2 (one cell, no minimum image).
+    #[test]
+    fn cell_list_finds_exactly_the_brute_force_pairs() {
+        let mut rng = Pcg64::seed_from_u64(5);
+        let mut found = 0;
+        for (lx, ly, r_cut) in [
+            (10.0, 7.0, 3.4),   // 2 x 2 cells' worth: 1 x 1 on periodic axes
+            (10.0, 7.0, 3.3),   // 3 x 2
+            (7.0, 10.0, 3.3),   // 2 x 3
+            (10.0, 7.0, 3.5),   // r_c = L_y/2
+            (12.6, 9.1, 1.3),   // 9 x 7
+            (10.0, 61.0, 1.45), // 6 x 42: more rows than chunks
+            (61.0, 10.0, 1.45), // 42 x 6
+            (5.0, 40.0, 2.4),   // 2 x 16
+            (30.0, 4.0, 3.7),   // 8 x 1: a channel
+        ] {
+            for per in [[true, true], [false, false], [true, false], [false, true]] {
+                let sb = boxed(lx, ly, per);
+                let (x, y) = discs(&sb, r_cut, 160, &mut rng);
+                found += check(&sb, r_cut, &x, &y);
+            }
+        }
+        // A walled box with r_c > L/2: pairs farther apart than L/2 are not
+        // wrapped (a minimum image would bring 9.4 down to 0.6).
+        let sb = boxed(10.0, 7.0, [false, false]);
+        let (x, y) = discs(&sb, 6.2, 60, &mut rng);
+        found += check(&sb, 6.2, &x, &y);
+        let (x, y) = (vec![0.3, 9.7, 0.3], vec![3.0, 3.0, 6.5]);
+        assert_eq!(check(&sb, 6.2, &x, &y), 1, "only 0.3–0.3 at 3.5");
+        assert!(found > 10_000, "{found} pairs");
+    }
+
+    /// A pair exactly r_c apart is not a pair (r < r_c): 3 apart along a wall,
+    /// and 7.5 − 0.5 − 10 = −3 through a periodic edge of 3 cells 10/3 wide.
+    #[test]
+    fn a_pair_exactly_at_the_cut_off_is_left_out() {
+        let (x, y) = (vec![1.0, 4.0, 0.5, 7.5], vec![5.0, 5.0, 1.0, 1.0]);
+        for per in [[false, false], [true, true]] {
+            let mut cl = CellList::default();
+            cl.build(&boxed(10.0, 10.0, per), 3.0, &x, &y);
+            assert_eq!(cl.cx, 3);
+            let pairs = visited(&cl);
+            assert!(pairs.iter().all(|p| p.2 < 3.0), "{per:?}: {pairs:?}");
+        }
+        // and 3 − 2⁻⁵⁰ apart it is one.
+        let below = f64::from_bits(3f64.to_bits() - 1);
+        let mut cl = CellList::default();
+        cl.build(
+            &boxed(10.0, 10.0, [false, false]),
+            3.0,
+            &[1.0, 1.0 + below],
+            &[5.0; 2],
+        );
+        assert_eq!(visited(&cl), vec![(0, 1, below)]);
+    }
+
+    /// Cells as narrow as r_c allows, ⌊L/r_c⌋ per side (so the cost is O(N)),
+    /// at most 4096, and a single one along a periodic axis with fewer than 3.
+    #[test]
+    fn cells_are_as_many_as_fit_at_least_r_c_wide() {
+        for (lx, ly, r_cut, per, want) in [
+            (10.0, 7.0, 3.3, [true, true], (3, 1)),
+            (10.0, 7.0, 3.3, [false, false], (3, 2)),
+            (7.0, 10.0, 3.4, [true, false], (1, 2)),
+            (100.0, 55.0, 1.25, [true, true], (80, 44)),
+            (100.0, 55.0, 1.25, [false, true], (80, 44)),
+            (1.0, 1e-4, 2e-4, [false, false], (4096, 1)),
+        ] {
+            let mut cl = CellList::default();
+            cl.build(&boxed(lx, ly, per), r_cut, &[0.5], &[0.5]);
+            assert_eq!((cl.cx, cl.cy), want, "{lx} x {ly}, r_c {r_cut}, {per:?}");
+        }
+    }
+
+    /// σ_min, σ_max over the species that have discs (an empty one of radius
+    /// 0.1 or 2 counts for neither), and r_max = min(r_max_sigma σ_max, L/2
+    /// on a periodic axis, L − σ_min on a walled one).
+    #[test]
+    fn pair_reach_takes_the_extreme_diameters_and_the_box_limits() {
+        let sp = [
+            Species::new(3, 0.3, 2.0),
+            Species::new(0, 0.1, 1.0),
+            Species::new(2, 0.45, 0.5),
+            Species::new(0, 2.0, 1.0),
+        ];
+        let close = |a: [f64; 3], b: [f64; 3]| a.iter().zip(&b).all(|(u, v)| (u - v).abs() < 1e-12);
+        for (sb, r_max_sigma, want) in [
+            // 25 · 0.9 = 22.5 against 9/2 and 7/2
+            (boxed(9.0, 7.0, [true, true]), 25.0, [0.6, 0.9, 3.5]),
+            // against 9 − 0.6 and 7 − 0.6
+            (boxed(9.0, 7.0, [false, false]), 25.0, [0.6, 0.9, 6.4]),
+            // 9/2 against 7 − 0.6
+            (boxed(9.0, 7.0, [true, false]), 25.0, [0.6, 0.9, 4.5]),
+            // 4 · 0.9 = 3.6 against 9 − 0.6 and 9/2
+            (boxed(9.0, 9.0, [false, true]), 4.0, [0.6, 0.9, 3.6]),
+            // 9 − 0.6 against 30/2
+            (boxed(9.0, 30.0, [false, true]), 25.0, [0.6, 0.9, 8.4]),
+        ] {
+            let got = pair_reach(&sp, &sb, r_max_sigma);
+            assert!(close(got, want), "{:?}: {got:?} vs {want:?}", sb.boundary);
+        }
+    }
+}
