@@ -415,6 +415,7 @@ mod tests {
             species_mass: vec![1.0, 2.5],
             positions: vec![carom_core::DVec2::ZERO; species.len()],
             velocities: vec![carom_core::DVec2::ZERO; species.len()],
+            images: Vec::new(),
             species,
         };
         let mut i = info("not json", None);

@@ -317,6 +317,7 @@ mod tests {
                         .map(|i| carom_core::DVec2::new(1.0 + 2.0 * i as f64, 3.0))
                         .collect(),
                     velocities: vec![v, -v, v, -v],
+                    images: Vec::new(),
                     time: t,
                 })
                 .unwrap();
