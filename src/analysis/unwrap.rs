@@ -49,9 +49,10 @@ impl Unwrapper {
         Self::default()
     }
 
-    /// The unwrapped positions at snapshot `s`, which must follow the previous one
-    /// in time (same discs, same box). The first snapshot's unwrapped positions are
-    /// its wrapped ones plus its images.
+    /// The unwrapped positions at snapshot `s`, which follows the previous one in
+    /// time. The first snapshot's unwrapped positions are its wrapped ones plus its
+    /// images; so are those of a snapshot of other discs or another box than the
+    /// previous one (a new start).
     pub fn push(&mut self, s: &Snapshot) -> &[DVec2] {
         let periodic = s.boundary.map(|b| b == 0);
         let shift = |m: [i32; 2]| DVec2::new(m[0] as f64, m[1] as f64) * s.box_size;
@@ -164,6 +165,64 @@ mod tests {
                 assert_eq!(u.ambiguous_gaps(), 1);
             }
         }
+    }
+
+    /// The speed bound √(2K/m_min) by hand: masses 2 and 0.5 at (3, 0) and
+    /// (0, −2) give K = 9 + 1 = 10, so √(2·10/0.5) = √40.
+    #[test]
+    fn the_speed_bound_is_that_of_all_the_energy_in_the_lightest_disc() {
+        let s = Snapshot {
+            time: 0.0,
+            box_size: DVec2::new(10.0, 10.0),
+            boundary: [0, 0],
+            species_radius: vec![0.5, 0.25],
+            species_mass: vec![2.0, 0.5],
+            species: vec![0, 1],
+            positions: vec![DVec2::new(1.0, 1.0), DVec2::new(5.0, 5.0)],
+            velocities: vec![DVec2::new(3.0, 0.0), DVec2::new(0.0, -2.0)],
+            images: vec![],
+        };
+        assert_eq!(max_speed(&s), 40f64.sqrt());
+        // Gaps with reach just under and at L/2 = 5: Δt = 5/√40 ± a little.
+        let mut u = Unwrapper::new();
+        u.push(&s);
+        let dt = 5.0 / 40f64.sqrt();
+        u.push(&Snapshot {
+            time: dt * (1.0 - 1e-9),
+            ..s.clone()
+        });
+        assert_eq!((u.inferred_gaps(), u.ambiguous_gaps()), (1, 0));
+        u.push(&Snapshot {
+            time: dt * (1.0 - 1e-9) + dt * (1.0 + 1e-9),
+            ..s.clone()
+        });
+        assert_eq!((u.inferred_gaps(), u.ambiguous_gaps()), (2, 1));
+    }
+
+    /// A snapshot of other discs or another box starts afresh: its unwrapped
+    /// positions are its own plus its images (here (2, −1) box lengths of 10 × 8).
+    #[test]
+    fn other_discs_or_another_box_start_afresh() {
+        let s = |n: usize, size: DVec2, image: [i32; 2]| Snapshot {
+            time: 0.0,
+            box_size: size,
+            boundary: [0, 0],
+            species_radius: vec![0.5],
+            species_mass: vec![1.0],
+            species: vec![0; n],
+            positions: vec![DVec2::new(1.0, 2.0); n],
+            velocities: vec![DVec2::new(0.5, 0.5); n],
+            images: vec![image; n],
+        };
+        let a = DVec2::new(10.0, 8.0);
+        let mut u = Unwrapper::new();
+        assert_eq!(u.push(&s(1, a, [2, -1])), [DVec2::new(21.0, -6.0)]);
+        // Two discs now: a new start, not a step from the one disc before.
+        assert_eq!(u.push(&s(2, a, [2, -1])), [DVec2::new(21.0, -6.0); 2]);
+        // The same two discs in a box 12 × 8: a new start again.
+        let b = DVec2::new(12.0, 8.0);
+        assert_eq!(u.push(&s(2, b, [1, 0])), [DVec2::new(13.0, 2.0); 2]);
+        assert_eq!(u.inferred_gaps(), 0);
     }
 
     /// Snapshots of an engine run a short time apart: unwrapping by the images and
