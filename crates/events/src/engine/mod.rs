@@ -484,3 +484,22 @@ impl Engine {
         Ok(done)
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::image_shift;
+    use carom_core::{DVec2, SimBox};
+
+    /// A point on a disc's path at (23, −1) in a 10 × 4 box shows at (3, 3): the
+    /// wrap took off 2 box lengths in x and added 1 in y, so images (1, −2) become
+    /// (1 + 2, −2 − 1). A point the wrap did not move keeps its images.
+    #[test]
+    fn the_image_adds_the_box_lengths_the_wrap_took_off() {
+        let b = SimBox::periodic(10.0, 4.0);
+        let path = DVec2::new(23.0, -1.0);
+        assert_eq!(b.wrap(path), DVec2::new(3.0, 3.0));
+        assert_eq!(image_shift(&b, path, b.wrap(path), [1, -2]), [3, -3]);
+        let inside = DVec2::new(9.5, 0.25);
+        assert_eq!(image_shift(&b, inside, b.wrap(inside), [7, -5]), [7, -5]);
+    }
+}
