@@ -236,8 +236,9 @@ impl Analyzer {
 
     /// A snapshot at time `t`: species index and velocity components of every disc
     /// (length/time). Used for the temperature series, and for the velocity
-    /// distribution when it is after `equilibrate` and at least `every` after the
-    /// last snapshot used.
+    /// distribution when it is after `equilibrate`, at least `every` after the
+    /// last snapshot used, and starts a block of the snapshot schedule
+    /// ([`Analyzer::block_start`]).
     ///
     /// Errors when the three slices differ in length or a species index is not one
     /// of the run's species.
@@ -260,6 +261,9 @@ impl Analyzer {
         self.push_kt(t, kt);
         if self.energy_series.last().is_none_or(|e| e.0 != t) {
             self.energy_series.push((t, k, None));
+        }
+        if !self.block_start(t) {
+            return Ok(());
         }
         // A snapshot at the start of the window counts despite rounding of the
         // window's start (a tolerance relative to the run's own times, which may be
@@ -288,9 +292,10 @@ impl Analyzer {
     }
 
     /// The positions of a snapshot at time `t` (species index and centre of every
-    /// disc, length), used when `t` is after the equilibration time (independent
-    /// of `every`): pair distances into g(r) and ψ6 from every such snapshot, g6(r)
-    /// and S(k) from some (physics.md §10–§11).
+    /// disc, length), used when `t` is after the equilibration time and starts a
+    /// block of the snapshot schedule (independent of `every`): pair distances
+    /// into g(r) and ψ6 from every such snapshot, g6(r) and S(k) from some
+    /// (physics.md §10–§11).
     ///
     /// Errors when the slices differ in length or a species index is not one of
     /// the run's species.
@@ -303,7 +308,7 @@ impl Analyzer {
     ) -> Result<(), StatsError> {
         self.check_snapshot(t, species_of, [x, y], ["x", "y"])?;
         let span = self.run.t_end - self.run.t_start;
-        if t < self.t_eq - 1e-12 * self.t_eq.abs().max(span) {
+        if t < self.t_eq - 1e-12 * self.t_eq.abs().max(span) || !self.block_start(t) {
             return Ok(());
         }
         let t = t.max(self.t_eq);
@@ -320,6 +325,16 @@ impl Analyzer {
             sf.add(t, x, y);
         }
         Ok(())
+    }
+
+    /// Whether the snapshot at time `t` starts a block of the log's
+    /// `log.snapshot_schedule` (always true without one). Snapshots inside a
+    /// block, closely spaced for dynamics, add correlated samples rather than
+    /// information to the structure and velocity tests, which use block starts only.
+    pub(super) fn block_start(&self, t: f64) -> bool {
+        self.run
+            .snapshot_schedule
+            .is_none_or(|s| s.is_block_start(self.run.t_start, t))
     }
 
     /// A snapshot's per-disc slices must agree in length, and its species indices

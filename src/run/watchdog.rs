@@ -64,8 +64,9 @@ pub(super) fn explain(quiet_since: f64, now: f64, bound: f64, user: Option<f64>)
 
 /// Refuse a collision stop that, at the collision rate expected from the density
 /// and temperature (physics.md (7.9), a lower bound on the time when the gas
-/// cools), would write more than [`MAX_RECORDS`] snapshots, thermo records or
-/// checkpoints before reaching its count.
+/// cools), would write more than [`MAX_RECORDS`] snapshots (n + 1 per interval
+/// with a `log.snapshot_schedule` of n points), thermo records or checkpoints
+/// before reaching its count.
 pub(super) fn check_reachable(
     engine: &Engine,
     stop: Stop,
@@ -79,25 +80,43 @@ pub(super) fn check_reachable(
     let kt = kt_now(engine);
     let rate = expected_collision_rate(engine.species(), engine.sim_box(), kt);
     let time = left / rate;
+    // A snapshot schedule writes n + 1 snapshots per snapshot interval.
+    let per_snapshot_interval = log.snapshots().map_or(1, |s| s.per_block()) as f64;
     let series = [
-        ("log.snapshot_interval", "snapshots", log.snapshot_interval),
-        ("log.thermo_interval", "thermo records", log.thermo_interval),
+        (
+            "log.snapshot_interval",
+            "snapshots",
+            log.snapshot_interval,
+            per_snapshot_interval,
+        ),
+        (
+            "log.thermo_interval",
+            "thermo records",
+            log.thermo_interval,
+            1.0,
+        ),
         (
             "log.checkpoint_interval",
             "checkpoints",
             log.checkpoint_interval,
+            1.0,
         ),
     ];
-    for (field, what, interval) in series {
+    for (field, what, interval, per) in series {
         let Some(dt) = interval else { continue };
-        let records = time / dt;
+        let records = time / dt * per;
         if records > MAX_RECORDS {
             return Err(RunError::Invalid {
                 field: "stop.collisions",
                 problem: format!(
                     "at kT = {kt:.4e} and this density about {rate:.4e} collisions are \
                      expected per unit time (physics.md (7.9)), so {left} collisions take \
-                     about {time:.3e} time units: {records:.3e} {what} at {field} = {dt}"
+                     about {time:.3e} time units: {records:.3e} {what} at {field} = {dt}{}",
+                    if per > 1.0 {
+                        format!(" ({per} per interval with log.snapshot_schedule)")
+                    } else {
+                        String::new()
+                    }
                 ),
                 allowed: format!(
                     "at most {MAX_RECORDS:e} records of a kind: fewer collisions, a longer \

@@ -39,6 +39,7 @@ pub fn analyse_state(
         t_end,
         pair_rate,
         snapshot_interval: Some(dt),
+        snapshot_schedule: None,
     };
     let mut a = Analyzer::new(run, opts).unwrap();
     let mut engine = Engine::new(state, params).unwrap();
