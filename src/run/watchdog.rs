@@ -127,3 +127,53 @@ pub(super) fn check_reachable(
     }
     Ok(())
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use carom_core::{Boundary, Species};
+    use carom_events::{EngineParams, SystemSpec};
+    use carom_io::SchedulePoints;
+
+    #[test]
+    fn a_snapshot_schedule_counts_n_plus_one_snapshots_per_interval() {
+        let system = SystemSpec::square_box(
+            vec![Species::reference(100)],
+            0.3,
+            [Boundary::Periodic; 2],
+            1,
+        );
+        let engine = Engine::new(system.build().unwrap(), EngineParams::default()).unwrap();
+        // A stop about 5·10⁸ time units away at the expected rate: 5·10⁸ snapshots
+        // every T = 1 are allowed; with 9 points more per interval, 5·10⁹ are not.
+        let rate = expected_collision_rate(engine.species(), engine.sim_box(), kt_now(&engine));
+        let stop = Stop::Collisions((5e8 * rate) as u64);
+        let plain = LogOptions {
+            snapshot_interval: Some(1.0),
+            thermo_interval: None,
+            checkpoint_interval: None,
+            ..LogOptions::default()
+        };
+        assert!(check_reachable(&engine, stop, &plain).is_ok());
+        let scheduled = LogOptions {
+            snapshot_schedule: Some(SchedulePoints {
+                points: 9,
+                first: 0.01,
+            }),
+            ..plain.clone()
+        };
+        let e = check_reachable(&engine, stop, &scheduled).unwrap_err();
+        let text = e.to_string();
+        assert!(text.contains("stop.collisions"), "{text}");
+        assert!(
+            text.contains("10 per interval with log.snapshot_schedule"),
+            "{text}"
+        );
+        // The same count as snapshots every T/10 without a schedule.
+        let tenth = LogOptions {
+            snapshot_interval: Some(0.1),
+            ..plain
+        };
+        assert!(check_reachable(&engine, stop, &tenth).is_err());
+    }
+}
