@@ -154,6 +154,15 @@ impl Feed {
                 for k in 0..b.time.len() {
                     if b.kind[k] == KIND_PAIR {
                         a.pair(b.time[k], b.virial[k], b.energy_lost[k]);
+                        a.pair_detail(
+                            b.time[k],
+                            (b.i[k], b.j[k]),
+                            [b.nx[k], b.ny[k]],
+                            [
+                                [b.vix_after[k], b.viy_after[k]],
+                                [b.vjx_after[k], b.vjy_after[k]],
+                            ],
+                        );
                     } else {
                         a.wall(b.time[k], b.virial[k], b.energy_lost[k]);
                     }
