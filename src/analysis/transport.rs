@@ -434,3 +434,55 @@ fn estimate(value: f64, per_segment: &[f64]) -> Estimate {
         .unwrap_or(f64::NAN);
     Estimate { value, std_error }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use carom_core::{Restitution, SimBox};
+
+    fn run() -> RunDescription {
+        RunDescription::for_tests()
+    }
+
+    /// Walls, inelastic collisions, a thinned collision log or running totals
+    /// instead of collisions: no transport.
+    #[test]
+    fn only_elastic_periodic_complete_logs_qualify() {
+        let v = ([1.0, -1.0].as_slice(), [0.5, -0.5].as_slice());
+        assert!(Transport::start(&run(), 0.0, &[0, 0], v, 1.0).is_some());
+        let mut r = run();
+        r.sim_box = SimBox::walled(10.0, 10.0, 1.0);
+        assert!(Transport::start(&r, 0.0, &[0, 0], v, 1.0).is_none());
+        let mut r = run();
+        r.restitution = Restitution::Normal(0.9);
+        assert!(Transport::start(&r, 0.0, &[0, 0], v, 1.0).is_none());
+        let mut r = run();
+        r.collision_stride = 2;
+        assert!(Transport::start(&r, 0.0, &[0, 0], v, 1.0).is_none());
+        let mut r = run();
+        r.totals_from_thermo = true;
+        assert!(Transport::start(&r, 0.0, &[0, 0], v, 1.0).is_none());
+        assert!(Transport::start(&run(), 10.0, &[0, 0], v, 1.0).is_none());
+    }
+
+    /// kT in the centre-of-mass frame: velocities (3, 1) and (1, −1) of unit
+    /// mass move at V = (2, 0); relative velocities (±1, ±1) give K = 2 and
+    /// kT = K/(N − 1) = 2. A collision replayed changes the velocities; a later
+    /// snapshot with those velocities matches, one with others does not.
+    #[test]
+    fn replay_is_checked_against_snapshots() {
+        let vx = [3.0, 1.0];
+        let vy = [1.0, -1.0];
+        let mut t = Transport::start(&run(), 0.0, &[0, 0], (&vx, &vy), 1.0).unwrap();
+        assert_eq!(t.kt, 2.0);
+        // Discs meet along x (normal from 0 to 1 = (1, 0)) and swap v_x.
+        let after = [DVec2::new(1.0, 1.0), DVec2::new(3.0, -1.0)];
+        t.pair(1.0, (0, 1), DVec2::X, after);
+        t.check(2.0, (&[1.0, 3.0], &[1.0, -1.0]));
+        assert_eq!((t.checked, t.mismatched), (1, 0));
+        t.check(3.0, (&[1.0, 3.0], &[1.0, -1.5]));
+        assert_eq!((t.checked, t.mismatched), (2, 1));
+        // Disc 0 flew (3, 1) for 1, then (1, 1) for 2: displacement (5, 3) at 3.
+        assert_eq!(t.x[0] + t.v[0] * (3.0 - t.t_last[0]), DVec2::new(5.0, 3.0));
+    }
+}

@@ -147,3 +147,69 @@ impl ExactVacf {
         }
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Two discs of two species flying freely with constant velocities: from
+    /// every origin C(τ) = |v|², ∫₀^τ C = |v|² τ and MSD = |v|² τ², exactly at
+    /// each lag. Origins every τ_max/P = 2.5 from 0 up to t_stop = 12: five of
+    /// them, each read at every lag by t = 25.
+    #[test]
+    fn free_flight_gives_constant_c_linear_integral_and_ballistic_msd() {
+        let v = [DVec2::new(1.0, 2.0), DVec2::new(-3.0, 0.5)];
+        let x = [DVec2::new(0.3, -0.2), DVec2::new(4.0, 1.0)];
+        let t_last = [0.0, -1.0];
+        let mut c = ExactVacf::new(0.0, (0.1, 10.0), 4, 2, (1, 100.0));
+        assert_eq!(c.lags.len(), 1 + 21);
+        assert!((c.lags[21] - 10.0).abs() < 1e-12);
+        c.advance(25.0, 12.0, (&v, &x, &t_last), &[0, 1]);
+        assert_eq!(c.started, 5);
+        for (q, &tau) in c.lags.iter().enumerate() {
+            for (s, v) in v.iter().enumerate() {
+                let sums = c.sums[q][s][0];
+                let v2 = v.length_squared();
+                assert_eq!(sums.count, 5.0);
+                assert!((sums.c - 5.0 * v2).abs() < 1e-12 * v2, "{q} {s}");
+                let want = 5.0 * v2 * tau;
+                assert!(
+                    (sums.integral - want).abs() <= 1e-12 * (1.0 + want),
+                    "{q} {s}"
+                );
+                let want = 5.0 * v2 * tau * tau;
+                assert!((sums.msd - want).abs() <= 1e-11 * (1.0 + want), "{q} {s}");
+            }
+        }
+    }
+
+    /// A velocity that changes between two readings: from the origin at 0 with
+    /// v = (1, 0), the disc turns to (0, 2) at t = 0.5 (as a collision would
+    /// leave it); at lag τ ≥ 0.5, C = v(0)·v(τ) = 0, ∫C = 0.5, and
+    /// MSD = 0.5² + (2(τ − 0.5))².
+    #[test]
+    fn a_turn_between_readings() {
+        let mut c = ExactVacf::new(0.0, (0.1, 1.0), 1, 1, (1, 10.0));
+        let mut v = [DVec2::new(1.0, 0.0)];
+        let mut x = [DVec2::ZERO];
+        let mut t_last = [0.0];
+        c.advance(0.5, 0.0, (&v, &x, &t_last), &[0]);
+        x[0] += v[0] * 0.5;
+        t_last[0] = 0.5;
+        v[0] = DVec2::new(0.0, 2.0);
+        c.advance(2.0, 0.0, (&v, &x, &t_last), &[0]);
+        for (q, &tau) in c.lags.iter().enumerate() {
+            let s = c.sums[q][0][0];
+            assert_eq!(s.count, 1.0, "{q}");
+            if tau > 0.5 {
+                assert_eq!(s.c, 0.0);
+                assert!((s.integral - 0.5).abs() < 1e-15);
+                let want = 0.25 + (2.0 * (tau - 0.5)).powi(2);
+                assert!((s.msd - want).abs() < 1e-14, "{q}");
+            } else if tau < 0.5 {
+                assert_eq!(s.c, 1.0);
+                assert!((s.integral - tau).abs() < 1e-15);
+            }
+        }
+    }
+}
