@@ -45,6 +45,8 @@ pub(super) struct ExactVacf {
     pub(super) lags: Vec<f64>,
     spacing: f64,
     next_origin: f64,
+    /// The earliest of `next_origin` and the origins' next readings.
+    next: f64,
     origins: Vec<Origin>,
     /// Origins started.
     pub(super) started: u64,
@@ -77,6 +79,7 @@ impl ExactVacf {
             lags,
             spacing: tau_max / max_origins as f64,
             next_origin: t_first,
+            next: t_first,
             origins: Vec::new(),
             started: 0,
             t_first,
@@ -86,6 +89,11 @@ impl ExactVacf {
 
     /// Time of the next reading (an origin's lag, or a new origin), if any.
     pub(super) fn next_event(&self) -> f64 {
+        self.next
+    }
+
+    /// The next reading's time, from the origins.
+    fn find_next(&self) -> f64 {
         let mut t = self.next_origin;
         for o in &self.origins {
             t = t.min(o.t0 + self.lags[o.next]);
@@ -105,8 +113,8 @@ impl ExactVacf {
         species: &[u16],
     ) {
         let lags = &self.lags;
-        while self.next_event() <= t {
-            let now = self.next_event();
+        while self.next <= t {
+            let now = self.next;
             let Some(k) = self.origins.iter().position(|o| o.t0 + lags[o.next] <= now) else {
                 // A new origin (readings due at the same time came first).
                 let x0 = x
@@ -127,6 +135,7 @@ impl ExactVacf {
                 if self.next_origin > t_stop {
                     self.next_origin = f64::INFINITY;
                 }
+                self.next = self.find_next();
                 continue;
             };
             let o = &mut self.origins[k];
@@ -144,6 +153,7 @@ impl ExactVacf {
             if o.next == lags.len() {
                 self.origins.swap_remove(k);
             }
+            self.next = self.find_next();
         }
     }
 }
