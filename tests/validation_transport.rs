@@ -40,8 +40,11 @@ struct Measured {
 fn measure(n: usize, phi: f64, seed: u64, per_disc: f64) -> Measured {
     let wall = Instant::now();
     let params = EngineParams::default();
-    let mut e = Engine::new(SystemSpec::periodic_fluid(n, phi, seed).build().unwrap(), params)
-        .unwrap();
+    let mut e = Engine::new(
+        SystemSpec::periodic_fluid(n, phi, seed).build().unwrap(),
+        params,
+    )
+    .unwrap();
     let pairs = |per_disc: f64| (per_disc * n as f64 / 2.0).round() as u64;
     e.run_collisions(pairs(50.0)).expect("equilibration");
     let t_eq = e.now();
@@ -138,7 +141,10 @@ fn case10_transport_at_low_density_against_enskog() {
             fmt_se(s.diffusion_msd.value, s.diffusion_msd.std_error),
             fmt_se(s.diffusion_vacf.value, s.diffusion_vacf.std_error),
             e.diffusion,
-            fmt_se(t.viscosity.value_helfand.value, t.viscosity.value_helfand.std_error),
+            fmt_se(
+                t.viscosity.value_helfand.value,
+                t.viscosity.value_helfand.std_error
+            ),
             fmt_se(
                 t.viscosity.value_green_kubo.value,
                 t.viscosity.value_green_kubo.std_error
@@ -164,11 +170,17 @@ fn case11_vacf_tail_against_mode_coupling() {
     assert_eq!(t.snapshots_mismatched, 0);
     let s = &t.species[0];
     let a = s.tail_amplitude.expect("a tail amplitude");
-    let theory = s.tail_amplitude_theory.expect("the mode-coupling amplitude");
+    let theory = s
+        .tail_amplitude_theory
+        .expect("the mode-coupling amplitude");
     frag.row(
-        Row::new("tail amplitude A, φ = 0.3, N = 40 000", a.value, a.std_error)
-            .reference(theory, 0.0)
-            .check(Check::Sigma(3.0)),
+        Row::new(
+            "tail amplitude A, φ = 0.3, N = 40 000",
+            a.value,
+            a.std_error,
+        )
+        .reference(theory, 0.0)
+        .check(Check::Sigma(3.0)),
     );
     let window: Vec<String> = s
         .lags
@@ -185,7 +197,10 @@ fn case11_vacf_tail_against_mode_coupling() {
         m.seconds,
         t.collision_time,
         fmt_se(s.diffusion_vacf.value, s.diffusion_vacf.std_error),
-        fmt_se(t.viscosity.value_helfand.value, t.viscosity.value_helfand.std_error),
+        fmt_se(
+            t.viscosity.value_helfand.value,
+            t.viscosity.value_helfand.std_error
+        ),
         window.join(", ")
     ));
     frag.finish();

@@ -64,7 +64,8 @@ pub fn analyze_log(
         observer.warn(&format!("warning: {w}"));
     }
     let complete = info.end == LogEnd::Complete;
-    let mut reader = LogReader::open(path)?;
+    // Decompression on a second core, ahead of the analysis on this one.
+    let mut reader = LogReader::open(path)?.read_ahead();
     observer.pass("reading");
     let mut shown = 0;
     // Messages read before the analysis could start (only when the run is learnt
