@@ -218,9 +218,13 @@ impl Transport {
             .map(|s| {
                 let mut r = self.species_report(s, (tau_a, tau_b));
                 if one_species {
-                    let d = r.diffusion_vacf.value;
-                    r.tail_amplitude_theory =
-                        Some(tail_amplitude(density, m, d, viscosity.value_helfand.value));
+                    let (d, eta) = (r.diffusion_vacf, viscosity.value_helfand);
+                    let a = tail_amplitude(density, m, d.value, eta.value);
+                    // A = 1/[8π n (D + η/(nm))]: δA = 8π n A² √(δD² + (δη/(nm))²).
+                    let spread = d.std_error.hypot(eta.std_error / (density * m));
+                    r.tail_amplitude_theory = Some(a);
+                    r.tail_amplitude_theory_std_error =
+                        Some(8.0 * std::f64::consts::PI * density * a * a * spread);
                 }
                 r
             })
@@ -392,6 +396,7 @@ impl Transport {
             difference: estimate(d_msd - d_vacf, &col(|p| p.0 - p.1)),
             tail_amplitude: (b > a).then(|| estimate(tail, &col(|p| p.2))),
             tail_amplitude_theory: None,
+            tail_amplitude_theory_std_error: None,
         }
     }
 }

@@ -67,6 +67,8 @@ pub struct SpeciesTransport {
     /// The mode-coupling amplitude 1/[8π n (D + ν)] with D and ν = η/(n m)
     /// measured here (one-species runs).
     pub tail_amplitude_theory: Option<f64>,
+    /// Its standard error, from those of D and η.
+    pub tail_amplitude_theory_std_error: Option<f64>,
 }
 
 /// A value and its standard error.
