@@ -8,6 +8,7 @@
 //! distribution, pressure, collision rate and Enskog, inelastic).
 
 use carom_core::observables::{degrees_of_freedom, packing_fraction, temperature};
+use carom_core::rates::expected_mean_free_time;
 
 use super::bond_correlation::BondCorrelation;
 use super::bond_order::BondOrder;
@@ -16,6 +17,7 @@ use super::pair_correlation::PairCorrelation;
 use super::report::{Report, SpeciesInfo, WindowReport};
 use super::stats::StatsError;
 use super::structure_factor::StructureFactor;
+use super::transport::Transport;
 use super::{collision_rate, contact, inelastic, pressure, temperature, velocity, RunDescription};
 
 #[derive(Debug, Clone, Copy, Default)]
@@ -68,6 +70,14 @@ pub struct Analyzer {
     pub(super) bond_correlation: BondCorrelation,
     /// S(k) of one snapshot per time block (periodic boxes only).
     pub(super) structure_factor: Option<StructureFactor>,
+    /// Transport from the collision log, from the first snapshot analysed on
+    /// (physics.md §14); `None` before it, or when the run does not qualify.
+    pub(super) transport: Option<Transport>,
+    /// Whether the transport replay has been tried (at the first snapshot).
+    pub(super) transport_tried: bool,
+    /// Pair collisions since it started; a source that gives fewer details
+    /// ([`Analyzer::pair_detail`]) gets no transport report.
+    pub(super) transport_pairs: u64,
 }
 
 impl Analyzer {
@@ -150,6 +160,9 @@ impl Analyzer {
             snapshot_kt: Vec::new(),
             snapshot_a2: Vec::new(),
             snapshots_seen: 0,
+            transport: None,
+            transport_tried: false,
+            transport_pairs: 0,
             run,
         })
     }
@@ -171,6 +184,9 @@ impl Analyzer {
     /// and dissipated energy (energy).
     pub fn pair(&mut self, t: f64, virial: f64, energy_lost: f64) {
         self.pair_total += 1;
+        if self.transport.is_some() {
+            self.transport_pairs += 1;
+        }
         if self.run.totals_from_thermo {
             return;
         }
@@ -179,6 +195,27 @@ impl Analyzer {
         if let Some(b) = self.bin(t) {
             b.virial += s * virial;
             b.pairs += 1;
+        }
+    }
+
+    /// The detail of a logged pair collision of discs `i` and `j` at time `t`, for
+    /// the transport coefficients (physics.md §14): the unit contact normal from
+    /// i to j and both velocities after. Call it after [`Analyzer::pair`] for every
+    /// pair collision when the log holds them.
+    pub fn pair_detail(
+        &mut self,
+        t: f64,
+        (i, j): (u32, u32),
+        normal: [f64; 2],
+        [vi, vj]: [[f64; 2]; 2],
+    ) {
+        if let Some(tr) = &mut self.transport {
+            tr.pair(
+                t,
+                (i as usize, j as usize),
+                normal.into(),
+                [vi.into(), vj.into()],
+            );
         }
     }
 
@@ -262,14 +299,15 @@ impl Analyzer {
         if self.energy_series.last().is_none_or(|e| e.0 != t) {
             self.energy_series.push((t, k, None));
         }
-        if !self.block_start(t) {
-            return Ok(());
-        }
         // A snapshot at the start of the window counts despite rounding of the
         // window's start (a tolerance relative to the run's own times, which may be
         // in any unit).
         let span = self.run.t_end - self.run.t_start;
         if t < self.t_eq - 1e-12 * self.t_eq.abs().max(span) {
+            return Ok(());
+        }
+        self.transport_snapshot(t, species_of, vx, vy, kt);
+        if !self.block_start(t) {
             return Ok(());
         }
         if let (Some(&last), Some(every)) = (self.snapshots_used.last(), self.opts.every) {
@@ -335,6 +373,21 @@ impl Analyzer {
         self.run
             .snapshot_schedule
             .is_none_or(|s| s.is_block_start(self.run.t_start, t))
+    }
+
+    /// The transport replay starts at the first snapshot analysed and checks
+    /// itself against the later ones.
+    fn transport_snapshot(&mut self, t: f64, species_of: &[u16], vx: &[f64], vy: &[f64], kt: f64) {
+        if let Some(tr) = &mut self.transport {
+            tr.check(t, (vx, vy));
+        } else if !self.transport_tried {
+            self.transport_tried = true;
+            let t_c = match self.run.pair_rate {
+                Some(omega) if omega > 0.0 => 1.0 / omega,
+                _ => expected_mean_free_time(&self.run.species, &self.run.sim_box, kt),
+            };
+            self.transport = Transport::start(&self.run, t, species_of, (vx, vy), t_c);
+        }
     }
 
     /// A snapshot's per-disc slices must agree in length, and its species indices
@@ -443,6 +496,12 @@ impl Analyzer {
             elastic && periodic,
             pressure.as_ref(),
         );
+        let phi = packing_fraction(&self.run.species, &self.run.sim_box);
+        let transport = self.transport.take().and_then(|tr| {
+            (tr.pairs() == self.transport_pairs)
+                .then(|| tr.report(self.run.t_end, pressure.as_ref().map(|p| p.z), phi))
+                .flatten()
+        });
         let run = &self.run;
         Ok(Report {
             n: run.n(),
@@ -474,6 +533,7 @@ impl Analyzer {
                 .structure_factor
                 .as_ref()
                 .and_then(StructureFactor::report),
+            transport,
         })
     }
 

@@ -20,6 +20,8 @@ mod collision_rate;
 mod contact;
 mod description;
 mod from_log;
+mod helfand;
+mod increment_correlator;
 mod inelastic;
 mod neighbours;
 mod nufft;
@@ -33,7 +35,11 @@ mod structure_factor;
 mod temperature;
 #[cfg(test)]
 mod test_lattice;
+mod transport;
+mod transport_report;
+mod transport_theory;
 mod unwrap;
+mod vacf_exact;
 mod velocity;
 
 pub use analyzer::Analyzer;
@@ -56,5 +62,9 @@ pub use report::{
 };
 pub use series::DRIFT_STD_ERRORS;
 pub use structure_factor::{StructureFactorReport, SK_K_MAX_SIGMA, SK_MAX_MODES, SK_SNAPSHOTS};
+pub use transport::{TRANSPORT_SEGMENTS, TRANSPORT_WINDOW};
+pub use transport_report::{
+    EnskogTransport, Estimate, HelfandReport, SpeciesTransport, TransportReport,
+};
 pub use unwrap::Unwrapper;
 pub use velocity::{MAX_SNAPSHOT_CORRELATION, MB_FAMILY_ALPHA, MB_TESTS_PER_SPECIES};

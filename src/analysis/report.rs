@@ -10,6 +10,7 @@ use super::bond_order::BondOrderReport;
 use super::contact::PairCorrelationReport;
 use super::stats::{Histogram, KsTest};
 use super::structure_factor::StructureFactorReport;
+use super::transport_report::TransportReport;
 #[cfg(doc)]
 use super::{DECORRELATION_COLLISIONS, MAX_SNAPSHOT_CORRELATION, MB_FAMILY_ALPHA};
 
@@ -58,6 +59,9 @@ pub struct Report {
     /// S(k) and the translational order (physics.md §11); `null` unless the box
     /// is periodic and there are snapshots.
     pub structure_factor: Option<StructureFactorReport>,
+    /// D, η and λ from the collision log, with the exact VACF (physics.md §14);
+    /// `null` unless the run is elastic and periodic and logs every collision.
+    pub transport: Option<TransportReport>,
 }
 
 /// One species of the run.
