@@ -15,6 +15,9 @@ use carom::io::ReadProgress;
 use super::reading::ReadDisplay;
 use super::{AnalyzeArgs, CliError, Num};
 
+#[path = "analyze_transport.rs"]
+mod transport;
+
 impl ReadObserver for ReadDisplay {
     fn pass(&mut self, what: &'static str) {
         ReadDisplay::pass(self, what);
@@ -293,6 +296,9 @@ pub fn text(r: &Report, args: &AnalyzeArgs, complete: bool) -> String {
         }
     }
     structure_text(r, &mut s);
+    if let Some(t) = &r.transport {
+        transport::transport_text(t, &mut s);
+    }
     if let Some(i) = &r.inelastic {
         if let Some(e) = &i.energy {
             let _ = writeln!(

@@ -7,8 +7,9 @@
 //! time since the first record, with Haff's law), `pressure` (Z against time with
 //! the mean and one standard error, and the halves' means when it drifts),
 //! `pair_correlation` (g_ab(r) per species pair with its contact value),
-//! `bond_order`, `g6` and `structure_factor` ([`structure`]). Axes are in the
-//! run's units.
+//! `bond_order`, `g6` and `structure_factor` ([`structure`]), `vacf_exact`,
+//! `msd_exact`, `helfand_viscosity` and `helfand_conductivity` ([`transport`]).
+//! Axes are in the run's units.
 
 use std::ops::Range;
 use std::path::Path;
@@ -23,6 +24,8 @@ use super::CliError;
 
 #[path = "plot_structure.rs"]
 mod structure;
+#[path = "plot_transport.rs"]
+mod transport;
 
 const SIZE: (u32, u32) = (900, 600);
 
@@ -119,6 +122,29 @@ pub fn write_all(report: &Report, dir: &Path) -> Result<usize, CliError> {
     if let Some(f) = report.structure_factor.as_ref().filter(|f| f.k.len() >= 2) {
         both!(dir, "structure_factor", |root| structure::draw_sk(root, f));
         n += 1;
+    }
+    if let Some(t) = &report.transport {
+        let e = t.enskog.as_ref();
+        both!(dir, "vacf_exact", |root| transport::draw_vacf(root, t));
+        both!(dir, "msd_exact", |root| transport::draw_msd(root, t));
+        let eta = ("η", "mass/time");
+        let visc = e.map(|e| e.viscosity);
+        both!(dir, "helfand_viscosity", |root| transport::draw_helfand(
+            root,
+            &t.viscosity,
+            eta,
+            visc,
+            t.window
+        ));
+        n += 3;
+        if let Some(l) = &t.thermal_conductivity {
+            let lambda = ("λ", "1/time, k_B = 1");
+            let cond = e.map(|e| e.thermal_conductivity);
+            both!(dir, "helfand_conductivity", |root| transport::draw_helfand(
+                root, l, lambda, cond, t.window
+            ));
+            n += 1;
+        }
     }
     Ok(n)
 }

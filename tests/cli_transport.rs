@@ -1,0 +1,135 @@
+//! `carom analyze` shows the transport report (physics.md §14): in the JSON as
+//! `transport`, in the text as its lines, and with `--plot` as the figures
+//! `vacf_exact`, `msd_exact`, `helfand_viscosity` and `helfand_conductivity`; a
+//! walled run gets `transport: null` and none of those figures.
+
+mod cli_common;
+use cli_common::*;
+
+use std::path::Path;
+
+use serde_json::Value;
+
+/// `v` as a finite number.
+fn finite(v: &Value) -> f64 {
+    let x = v.as_f64().unwrap_or_else(|| panic!("not a number: {v}"));
+    assert!(x.is_finite(), "{v}");
+    x
+}
+
+const FIGURES: [&str; 4] = [
+    "vacf_exact",
+    "msd_exact",
+    "helfand_viscosity",
+    "helfand_conductivity",
+];
+
+/// 200 discs at η = 0.3 for 50 time units: ω ≈ 2.4 pair collisions per disc per
+/// unit time (the Enskog rate with χ ≈ 1.77), so about 120 per disc, elastic and
+/// periodic with every collision logged: the replay must match every snapshot.
+#[test]
+fn an_elastic_periodic_run_shows_its_transport_in_json_text_and_figures() {
+    let dir = scratch("transport");
+    ok(&carom(
+        &dir,
+        &[
+            "run",
+            "--quiet",
+            "--out",
+            "t.mcap",
+            "--set",
+            "species.0.count=200",
+            "--set",
+            "box.packing_fraction=0.3",
+            "--set",
+            "stop.duration=50",
+            "--set",
+            "seed=3",
+        ],
+    ));
+    let r = json_of(&carom(
+        &dir,
+        &["analyze", "t.mcap", "--quiet", "--json", "--plot", "figs"],
+    ));
+    let t = &r["transport"];
+    assert_eq!(t["n"], 200, "{t}");
+    assert!(
+        finite(&t["viscosity"]["value_helfand"]["value"]) > 0.0,
+        "{t}"
+    );
+    assert!(
+        finite(&t["species"][0]["diffusion_msd"]["value"]) > 0.0,
+        "{t}"
+    );
+    assert!(
+        finite(&t["species"][0]["diffusion_msd"]["std_error"]) > 0.0,
+        "{t}"
+    );
+    assert!(t["snapshots_checked"].as_u64().unwrap() > 0, "{t}");
+    assert_eq!(t["snapshots_mismatched"], 0, "{t}");
+    assert!(finite(&t["thermal_conductivity"]["value_green_kubo"]["value"]) > 0.0);
+    for name in FIGURES {
+        let png = std::fs::read(dir.join(format!("figs/{name}.png"))).unwrap();
+        assert_eq!(&png[..8], b"\x89PNG\r\n\x1a\n", "{name}");
+        let svg = std::fs::read_to_string(dir.join(format!("figs/{name}.svg"))).unwrap();
+        assert!(
+            svg.contains("<svg") && svg.contains("lag τ (time)"),
+            "{name}"
+        );
+    }
+    let svg = std::fs::read_to_string(dir.join("figs/helfand_viscosity.svg")).unwrap();
+    for label in [
+        "Einstein–Helfand",
+        "Green–Kubo",
+        "Enskog η_E",
+        "(mass/time)",
+    ] {
+        assert!(svg.contains(label), "{label}");
+    }
+    let svg = std::fs::read_to_string(dir.join("figs/vacf_exact.svg")).unwrap();
+    assert!(svg.contains("mode coupling"));
+
+    let text = ok(&carom(&dir, &["analyze", "t.mcap", "--quiet"]));
+    let n = t["snapshots_checked"].as_u64().unwrap();
+    for line in [
+        "transport  N = 200, t_c = ".to_string(),
+        format!("replayed velocities matched all {n} snapshots"),
+        "shear viscosity η: Einstein–Helfand ".to_string(),
+        "thermal conductivity λ: Einstein–Helfand ".to_string(),
+        "grow like ln τ".to_string(),
+    ] {
+        assert!(text.contains(&line), "{line} missing from\n{text}");
+    }
+}
+
+/// A channel (walls in y) has no transport report and none of its figures.
+#[test]
+fn a_walled_run_has_no_transport() {
+    let dir = scratch("walled");
+    let cfg = Path::new(env!("CARGO_MANIFEST_DIR")).join("data/channel.json");
+    ok(&carom(
+        &dir,
+        &[
+            "run",
+            "--quiet",
+            cfg.to_str().unwrap(),
+            "--out",
+            "c.mcap",
+            "--set",
+            "species.0.count=100",
+            "--set",
+            "stop.duration=10",
+        ],
+    ));
+    let r = json_of(&carom(
+        &dir,
+        &["analyze", "c.mcap", "--quiet", "--json", "--plot", "figs"],
+    ));
+    assert_eq!(r["periodic"], serde_json::json!([true, false]));
+    assert!(r["transport"].is_null(), "{}", r["transport"]);
+    for name in FIGURES {
+        assert!(!dir.join(format!("figs/{name}.png")).exists(), "{name}");
+    }
+    let text = ok(&carom(&dir, &["analyze", "c.mcap", "--quiet"]));
+    assert!(!text.contains("transport"), "{text}");
+}
