@@ -284,7 +284,7 @@ impl Transport {
                     cov[q] += s.flux_covariance().unwrap_or(f64::NAN) / 2.0;
                 }
             }
-            if lags.first().is_some() {
+            if !lags.is_empty() {
                 var[0] = 0.0;
             }
             (var, cov)
