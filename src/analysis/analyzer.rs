@@ -11,6 +11,7 @@ use carom_core::observables::{degrees_of_freedom, packing_fraction, temperature}
 
 use super::bond_correlation::BondCorrelation;
 use super::bond_order::BondOrder;
+use super::dynamics::Dynamics;
 use super::options::{budget_spacing, AnalysisOptions, DECORRELATION_COLLISIONS};
 use super::pair_correlation::PairCorrelation;
 use super::report::{Report, SpeciesInfo, WindowReport};
@@ -68,6 +69,8 @@ pub struct Analyzer {
     pub(super) bond_correlation: BondCorrelation,
     /// S(k) of one snapshot per time block (periodic boxes only).
     pub(super) structure_factor: Option<StructureFactor>,
+    /// MSD, snapshot VACF and F_s sums over time origins (physics.md §13).
+    pub(super) dynamics: Dynamics,
 }
 
 impl Analyzer {
@@ -130,6 +133,7 @@ impl Analyzer {
             bond_order: BondOrder::default(),
             bond_correlation: BondCorrelation::new(&run.species, &run.sim_box, t_eq, run.t_end),
             structure_factor: StructureFactor::new(&run.sim_box, sigma_min, t_eq, run.t_end),
+            dynamics: Dynamics::new(&run, t_eq, sigma_min),
             every_default,
             every_from_budget,
             bin_width: (run.t_end - t_eq) / nbins as f64,
@@ -324,7 +328,7 @@ impl Analyzer {
 
     /// A snapshot's per-disc slices must agree in length, and its species indices
     /// must be the run's.
-    fn check_snapshot(
+    pub(super) fn check_snapshot(
         &self,
         t: f64,
         species_of: &[u16],
@@ -445,6 +449,7 @@ impl Analyzer {
             periodic: run.sim_box.boundary.map(|b| b.is_periodic()),
             elastic,
             window: self.window(collision_rate.per_disc),
+            dynamics: self.dynamics.report(collision_rate.per_disc),
             temperature,
             maxwell_boltzmann,
             maxwell_boltzmann_untested,
