@@ -12,6 +12,9 @@ use carom::analysis::{
 };
 use carom::io::ReadProgress;
 
+#[path = "analyze_dynamics.rs"]
+mod dynamics;
+
 use super::reading::ReadDisplay;
 use super::{AnalyzeArgs, CliError, Num};
 
@@ -293,6 +296,7 @@ pub fn text(r: &Report, args: &AnalyzeArgs, complete: bool) -> String {
         }
     }
     structure_text(r, &mut s);
+    dynamics::dynamics_text(r, &mut s);
     if let Some(i) = &r.inelastic {
         if let Some(e) = &i.energy {
             let _ = writeln!(

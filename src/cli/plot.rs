@@ -7,8 +7,8 @@
 //! time since the first record, with Haff's law), `pressure` (Z against time with
 //! the mean and one standard error, and the halves' means when it drifts),
 //! `pair_correlation` (g_ab(r) per species pair with its contact value),
-//! `bond_order`, `g6` and `structure_factor` ([`structure`]). Axes are in the
-//! run's units.
+//! `bond_order`, `g6` and `structure_factor` ([`structure`]), `msd`, `vacf` and
+//! `self_scattering` ([`dynamics`]). Axes are in the run's units.
 
 use std::ops::Range;
 use std::path::Path;
@@ -23,6 +23,9 @@ use super::CliError;
 
 #[path = "plot_structure.rs"]
 mod structure;
+
+#[path = "plot_dynamics.rs"]
+mod dynamics;
 
 const SIZE: (u32, u32) = (900, 600);
 
@@ -119,6 +122,15 @@ pub fn write_all(report: &Report, dir: &Path) -> Result<usize, CliError> {
     if let Some(f) = report.structure_factor.as_ref().filter(|f| f.k.len() >= 2) {
         both!(dir, "structure_factor", |root| structure::draw_sk(root, f));
         n += 1;
+    }
+    if let Some(d) = report.dynamics.as_ref().filter(|d| !d.species.is_empty()) {
+        both!(dir, "msd", |root| dynamics::draw_msd(root, d));
+        both!(dir, "vacf", |root| dynamics::draw_vacf(root, d));
+        n += 2;
+        if d.k_star.is_some() {
+            both!(dir, "self_scattering", |root| dynamics::draw_fs(root, d));
+            n += 1;
+        }
     }
     Ok(n)
 }
