@@ -101,3 +101,148 @@ fn a_dilute_gas_is_ballistic_at_short_lags() {
     assert!(tested_decay, "k* = {k}");
     assert_eq!(d.ambiguous_gaps, 0);
 }
+
+/// Unwrapped position of disc i of [`free_flight_log`] at t.
+fn unwrapped(i: usize, t: f64) -> (f64, f64) {
+    (1.0 + 2.5 * i as f64 + V[i].0 * t, 5.0 + V[i].1 * t)
+}
+
+/// A log of four discs in free flight through a periodic 10 × 10 box, snapshots
+/// (wrapped positions and images) every `gap` over [0, 12] (`snapshot_interval`
+/// = `gap`).
+fn free_flight_log(name: &str, gap: f64) -> std::path::PathBuf {
+    use carom::core::{DVec2, SimBox, Species};
+    use carom::events::State;
+    use carom::io::{
+        LogOptions, LogWriter, RunFacts, RunMetadata, Stop, StopReason, SummaryMetadata, Thermo,
+        WriterOptions, WriterPosition,
+    };
+    let path =
+        std::env::temp_dir().join(format!("carom-dynamics-{}-{name}.mcap", std::process::id()));
+    let species = Species::new(4, 0.5, 1.0);
+    let sim_box = SimBox::periodic(10.0, 10.0);
+    let log = LogOptions {
+        collisions: false,
+        snapshot_interval: Some(gap),
+        thermo_interval: Some(gap),
+        checkpoint_interval: None,
+        scene_interval: None,
+        ..LogOptions::default()
+    };
+    let meta = RunMetadata {
+        log_format: carom::io::LOG_FORMAT_VERSION.into(),
+        carom_version: "0.0.0-test".into(),
+        config: "not json".into(),
+        seed: 1,
+        start_time: String::new(),
+        n_discs: 4,
+        stop: Stop::Time(12.0),
+        max_time_without_collision: None,
+        log: log.clone(),
+        resumed_from: None,
+        resumed_at: None,
+        run_facts: Some(RunFacts::new(
+            &[species],
+            &sim_box,
+            &EngineParams::default(),
+            &log,
+        )),
+    };
+    let options = WriterOptions::from_log_options(&log);
+    let mut w =
+        LogWriter::create(&path, options, &meta.to_map(), WriterPosition::default()).unwrap();
+    let kinetic: f64 = V.iter().map(|v| 0.5 * (v.0 * v.0 + v.1 * v.1)).sum();
+    let steps = (12.0 / gap).round() as usize;
+    for k in 0..=steps {
+        let t = k as f64 * gap;
+        w.write_thermo(&Thermo {
+            time: t,
+            kinetic_energy: kinetic,
+            temperature: 0.0,
+            collisions: 0,
+            pair_collisions: 0,
+            wall_collisions: 0,
+            energy_lost: 0.0,
+            virial_sum: 0.0,
+            wall_impulse: 0.0,
+            pressure: None,
+            z: None,
+            collision_rate: None,
+        })
+        .unwrap();
+        w.write_snapshot(&State {
+            sim_box,
+            species: vec![species],
+            species_of: vec![0; 4],
+            positions: (0..4)
+                .map(|i| {
+                    let (x, y) = unwrapped(i, t);
+                    DVec2::new(x.rem_euclid(10.0), y.rem_euclid(10.0))
+                })
+                .collect(),
+            velocities: V.iter().map(|v| DVec2::new(v.0, v.1)).collect(),
+            images: (0..4)
+                .map(|i| {
+                    let (x, y) = unwrapped(i, t);
+                    [(x / 10.0).floor() as i32, (y / 10.0).floor() as i32]
+                })
+                .collect(),
+            time: t,
+        })
+        .unwrap();
+    }
+    let summary = SummaryMetadata {
+        end_time: String::new(),
+        stop_reason: StopReason::Time,
+        error: None,
+        sim_time: 12.0,
+        pair_collisions: 0,
+        wall_collisions: 0,
+        logged_collisions: 0,
+        kinetic_energy: kinetic,
+        energy_lost: 0.0,
+        virial_sum: 0.0,
+        wall_seconds: 1.0,
+        collisions_per_second: 1.0,
+    };
+    w.finish(&summary.to_map()).unwrap();
+    path
+}
+
+/// Velocities of the four discs of [`free_flight_log`]: max speed bound
+/// √(2K/m) = √(9 + 1 + 4 + 5) = √19 ≈ 4.36.
+const V: [(f64, f64); 4] = [(3.0, 0.0), (0.0, -1.0), (-1.2, 1.6), (1.5, -1.5)];
+
+/// Snapshots 3 apart, longer than the box's half-width over the largest speed
+/// (√(2K/m) = √19 ≈ 4.36: 13 > L/2 = 5, physics.md (12.2)), so only the images
+/// can unwrap them: the MSD read from the file is ⟨v²⟩τ² = (9 + 1 + 4 + 4.5)/4 τ²
+/// = 4.625 τ² exactly (disc 0 crosses the box 3.6 times), no gap is counted as
+/// ambiguous, and the lags are the multiples of 3 up to 12.
+#[test]
+fn a_log_is_unwrapped_through_its_images() {
+    use carom::analysis::analyze_log;
+    struct Quiet;
+    impl carom::analysis::ReadObserver for Quiet {
+        fn pass(&mut self, _: &'static str) {}
+        fn progress(&mut self, _: carom::io::ReadProgress) {}
+        fn warn(&mut self, _: &str) {}
+    }
+    let opts = AnalysisOptions {
+        equilibrate: Some(0.0),
+        ..Default::default()
+    };
+    let path = free_flight_log("images", 3.0);
+    let got = analyze_log(&path, opts, &mut Quiet);
+    let _ = std::fs::remove_file(&path);
+    let d = got.unwrap().0.dynamics.unwrap();
+    assert_eq!(d.ambiguous_gaps, 0);
+    let s = &d.species[0];
+    assert_eq!(s.lag, vec![0.0, 3.0, 6.0, 9.0, 12.0]);
+    for (tau, msd) in s.lag.iter().zip(&s.msd) {
+        let want = 4.625 * tau * tau;
+        assert!(
+            (msd - want).abs() <= 1e-9 * want.max(1.0),
+            "MSD({tau}) = {msd} vs {want}"
+        );
+    }
+}

@@ -62,7 +62,8 @@ pub struct SpeciesDynamics {
     pub fs: Vec<f64>,
     /// Its standard error; empty without k*.
     pub fs_std_error: Vec<f64>,
-    /// τ_α: F_s(k*, τ_α) = 1/e, interpolated in ln τ; `null` if F_s stays above.
+    /// τ_α: F_s(k*, τ_α) = 1/e, interpolated in ln τ; `null` if F_s stays above
+    /// 1/e, or is below it already at the first positive lag.
     pub tau_alpha: Option<f64>,
     /// D from the slope of the MSD; `null` with too few lags in the window.
     pub diffusion: Option<DiffusionFit>,

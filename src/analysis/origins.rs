@@ -68,7 +68,8 @@ pub struct Origin {
 /// `blocks` blocks (None: unknown), within [`MAX_DISC_ORIGINS`]. Returns (p,
 /// levels, whether the cap lowered them). Level ℓ ≥ 1 starts at lag 2^(ℓ−1) p, so
 /// it is needed while that is below the run's blocks. At most p × levels origins
-/// are stored (each level holds ≤ p).
+/// are stored (each level holds ≤ p). At p = 4 on one level the cap is not
+/// lowered further (N above 2·10⁶ discs then exceeds it).
 pub fn plan(n: usize, blocks: Option<u64>) -> (usize, usize, bool) {
     let levels_for = |p: usize| -> usize {
         match blocks {

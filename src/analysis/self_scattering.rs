@@ -73,7 +73,8 @@ pub fn first_peak_k(sim_box: &SimBox, sigma_min: f64, x: &[f64], y: &[f64]) -> O
 }
 
 /// τ_α: the first lag where `fs` falls to 1/e, linear in ln τ between the two
-/// bracketing positive lags (`lag` increasing); `None` if it never does.
+/// bracketing positive lags (`lag` increasing); `None` if it never does, or does
+/// already at the first positive lag (τ_α shorter than the lags, unbracketed).
 pub fn tau_alpha(lag: &[f64], fs: &[f64]) -> Option<f64> {
     let target = (-1.0f64).exp();
     let pts: Vec<(f64, f64)> = lag
@@ -82,10 +83,8 @@ pub fn tau_alpha(lag: &[f64], fs: &[f64]) -> Option<f64> {
         .filter(|(t, f)| **t > 0.0 && f.is_finite())
         .map(|(&t, &f)| (t, f))
         .collect();
-    if let Some(&(t, f)) = pts.first() {
-        if f <= target {
-            return Some(t);
-        }
+    if pts.first().is_some_and(|p| p.1 <= target) {
+        return None;
     }
     pts.windows(2).find_map(|w| {
         let ((t0, f0), (t1, f1)) = (w[0], w[1]);
@@ -144,7 +143,7 @@ mod tests {
 
     /// F_s falling from 1 through 0.5 at τ = 1 to 0.25 at τ = 4: 1/e is crossed
     /// between them at ln τ = ln 4·(0.5 − 1/e)/(0.5 − 0.25); lag 0 is skipped;
-    /// no crossing gives None; a first positive lag already below gives itself.
+    /// no crossing, or a first positive lag already below, gives None.
     #[test]
     fn tau_alpha_interpolates_in_ln_tau() {
         let e = (-1.0f64).exp();
@@ -152,7 +151,7 @@ mod tests {
         let want = (4f64.ln() * (0.5 - e) / 0.25).exp();
         assert!((got - want).abs() < 1e-12, "{got} vs {want}");
         assert_eq!(tau_alpha(&[0.0, 1.0, 2.0], &[1.0, 0.9, 0.5]), None);
-        assert_eq!(tau_alpha(&[0.0, 2.0, 3.0], &[1.0, 0.2, 0.1]), Some(2.0));
+        assert_eq!(tau_alpha(&[0.0, 2.0, 3.0], &[1.0, 0.2, 0.1]), None);
     }
 
     /// A triangular lattice of spacing 1 has its first Bragg shell at 4π/√3;

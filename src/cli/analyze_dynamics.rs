@@ -37,10 +37,15 @@ pub(super) fn dynamics_text(r: &Report, s: &mut String) {
             .copied()
             .filter(|a| a.is_finite())
             .fold(f64::NAN, f64::max);
-        let tau = match (sp.tau_alpha, sp.fs.is_empty()) {
-            (_, true) => String::new(),
-            (Some(t), _) => format!("; F_s(k*, τ) = 1/e at τ_α = {:.4}", Num(t)),
-            (None, _) => format!(
+        let early = sp.fs.get(1).is_some_and(|f| *f <= (-1.0f64).exp());
+        let tau = match (sp.tau_alpha, sp.fs.is_empty(), early) {
+            (_, true, _) => String::new(),
+            (Some(t), _, _) => format!("; F_s(k*, τ) = 1/e at τ_α = {:.4}", Num(t)),
+            (None, _, true) => format!(
+                "; F_s(k*, τ) is below 1/e already at τ = {:.4}: τ_α is shorter than the snapshot spacing",
+                Num(sp.lag[1])
+            ),
+            (None, _, false) => format!(
                 "; F_s(k*, τ) stays above 1/e to τ = {:.4}",
                 Num(sp.lag[last])
             ),

@@ -91,7 +91,8 @@ pub(super) fn draw_msd<DB: DrawingBackend>(
     log_legend(&mut chart)
 }
 
-/// |C(τ)|/C(0) per species with τ⁻¹ through the last point.
+/// |C(τ)|/C(0) per species (three decades at most) with τ⁻¹ through the
+/// first lag.
 pub(super) fn draw_vacf<DB: DrawingBackend>(
     root: &DrawingArea<DB, Shift>,
     d: &DynamicsReport,
@@ -110,17 +111,22 @@ pub(super) fn draw_vacf<DB: DrawingBackend>(
     let Some(((x0, x1), (y0, y1))) = extent(&all) else {
         return Ok(());
     };
+    // Noise crossing zero would stretch the axis over decades: three at most.
+    let y0 = y0.max(1e-3 * y1);
     let axis = ("lag τ (time)", "|C(τ)|/C(0) (dimensionless)");
     let caption = "velocity autocorrelation at the snapshots";
     let mut chart = log_axes(root, caption, axis, (x0, x1), (y0, y1))?;
     for (s, a) in d.species.iter().zip(&abs) {
         let c = Palette99::pick(s.species).to_rgba();
-        let pts = positive(&s.lag, a);
+        let pts: Vec<(f64, f64)> = positive(&s.lag, a)
+            .into_iter()
+            .filter(|p| p.1 >= y0)
+            .collect();
         chart
             .draw_series(LineSeries::new(pts.iter().copied(), c.stroke_width(2)))?
             .label(format!("species {}", s.species))
             .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 15, y)], c.stroke_width(2)));
-        if let Some(&(tl, cl)) = pts.last() {
+        if let Some(&(tl, cl)) = pts.first() {
             let guide: Vec<(f64, f64)> = (0..=20)
                 .map(|k| x0 * (x1 / x0).powf(k as f64 / 20.0))
                 .map(|t| (t, cl * tl / t))
