@@ -28,6 +28,7 @@ fn a_dilute_gas_is_ballistic_at_short_lags() {
         t_end,
         pair_rate: None,
         snapshot_interval: Some(dt),
+        snapshot_schedule: None,
     };
     let mut a = Analyzer::new(run, AnalysisOptions::default()).unwrap();
     let mut engine = Engine::new(state, params).unwrap();

@@ -57,6 +57,7 @@ fn valid_log(compression: Compression) -> Vec<u8> {
         collision_every: 1,
         collision_detail: Default::default(),
         snapshot_interval: Some(0.5),
+        snapshot_schedule: None,
         thermo_interval: Some(0.25),
         checkpoint_interval: Some(1.0),
         scene_interval: None,

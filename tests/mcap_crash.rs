@@ -30,6 +30,7 @@ fn log_opts() -> LogOptions {
         collision_every: 1,
         collision_detail: Default::default(),
         snapshot_interval: Some(10.0),
+        snapshot_schedule: None,
         thermo_interval: Some(2.0),
         checkpoint_interval: Some(20.0),
         scene_interval: None,

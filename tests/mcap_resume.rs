@@ -39,6 +39,7 @@ fn log_opts() -> LogOptions {
         collision_every: 1,
         collision_detail: Default::default(),
         snapshot_interval: Some(1.0),
+        snapshot_schedule: None,
         thermo_interval: Some(0.5),
         checkpoint_interval: Some(2.0),
         scene_interval: None,

@@ -79,6 +79,7 @@ fn measure_spec(spec: SystemSpec, eq: f64, snapshots: u64, gap: f64) -> Measured
         t_end,
         pair_rate: None,
         snapshot_interval: Some(dt),
+        snapshot_schedule: None,
     };
     let opts = AnalysisOptions {
         equilibrate: Some(t_eq),

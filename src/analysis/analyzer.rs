@@ -8,6 +8,7 @@
 //! distribution, pressure, collision rate and Enskog, inelastic).
 
 use carom_core::observables::{degrees_of_freedom, packing_fraction, temperature};
+use carom_core::rates::expected_mean_free_time;
 
 use super::bond_correlation::BondCorrelation;
 use super::bond_order::BondOrder;
@@ -17,6 +18,7 @@ use super::pair_correlation::PairCorrelation;
 use super::report::{Report, SpeciesInfo, WindowReport};
 use super::stats::StatsError;
 use super::structure_factor::StructureFactor;
+use super::transport::Transport;
 use super::{collision_rate, contact, inelastic, pressure, temperature, velocity, RunDescription};
 
 #[derive(Debug, Clone, Copy, Default)]
@@ -71,6 +73,14 @@ pub struct Analyzer {
     pub(super) structure_factor: Option<StructureFactor>,
     /// MSD, snapshot VACF and F_s sums over time origins (physics.md §13).
     pub(super) dynamics: Dynamics,
+    /// Transport from the collision log, from the first snapshot analysed on
+    /// (physics.md §14); `None` before it, or when the run does not qualify.
+    pub(super) transport: Option<Transport>,
+    /// Whether the transport replay has been tried (at the first snapshot).
+    pub(super) transport_tried: bool,
+    /// Pair collisions since it started; a source that gives fewer details
+    /// ([`Analyzer::pair_detail`]) gets no transport report.
+    pub(super) transport_pairs: u64,
 }
 
 impl Analyzer {
@@ -154,6 +164,9 @@ impl Analyzer {
             snapshot_kt: Vec::new(),
             snapshot_a2: Vec::new(),
             snapshots_seen: 0,
+            transport: None,
+            transport_tried: false,
+            transport_pairs: 0,
             run,
         })
     }
@@ -175,6 +188,9 @@ impl Analyzer {
     /// and dissipated energy (energy).
     pub fn pair(&mut self, t: f64, virial: f64, energy_lost: f64) {
         self.pair_total += 1;
+        if self.transport.is_some() {
+            self.transport_pairs += 1;
+        }
         if self.run.totals_from_thermo {
             return;
         }
@@ -183,6 +199,27 @@ impl Analyzer {
         if let Some(b) = self.bin(t) {
             b.virial += s * virial;
             b.pairs += 1;
+        }
+    }
+
+    /// The detail of a logged pair collision of discs `i` and `j` at time `t`, for
+    /// the transport coefficients (physics.md §14): the unit contact normal from
+    /// i to j and both velocities after. Call it after [`Analyzer::pair`] for every
+    /// pair collision when the log holds them.
+    pub fn pair_detail(
+        &mut self,
+        t: f64,
+        (i, j): (u32, u32),
+        normal: [f64; 2],
+        [vi, vj]: [[f64; 2]; 2],
+    ) {
+        if let Some(tr) = &mut self.transport {
+            tr.pair(
+                t,
+                (i as usize, j as usize),
+                normal.into(),
+                [vi.into(), vj.into()],
+            );
         }
     }
 
@@ -240,8 +277,9 @@ impl Analyzer {
 
     /// A snapshot at time `t`: species index and velocity components of every disc
     /// (length/time). Used for the temperature series, and for the velocity
-    /// distribution when it is after `equilibrate` and at least `every` after the
-    /// last snapshot used.
+    /// distribution when it is after `equilibrate`, at least `every` after the
+    /// last snapshot used, and starts a block of the snapshot schedule
+    /// ([`Analyzer::block_start`]).
     ///
     /// Errors when the three slices differ in length or a species index is not one
     /// of the run's species.
@@ -272,6 +310,10 @@ impl Analyzer {
         if t < self.t_eq - 1e-12 * self.t_eq.abs().max(span) {
             return Ok(());
         }
+        self.transport_snapshot(t, species_of, vx, vy, kt);
+        if !self.block_start(t) {
+            return Ok(());
+        }
         if let (Some(&last), Some(every)) = (self.snapshots_used.last(), self.opts.every) {
             if t < last + every * (1.0 - 1e-9) {
                 return Ok(());
@@ -292,9 +334,10 @@ impl Analyzer {
     }
 
     /// The positions of a snapshot at time `t` (species index and centre of every
-    /// disc, length), used when `t` is after the equilibration time (independent
-    /// of `every`): pair distances into g(r) and ψ6 from every such snapshot, g6(r)
-    /// and S(k) from some (physics.md §10–§11).
+    /// disc, length), used when `t` is after the equilibration time and starts a
+    /// block of the snapshot schedule (independent of `every`): pair distances
+    /// into g(r) and ψ6 from every such snapshot, g6(r) and S(k) from some
+    /// (physics.md §10–§11).
     ///
     /// Errors when the slices differ in length or a species index is not one of
     /// the run's species.
@@ -307,7 +350,7 @@ impl Analyzer {
     ) -> Result<(), StatsError> {
         self.check_snapshot(t, species_of, [x, y], ["x", "y"])?;
         let span = self.run.t_end - self.run.t_start;
-        if t < self.t_eq - 1e-12 * self.t_eq.abs().max(span) {
+        if t < self.t_eq - 1e-12 * self.t_eq.abs().max(span) || !self.block_start(t) {
             return Ok(());
         }
         let t = t.max(self.t_eq);
@@ -324,6 +367,31 @@ impl Analyzer {
             sf.add(t, x, y);
         }
         Ok(())
+    }
+
+    /// Whether the snapshot at time `t` starts a block of the log's
+    /// `log.snapshot_schedule` (always true without one). Snapshots inside a
+    /// block, closely spaced for dynamics, add correlated samples rather than
+    /// information to the structure and velocity tests, which use block starts only.
+    pub(super) fn block_start(&self, t: f64) -> bool {
+        self.run
+            .snapshot_schedule
+            .is_none_or(|s| s.is_block_start(self.run.t_start, t))
+    }
+
+    /// The transport replay starts at the first snapshot analysed and checks
+    /// itself against the later ones.
+    fn transport_snapshot(&mut self, t: f64, species_of: &[u16], vx: &[f64], vy: &[f64], kt: f64) {
+        if let Some(tr) = &mut self.transport {
+            tr.check(t, (vx, vy));
+        } else if !self.transport_tried {
+            self.transport_tried = true;
+            let t_c = match self.run.pair_rate {
+                Some(omega) if omega > 0.0 => 1.0 / omega,
+                _ => expected_mean_free_time(&self.run.species, &self.run.sim_box, kt),
+            };
+            self.transport = Transport::start(&self.run, t, species_of, (vx, vy), t_c);
+        }
     }
 
     /// A snapshot's per-disc slices must agree in length, and its species indices
@@ -432,6 +500,12 @@ impl Analyzer {
             elastic && periodic,
             pressure.as_ref(),
         );
+        let phi = packing_fraction(&self.run.species, &self.run.sim_box);
+        let transport = self.transport.take().and_then(|tr| {
+            (tr.pairs() == self.transport_pairs)
+                .then(|| tr.report(self.run.t_end, pressure.as_ref().map(|p| p.z), phi))
+                .flatten()
+        });
         let run = &self.run;
         Ok(Report {
             n: run.n(),
@@ -464,6 +538,7 @@ impl Analyzer {
                 .structure_factor
                 .as_ref()
                 .and_then(StructureFactor::report),
+            transport,
         })
     }
 

@@ -9,9 +9,9 @@
 //! then assumed elastic).
 
 use carom_core::{Boundary, Restitution, SimBox, Species};
-use carom_io::Snapshot;
 use carom_io::{Config, ConfigError};
 use carom_io::{LogInfo, ReadError};
+use carom_io::{Snapshot, SnapshotSchedule};
 
 use super::from_log::AnalysisError;
 #[cfg(doc)]
@@ -48,6 +48,10 @@ pub struct RunDescription {
     /// would otherwise hold more than [`AnalysisOptions::max_velocities`]
     /// velocities; without it, whenever a window full of snapshots could.
     pub snapshot_interval: Option<f64>,
+    /// The log's `log.snapshot_schedule`, when it has one: snapshots inside each
+    /// snapshot interval, which the structure and velocity tests skip
+    /// ([`Analyzer::block_start`]); `None`: every snapshot starts a block.
+    pub snapshot_schedule: Option<SnapshotSchedule>,
 }
 
 impl RunDescription {
@@ -71,6 +75,7 @@ impl RunDescription {
             t_end: 10.0,
             pair_rate: None,
             snapshot_interval: None,
+            snapshot_schedule: None,
         }
     }
 }
@@ -181,6 +186,7 @@ pub(super) fn describe(
     Ok(RunDescription {
         pair_rate: pair_rate(info, n, t_start),
         snapshot_interval: log.snapshot_interval,
+        snapshot_schedule: log.snapshots().filter(|s| s.points > 0),
         species: resolved.species,
         sim_box: resolved.sim_box,
         restitution: resolved.restitution,

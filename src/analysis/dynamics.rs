@@ -104,13 +104,14 @@ impl Dynamics {
         (((t - self.t_eq) / w).floor().max(0.0) as usize).min(SEGMENTS - 1)
     }
 
-    /// One snapshot (slices already checked to agree).
-    fn add(&mut self, t: f64, species_of: &[u16], u: [&[f64]; 2], v: [&[f64]; 2]) {
+    /// One snapshot, a block start when `start` (slices already checked to
+    /// agree).
+    fn add(&mut self, t: f64, start: bool, species_of: &[u16], u: [&[f64]; 2], v: [&[f64]; 2]) {
         let tol = 1e-12 * self.t_eq.abs().max(self.t_end - self.t_start);
         if t > self.t_end + tol {
             return;
         }
-        let Some((block, j)) = self.store.locate(t, self.t_start, self.interval) else {
+        let Some((block, j)) = self.store.locate(t, start, self.t_start, self.interval) else {
             return;
         };
         if j == 0 && t >= self.t_eq - tol {
@@ -281,7 +282,8 @@ impl Analyzer {
     ) -> Result<(), StatsError> {
         self.check_snapshot(t, species_of, [ux, uy], ["ux", "uy"])?;
         self.check_snapshot(t, species_of, [vx, vy], ["vx", "vy"])?;
-        self.dynamics.add(t, species_of, [ux, uy], [vx, vy]);
+        let start = self.block_start(t);
+        self.dynamics.add(t, start, species_of, [ux, uy], [vx, vy]);
         Ok(())
     }
 

@@ -19,6 +19,7 @@ fn run(species: Vec<Species>, t_end: f64, interval: f64) -> RunDescription {
         t_end,
         pair_rate: None,
         snapshot_interval: Some(interval),
+        snapshot_schedule: None,
     }
 }
 
@@ -63,7 +64,7 @@ fn free_flight_through_wraps_is_ballistic() {
         }
         let vx: Vec<f64> = v.iter().map(|w| w.0).collect();
         let vy: Vec<f64> = v.iter().map(|w| w.1).collect();
-        d.add(t, &species_of, [&ux, &uy], [&vx, &vy]);
+        d.add(t, t.fract() == 0.0, &species_of, [&ux, &uy], [&vx, &vy]);
     }
     assert!(wrapped_somewhere);
     let rep = d.report(f64::NAN).unwrap();
@@ -134,7 +135,7 @@ fn a_random_walk_has_its_diffusion_coefficient() {
                 uy[i] += step * gy;
             }
         }
-        d.add(b as f64, &species_of, [&ux, &uy], [&zero, &zero]);
+        d.add(b as f64, true, &species_of, [&ux, &uy], [&zero, &zero]);
     }
     let rep = d.report(f64::NAN).unwrap();
     assert_eq!(rep.levels, 6);

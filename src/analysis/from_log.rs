@@ -64,7 +64,8 @@ pub fn analyze_log(
         observer.warn(&format!("warning: {w}"));
     }
     let complete = info.end == LogEnd::Complete;
-    let mut reader = LogReader::open(path)?;
+    // Decompression on a second core, ahead of the analysis on this one.
+    let mut reader = LogReader::open(path)?.read_ahead();
     observer.pass("reading");
     let mut shown = 0;
     // Messages read before the analysis could start (only when the run is learnt
@@ -171,6 +172,15 @@ impl Feed {
                 for k in 0..b.time.len() {
                     if b.kind[k] == KIND_PAIR {
                         a.pair(b.time[k], b.virial[k], b.energy_lost[k]);
+                        a.pair_detail(
+                            b.time[k],
+                            (b.i[k], b.j[k]),
+                            [b.nx[k], b.ny[k]],
+                            [
+                                [b.vix_after[k], b.viy_after[k]],
+                                [b.vjx_after[k], b.vjy_after[k]],
+                            ],
+                        );
                     } else {
                         a.wall(b.time[k], b.virial[k], b.energy_lost[k]);
                     }

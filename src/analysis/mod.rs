@@ -24,6 +24,8 @@ mod description;
 mod dynamics;
 mod dynamics_report;
 mod from_log;
+mod helfand;
+mod increment_correlator;
 mod inelastic;
 mod msd;
 mod neighbours;
@@ -40,7 +42,11 @@ mod structure_factor;
 mod temperature;
 #[cfg(test)]
 mod test_lattice;
+mod transport;
+mod transport_report;
+mod transport_theory;
 mod unwrap;
+mod vacf_exact;
 mod velocity;
 
 pub use analyzer::Analyzer;
@@ -68,5 +74,9 @@ pub use report::{
 pub use self_scattering::bessel_j0;
 pub use series::DRIFT_STD_ERRORS;
 pub use structure_factor::{StructureFactorReport, SK_K_MAX_SIGMA, SK_MAX_MODES, SK_SNAPSHOTS};
+pub use transport::{TRANSPORT_SEGMENTS, TRANSPORT_WINDOW};
+pub use transport_report::{
+    EnskogTransport, Estimate, HelfandReport, SpeciesTransport, TransportReport,
+};
 pub use unwrap::Unwrapper;
 pub use velocity::{MAX_SNAPSHOT_CORRELATION, MB_FAMILY_ALPHA, MB_TESTS_PER_SPECIES};

@@ -19,19 +19,6 @@ pub const MAX_DISC_ORIGINS: usize = 8_000_000;
 /// Most levels (lags up to 2^23 p blocks).
 const MAX_LEVELS: usize = 24;
 
-/// Whether a snapshot at `t` starts a block: (t − t_start)/T within 10⁻⁹ of an
-/// integer, T the snapshot interval; every snapshot does when T is unknown.
-/// (To be replaced by `Analyzer::block_start` once logs name their schedule.)
-pub(super) fn is_block_start(t: f64, t_start: f64, interval: Option<f64>) -> bool {
-    match interval.filter(|i| i.is_finite() && *i > 0.0) {
-        Some(i) => {
-            let x = (t - t_start) / i;
-            (x - x.round()).abs() <= 1e-9
-        }
-        None => true,
-    }
-}
-
 /// Which pairing: level ℓ, block separation m, index j of the later snapshot in
 /// its block (0 at a block start).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash)]
@@ -137,12 +124,19 @@ impl OriginStore {
         self.origins.len()
     }
 
-    /// Place the next snapshot, at `t`: its block and index in the block. With
-    /// the interval T the block is ⌊(t − t_start)/T⌉ (rounded within 10⁻⁹); without,
-    /// every snapshot is the next block. `None` for an in-block snapshot before
-    /// any block start.
-    pub fn locate(&mut self, t: f64, t_start: f64, interval: Option<f64>) -> Option<(u64, u32)> {
-        let start = is_block_start(t, t_start, interval);
+    /// Place the next snapshot, at `t`, a block start when `start`
+    /// ([`super::Analyzer::block_start`]): its block and index in the block. With
+    /// the interval T the block is ⌊(t − t_start)/T + 10⁻⁹⌋; without, every
+    /// snapshot is the next block. `None` for an in-block snapshot before any
+    /// block start.
+    pub fn locate(
+        &mut self,
+        t: f64,
+        start: bool,
+        t_start: f64,
+        interval: Option<f64>,
+    ) -> Option<(u64, u32)> {
+        let start = start || interval.is_none();
         let block = match interval.filter(|i| i.is_finite() && *i > 0.0) {
             Some(i) => ((t - t_start) / i + 1e-9).floor().max(0.0) as u64,
             None => self.starts,
@@ -232,18 +226,6 @@ mod tests {
         }
     }
 
-    /// T = 0.5 from t_start = 2: 2, 3.5 and 2 + 0.5·(1 + 10⁻¹⁰) start blocks;
-    /// 2.1 and 2 + 0.5·(1 + 10⁻⁸) do not; without T every snapshot does.
-    #[test]
-    fn block_starts_are_whole_intervals_from_the_start() {
-        assert!(is_block_start(2.0, 2.0, Some(0.5)));
-        assert!(is_block_start(3.5, 2.0, Some(0.5)));
-        assert!(is_block_start(2.0 + 0.5 * (1.0 + 1e-10), 2.0, Some(0.5)));
-        assert!(!is_block_start(2.1, 2.0, Some(0.5)));
-        assert!(!is_block_start(2.0 + 0.5 * (1.0 + 1e-8), 2.0, Some(0.5)));
-        assert!(is_block_start(2.1, 2.0, None));
-    }
-
     /// p = 4, 3 levels, T = 1 from 0; snapshots at every block start 0 … 12 and
     /// in-block ones at b + 0.25 and b + 0.5. Expected by hand:
     /// - at 5.5 (block 5, j = 2): level 0 only, origins 2, 3, 4, 5 (m = 3 … 0);
@@ -257,7 +239,8 @@ mod tests {
     fn pairings_by_hand() {
         let mut s = OriginStore::new(4, 3);
         let at = |s: &mut OriginStore, t: f64| {
-            let (b, j) = s.locate(t, 0.0, Some(1.0)).unwrap();
+            let start = t.fract() == 0.0;
+            let (b, j) = s.locate(t, start, 0.0, Some(1.0)).unwrap();
             if j == 0 {
                 s.store(origin(t, b));
             }
@@ -312,19 +295,23 @@ mod tests {
         assert_eq!(s.stored(), 8);
     }
 
-    /// An in-block snapshot before any block start pairs with nothing; without an
-    /// interval every snapshot is a block of its own.
+    /// An in-block snapshot before any block start pairs with nothing; blocks are
+    /// whole intervals from the start; without an interval every snapshot is a
+    /// block of its own.
     #[test]
     fn snapshots_are_located_in_their_blocks() {
         let mut s = OriginStore::new(4, 1);
-        assert_eq!(s.locate(0.3, 0.0, Some(1.0)), None);
-        assert_eq!(s.locate(1.0, 0.0, Some(1.0)), Some((1, 0)));
-        assert_eq!(s.locate(1.3, 0.0, Some(1.0)), Some((1, 1)));
-        assert_eq!(s.locate(1.6, 0.0, Some(1.0)), Some((1, 2)));
-        assert_eq!(s.locate(3.0, 0.0, Some(1.0)), Some((3, 0)));
+        let t = Some(1.0);
+        assert_eq!(s.locate(0.3, false, 0.0, t), None);
+        assert_eq!(s.locate(1.0, true, 0.0, t), Some((1, 0)));
+        assert_eq!(s.locate(1.3, false, 0.0, t), Some((1, 1)));
+        assert_eq!(s.locate(1.6, false, 0.0, t), Some((1, 2)));
+        assert_eq!(s.locate(3.0, true, 0.0, t), Some((3, 0)));
+        // A block start a rounding below its time is still its block.
+        assert_eq!(s.locate(4.0 - 1e-12, true, 0.0, t), Some((4, 0)));
         let mut s = OriginStore::new(4, 1);
-        assert_eq!(s.locate(0.3, 0.0, None), Some((0, 0)));
-        assert_eq!(s.locate(0.7, 0.0, None), Some((1, 0)));
+        assert_eq!(s.locate(0.3, false, 0.0, None), Some((0, 0)));
+        assert_eq!(s.locate(0.7, false, 0.0, None), Some((1, 0)));
     }
 
     /// 16 per level: 2000 blocks need levels with 2^(ℓ−1)·16 < 2000, ℓ = 1 … 7,

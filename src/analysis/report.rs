@@ -11,6 +11,7 @@ use super::contact::PairCorrelationReport;
 use super::dynamics_report::DynamicsReport;
 use super::stats::{Histogram, KsTest};
 use super::structure_factor::StructureFactorReport;
+use super::transport_report::TransportReport;
 #[cfg(doc)]
 use super::{DECORRELATION_COLLISIONS, MAX_SNAPSHOT_CORRELATION, MB_FAMILY_ALPHA};
 
@@ -62,6 +63,9 @@ pub struct Report {
     /// MSD and D per species, the VACF at the snapshots and F_s(k*, τ) with τ_α
     /// (physics.md §13); `null` without time origins after the equilibration time.
     pub dynamics: Option<DynamicsReport>,
+    /// D, η and λ from the collision log, with the exact VACF (physics.md §14);
+    /// `null` unless the run is elastic and periodic and logs every collision.
+    pub transport: Option<TransportReport>,
 }
 
 /// One species of the run.

@@ -5,7 +5,9 @@
 //!
 //! What a run writes, in order: the `carom.run` metadata; at the start time a
 //! `/snapshot`, a `/thermo` record, a `/checkpoint` and a `/scene` frame (each
-//! when enabled, the checkpoint always), then the same at start + k·interval;
+//! when enabled, the checkpoint always), then the same at start + k·interval
+//! (and snapshots inside each interval at log-spaced offsets with
+//! `log.snapshot_schedule`, carom-io's `SnapshotSchedule`);
 //! `/collisions` batches in between; at the end a final `/thermo` record and `/checkpoint`, and
 //! `carom.summary`. A stop at `t_end` comes after every observation due at `t_end`.
 
@@ -184,6 +186,19 @@ impl<'a> Driver<'a> {
         Ok(())
     }
 
+    /// Schedule snapshot k + 1 at its time in the snapshot schedule (carom-io's
+    /// `SnapshotSchedule`: t₀ + k·T without `log.snapshot_schedule`), unless
+    /// snapshots are off or its time has passed.
+    fn schedule_next_snapshot(&mut self, k: u64) -> Result<(), RunError> {
+        if let Some(s) = self.log.snapshots() {
+            let t = s.time(self.run_start_time, k + 1);
+            if t >= self.engine.now() {
+                self.schedule(t, Observation::Snapshot(k + 1))?;
+            }
+        }
+        Ok(())
+    }
+
     fn write_snapshot(&mut self) -> Result<(), RunError> {
         let state = state_now(&self.engine, &mut self.snapshot);
         self.writer.write_snapshot(state)?;
@@ -322,8 +337,7 @@ impl<'a> Driver<'a> {
                 }
                 Event::Scheduled { time, tag } => match Observation::decode(tag) {
                     Some(Observation::Snapshot(k)) => {
-                        let interval = self.log.snapshot_interval;
-                        self.schedule_next(Observation::Snapshot, k, interval)?;
+                        self.schedule_next_snapshot(k)?;
                         self.write_snapshot()?;
                     }
                     Some(Observation::Thermo(k)) => {

@@ -1,5 +1,7 @@
 //! The observations a run schedules at exact times: the k-th snapshot, thermo
-//! record, checkpoint and scene frame (due at start + k·interval), the two phases
+//! record, checkpoint and scene frame (due at start + k·interval; the k-th
+//! snapshot at carom-io's `SnapshotSchedule::time`, the same without a
+//! `log.snapshot_schedule`), the two phases
 //! of a stop, and the watchdog's check for a run without collisions
 //! (`watchdog.rs`). The engine carries a scheduled observation as an opaque `u64` tag
 //! (`Engine::schedule`), and checkpoints store those tags, so the encoding below

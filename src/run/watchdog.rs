@@ -64,8 +64,9 @@ pub(super) fn explain(quiet_since: f64, now: f64, bound: f64, user: Option<f64>)
 
 /// Refuse a collision stop that, at the collision rate expected from the density
 /// and temperature (physics.md (7.9), a lower bound on the time when the gas
-/// cools), would write more than [`MAX_RECORDS`] snapshots, thermo records or
-/// checkpoints before reaching its count.
+/// cools), would write more than [`MAX_RECORDS`] snapshots (n + 1 per interval
+/// with a `log.snapshot_schedule` of n points), thermo records or checkpoints
+/// before reaching its count.
 pub(super) fn check_reachable(
     engine: &Engine,
     stop: Stop,
@@ -79,25 +80,43 @@ pub(super) fn check_reachable(
     let kt = kt_now(engine);
     let rate = expected_collision_rate(engine.species(), engine.sim_box(), kt);
     let time = left / rate;
+    // A snapshot schedule writes n + 1 snapshots per snapshot interval.
+    let per_snapshot_interval = log.snapshots().map_or(1, |s| s.per_block()) as f64;
     let series = [
-        ("log.snapshot_interval", "snapshots", log.snapshot_interval),
-        ("log.thermo_interval", "thermo records", log.thermo_interval),
+        (
+            "log.snapshot_interval",
+            "snapshots",
+            log.snapshot_interval,
+            per_snapshot_interval,
+        ),
+        (
+            "log.thermo_interval",
+            "thermo records",
+            log.thermo_interval,
+            1.0,
+        ),
         (
             "log.checkpoint_interval",
             "checkpoints",
             log.checkpoint_interval,
+            1.0,
         ),
     ];
-    for (field, what, interval) in series {
+    for (field, what, interval, per) in series {
         let Some(dt) = interval else { continue };
-        let records = time / dt;
+        let records = time / dt * per;
         if records > MAX_RECORDS {
             return Err(RunError::Invalid {
                 field: "stop.collisions",
                 problem: format!(
                     "at kT = {kt:.4e} and this density about {rate:.4e} collisions are \
                      expected per unit time (physics.md (7.9)), so {left} collisions take \
-                     about {time:.3e} time units: {records:.3e} {what} at {field} = {dt}"
+                     about {time:.3e} time units: {records:.3e} {what} at {field} = {dt}{}",
+                    if per > 1.0 {
+                        format!(" ({per} per interval with log.snapshot_schedule)")
+                    } else {
+                        String::new()
+                    }
                 ),
                 allowed: format!(
                     "at most {MAX_RECORDS:e} records of a kind: fewer collisions, a longer \
@@ -107,4 +126,54 @@ pub(super) fn check_reachable(
         }
     }
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use carom_core::{Boundary, Species};
+    use carom_events::{EngineParams, SystemSpec};
+    use carom_io::SchedulePoints;
+
+    #[test]
+    fn a_snapshot_schedule_counts_n_plus_one_snapshots_per_interval() {
+        let system = SystemSpec::square_box(
+            vec![Species::reference(100)],
+            0.3,
+            [Boundary::Periodic; 2],
+            1,
+        );
+        let engine = Engine::new(system.build().unwrap(), EngineParams::default()).unwrap();
+        // A stop about 5·10⁸ time units away at the expected rate: 5·10⁸ snapshots
+        // every T = 1 are allowed; with 9 points more per interval, 5·10⁹ are not.
+        let rate = expected_collision_rate(engine.species(), engine.sim_box(), kt_now(&engine));
+        let stop = Stop::Collisions((5e8 * rate) as u64);
+        let plain = LogOptions {
+            snapshot_interval: Some(1.0),
+            thermo_interval: None,
+            checkpoint_interval: None,
+            ..LogOptions::default()
+        };
+        assert!(check_reachable(&engine, stop, &plain).is_ok());
+        let scheduled = LogOptions {
+            snapshot_schedule: Some(SchedulePoints {
+                points: 9,
+                first: 0.01,
+            }),
+            ..plain.clone()
+        };
+        let e = check_reachable(&engine, stop, &scheduled).unwrap_err();
+        let text = e.to_string();
+        assert!(text.contains("stop.collisions"), "{text}");
+        assert!(
+            text.contains("10 per interval with log.snapshot_schedule"),
+            "{text}"
+        );
+        // The same count as snapshots every T/10 without a schedule.
+        let tenth = LogOptions {
+            snapshot_interval: Some(0.1),
+            ..plain
+        };
+        assert!(check_reachable(&engine, stop, &tenth).is_err());
+    }
 }

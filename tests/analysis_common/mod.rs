@@ -39,6 +39,7 @@ pub fn analyse_state(
         t_end,
         pair_rate,
         snapshot_interval: Some(dt),
+        snapshot_schedule: None,
     };
     let mut a = Analyzer::new(run, opts).unwrap();
     let mut engine = Engine::new(state, params).unwrap();
@@ -58,6 +59,13 @@ pub fn feed(engine: &mut Engine, a: &mut Analyzer, t0: f64, dt: f64, steps: u64)
             Event::Pair(p) => {
                 lost += p.energy_lost;
                 a.pair(p.time, p.virial, p.energy_lost);
+                let v = |d: carom::core::DVec2| [d.x, d.y];
+                a.pair_detail(
+                    p.time,
+                    (p.i, p.j),
+                    v(p.normal),
+                    [v(p.vi_after), v(p.vj_after)],
+                );
             }
             Event::Wall(w) => {
                 lost += w.energy_lost;

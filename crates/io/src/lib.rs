@@ -12,17 +12,19 @@
 mod config;
 mod log;
 mod options;
+mod schedule;
 
 pub use options::{
     check_log_options, CollisionDetail, Compression, LogOptions, OptionsError, RunSpec, Stop,
     MAX_RECORDS,
 };
+pub use schedule::{SchedulePoints, SnapshotSchedule, MAX_SCHEDULE_POINTS, MIN_FIRST_FRACTION};
 
 pub use config::{
     apply_set, load_config, AxisBoundary, BoundaryConfig, BoxConfig, CollisionConfig,
     CollisionDetailConfig, CollisionModel, CompressionConfig, Config, ConfigError, LogConfig,
-    PlacementConfig, SpeciesConfig, StopConfig, VelocitiesConfig, DEFAULT_COUNT, DEFAULT_DURATION,
-    DEFAULT_PACKING_FRACTION,
+    PlacementConfig, SnapshotScheduleConfig, SpeciesConfig, StopConfig, VelocitiesConfig,
+    DEFAULT_COUNT, DEFAULT_DURATION, DEFAULT_PACKING_FRACTION,
 };
 
 pub use log::format::{encode_scene, CH_SCENE, N_CHANNELS, SCENE_UPDATE_MSG, SPECIES_COLORS};

@@ -4,6 +4,7 @@
 //! ([`check_log_options`]), which the configuration's validator and a resume both
 //! call.
 
+use crate::schedule::{SchedulePoints, SnapshotSchedule};
 use carom_events::{EngineParams, SystemSpec};
 use thiserror::Error;
 
@@ -61,6 +62,9 @@ pub struct LogOptions {
     pub collision_detail: CollisionDetail,
     /// Simulated time between `/snapshot` messages (time); `None` = no snapshots.
     pub snapshot_interval: Option<f64>,
+    /// `log.snapshot_schedule`: snapshots added inside every snapshot interval at
+    /// log-spaced offsets ([`SnapshotSchedule`]); `None` = none.
+    pub snapshot_schedule: Option<SchedulePoints>,
     /// Simulated time between `/thermo` messages (time); `None` = no thermo.
     pub thermo_interval: Option<f64>,
     /// Simulated time between `/checkpoint` messages (time); `None` = only at the start
@@ -82,6 +86,7 @@ impl Default for LogOptions {
             collision_every: 1,
             collision_detail: CollisionDetail::Compact,
             snapshot_interval: Some(1.0),
+            snapshot_schedule: None,
             thermo_interval: Some(0.1),
             checkpoint_interval: Some(10.0),
             scene_interval: None,
@@ -101,6 +106,13 @@ impl LogOptions {
         } else {
             self.collision_detail
         }
+    }
+
+    /// The snapshot times, when snapshots are logged: every `snapshot_interval`,
+    /// with the `snapshot_schedule`'s points inside each.
+    pub fn snapshots(&self) -> Option<SnapshotSchedule> {
+        self.snapshot_interval
+            .map(|t| SnapshotSchedule::new(t, self.snapshot_schedule))
     }
 
     /// The record intervals with their configuration names: snapshot, thermo,
@@ -159,7 +171,11 @@ pub struct OptionsError {
     pub allowed: String,
 }
 
-fn options_error(field: &'static str, problem: String, allowed: impl Into<String>) -> OptionsError {
+pub(crate) fn options_error(
+    field: &'static str,
+    problem: String,
+    allowed: impl Into<String>,
+) -> OptionsError {
     OptionsError {
         field,
         problem,
@@ -169,7 +185,8 @@ fn options_error(field: &'static str, problem: String, allowed: impl Into<String
 
 /// Check the log options and the stop of a run that is at time `now` (0 for a
 /// fresh run): each interval finite and > 0 (or none), `collision_every` ≥ 1,
-/// `flush_seconds` finite and > 0, a stop time finite and ≥ `now`, and at most
+/// `flush_seconds` finite and > 0, a snapshot schedule only with snapshots and
+/// within its bounds ([`SchedulePoints::check`]), a stop time finite and ≥ `now`, and at most
 /// [`MAX_RECORDS`] records of a kind between `now` and the stop time. `stop_field`
 /// names the setting that fixed the stop time in errors: `stop.time` (a resume's
 /// `--until`) or `stop.duration` (a configuration, from time 0). A run stopped by
@@ -188,6 +205,9 @@ pub fn check_log_options(
                 "finite simulated time > 0, or null for none",
             ));
         }
+    }
+    if let Some(p) = &log.snapshot_schedule {
+        p.check(log.snapshot_interval)?;
     }
     if log.collision_every == 0 {
         return Err(options_error(
@@ -215,24 +235,34 @@ pub fn check_log_options(
     }
     // An exponent mistyped (1e-17 for 1e-1, or `--until 1e12`) would otherwise
     // start a run that crawls while it fills the disk with records.
+    // A snapshot schedule writes n + 1 snapshots per interval.
+    let per_interval = |name: &str| match log.snapshots() {
+        Some(s) if name == "log.snapshot_interval" => s.per_block() as f64,
+        _ => 1.0,
+    };
     let smallest = log
         .intervals()
         .into_iter()
-        .filter_map(|(name, x)| Some((name, x?)))
-        .min_by(|a, b| a.1.total_cmp(&b.1));
+        .filter_map(|(name, x)| Some((name, x?, per_interval(name))))
+        .min_by(|a, b| (a.1 / a.2).total_cmp(&(b.1 / b.2)));
     match smallest {
-        Some((name, x)) if (t - now) / x > MAX_RECORDS => Err(options_error(
+        Some((name, x, per)) if (t - now) / x * per > MAX_RECORDS => Err(options_error(
             name,
             format!(
-                "value {x:e} would write {:.1e} records from time {now} to the stop time \
+                "value {x:e}{} would write {:.1e} records from time {now} to the stop time \
                  {t} ({stop_field}), more than {MAX_RECORDS:.0e}; the latest stop time is {}",
-                (t - now) / x,
-                now + MAX_RECORDS * x
+                if per > 1.0 {
+                    format!(" with {per} snapshots per interval (log.snapshot_schedule)")
+                } else {
+                    String::new()
+                },
+                (t - now) / x * per,
+                now + MAX_RECORDS * x / per
             ),
             format!(
                 "an interval ≥ (stop time − current time) / {MAX_RECORDS:.0e} = {:e}, or \
                  null for none; or an earlier stop time",
-                (t - now) / MAX_RECORDS
+                (t - now) * per / MAX_RECORDS
             ),
         )),
         _ => Ok(()),
@@ -294,5 +324,35 @@ mod tests {
             ..d
         };
         assert_eq!(field_of(&tiny, Stop::Collisions(10), 0.0), None);
+    }
+
+    #[test]
+    fn a_snapshot_schedule_multiplies_the_snapshots_counted() {
+        // T = 1 with 19 points: 20 snapshots per unit time, more than thermo's 10.
+        // 10⁹ of them last until t = 5·10⁷; to 6·10⁷ they are 1.2·10⁹.
+        let d = LogOptions::default();
+        let sched = LogOptions {
+            snapshot_schedule: Some(SchedulePoints {
+                points: 19,
+                first: 0.01,
+            }),
+            ..d.clone()
+        };
+        assert_eq!(field_of(&sched, Stop::Time(5e7), 0.0), None);
+        assert_eq!(
+            field_of(&sched, Stop::Time(6e7), 0.0),
+            Some("log.snapshot_interval")
+        );
+        // Without the schedule thermo writes 6·10⁸ records: allowed.
+        assert_eq!(field_of(&d, Stop::Time(6e7), 0.0), None);
+        // The schedule's own check runs here, for a resume too.
+        let none = LogOptions {
+            snapshot_interval: None,
+            ..sched
+        };
+        assert_eq!(
+            field_of(&none, Stop::Time(1.0), 0.0),
+            Some("log.snapshot_schedule")
+        );
     }
 }

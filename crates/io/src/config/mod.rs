@@ -26,8 +26,9 @@ pub use error::ConfigError;
 pub use front::{apply_set, load_config};
 pub use model::{
     AxisBoundary, BoundaryConfig, BoxConfig, CollisionConfig, CollisionDetailConfig,
-    CollisionModel, CompressionConfig, Config, LogConfig, PlacementConfig, SpeciesConfig,
-    StopConfig, VelocitiesConfig, DEFAULT_COUNT, DEFAULT_DURATION, DEFAULT_PACKING_FRACTION,
+    CollisionModel, CompressionConfig, Config, LogConfig, PlacementConfig, SnapshotScheduleConfig,
+    SpeciesConfig, StopConfig, VelocitiesConfig, DEFAULT_COUNT, DEFAULT_DURATION,
+    DEFAULT_PACKING_FRACTION,
 };
 
 #[cfg(test)]

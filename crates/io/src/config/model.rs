@@ -320,6 +320,20 @@ pub enum CollisionDetailConfig {
     Full,
 }
 
+/// `log.snapshot_schedule`: n snapshots inside every block of length T =
+/// `log.snapshot_interval`, at offsets δ·(T/δ)^((j−1)/n), j = 1..n, from the block
+/// start (maps to [`crate::SchedulePoints`]; the times: [`crate::SnapshotSchedule`]).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SnapshotScheduleConfig {
+    /// n: snapshots added per block. Required; integer 1 ≤ n ≤ 1000.
+    #[serde(deserialize_with = "de_count")]
+    pub points: u64,
+    /// δ: offset of the first from the block start (time). Required; finite,
+    /// 10⁻⁶·T ≤ δ < T.
+    pub first: f64,
+}
+
 /// What the MCAP log records and how often (maps to [`LogOptions`]).
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -343,6 +357,11 @@ pub struct LogConfig {
     /// [`MAX_RECORDS`](crate::MAX_RECORDS).
     #[serde(default = "default_snapshot")]
     pub snapshot_interval: Option<f64>,
+    /// Log-spaced snapshots added inside every `snapshot_interval`, for
+    /// mean-square displacements and correlations over many decades of lag time.
+    /// Default none; needs a `snapshot_interval`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub snapshot_schedule: Option<SnapshotScheduleConfig>,
     /// Simulated time between `/thermo` messages (time). Default 0.1; `null` for
     /// none; otherwise finite, > 0, and at least `stop.duration` / [`MAX_RECORDS`](crate::MAX_RECORDS).
     #[serde(default = "default_thermo")]
@@ -374,6 +393,7 @@ impl Default for LogConfig {
             collision_every: d.collision_every,
             collision_detail: None,
             snapshot_interval: d.snapshot_interval,
+            snapshot_schedule: None,
             thermo_interval: d.thermo_interval,
             checkpoint_interval: d.checkpoint_interval,
             scene_interval: d.scene_interval,

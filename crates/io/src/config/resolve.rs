@@ -8,6 +8,7 @@ use super::{
     DEFAULT_PACKING_FRACTION,
 };
 use crate::options::{CollisionDetail, Compression, LogOptions, RunSpec, Stop};
+use crate::schedule::SchedulePoints;
 use carom_core::{Boundary, DVec2, Restitution, SimBox, Species};
 use carom_events::{box_size_for, largest_radius, EngineParams, Placement, SystemSpec, Velocities};
 
@@ -167,6 +168,10 @@ impl LogConfig {
                 None => CollisionDetail::Compact,
             },
             snapshot_interval: self.snapshot_interval,
+            snapshot_schedule: self.snapshot_schedule.map(|s| SchedulePoints {
+                points: s.points,
+                first: s.first,
+            }),
             thermo_interval: self.thermo_interval,
             checkpoint_interval: self.checkpoint_interval,
             scene_interval: self.scene_interval,

@@ -93,6 +93,10 @@ fn maximal_values() -> Vec<Value> {
     };
     c.collision.coefficient = Some(1.0);
     c.log.collision_detail = Some(CollisionDetailConfig::Full);
+    c.log.snapshot_schedule = Some(SnapshotScheduleConfig {
+        points: 1,
+        first: 0.5,
+    });
     let mut d = c.clone();
     c.placement = PlacementConfig::Explicit(vec![[0.0, 0.0]]);
     c.velocities = VelocitiesConfig::Explicit(vec![[0.0, 0.0]]);

@@ -373,6 +373,7 @@ pub fn write_log(name: &str, plan: Plan) -> Written {
         collision_every: plan.every,
         collision_detail: plan.detail,
         snapshot_interval: Some(SNAPSHOT_EVERY),
+        snapshot_schedule: None,
         thermo_interval: Some(THERMO_EVERY),
         checkpoint_interval: None,
         scene_interval: plan.scene.then_some(SCENE_EVERY),

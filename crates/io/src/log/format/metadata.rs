@@ -5,6 +5,7 @@
 use super::facts::RunFacts;
 use super::{LOG_FORMAT_VERSION, READABLE_MAJOR_VERSIONS};
 use crate::options::{CollisionDetail, Compression, LogOptions, Stop};
+use crate::schedule::SchedulePoints;
 use serde_json::{json, Value};
 use std::collections::BTreeMap;
 use std::time::{SystemTime, UNIX_EPOCH};
@@ -109,9 +110,11 @@ fn compression_name(c: Compression) -> &'static str {
 /// Log options as JSON: `{"collisions", "collision_every", "collision_detail",
 /// "snapshot_interval", "thermo_interval", "checkpoint_interval", "scene_interval",
 /// "compression", "flush_seconds"}` (intervals `null` when off; `collision_detail`
-/// the record the log holds, [`LogOptions::collision_record`]).
+/// the record the log holds, [`LogOptions::collision_record`]), and
+/// `"snapshot_schedule": {"points", "first"}` only when there is one (logs
+/// without one, and logs older than the schedule, lack the key).
 pub fn log_options_to_json(o: &LogOptions) -> Value {
-    json!({
+    let mut v = json!({
         "collisions": o.collisions,
         "collision_every": o.collision_every,
         "collision_detail": o.collision_record().name(),
@@ -121,7 +124,11 @@ pub fn log_options_to_json(o: &LogOptions) -> Value {
         "scene_interval": o.scene_interval,
         "compression": compression_name(o.compression),
         "flush_seconds": o.flush_seconds,
-    })
+    });
+    if let Some(p) = &o.snapshot_schedule {
+        v["snapshot_schedule"] = json!({ "points": p.points, "first": p.first });
+    }
+    v
 }
 
 /// Log options from JSON; missing keys take their defaults, except
@@ -145,6 +152,13 @@ pub fn log_options_from_json(v: &Value) -> Option<LogOptions> {
             Some(name) => CollisionDetail::from_name(name)?,
         },
         snapshot_interval: interval("snapshot_interval", d.snapshot_interval)?,
+        snapshot_schedule: match v.get("snapshot_schedule") {
+            None | Some(Value::Null) => None,
+            Some(s) => Some(SchedulePoints {
+                points: s.get("points")?.as_u64()?,
+                first: s.get("first")?.as_f64()?,
+            }),
+        },
         thermo_interval: interval("thermo_interval", d.thermo_interval)?,
         checkpoint_interval: interval("checkpoint_interval", d.checkpoint_interval)?,
         scene_interval: interval("scene_interval", d.scene_interval)?,
@@ -570,5 +584,27 @@ mod tests {
         assert!(err.problem.contains("1.x and 2.x"), "{}", err.problem);
         bad.remove("log_format");
         assert_eq!(RunMetadata::from_map(&bad).unwrap_err().problem, "missing");
+    }
+
+    #[test]
+    fn a_snapshot_schedule_is_stored_only_when_set() {
+        let plain = LogOptions::default();
+        let json = log_options_to_json(&plain);
+        assert!(json.get("snapshot_schedule").is_none(), "{json}");
+        assert_eq!(log_options_from_json(&json), Some(plain.clone()));
+        let sched = LogOptions {
+            snapshot_schedule: Some(SchedulePoints {
+                points: 20,
+                first: 0.01,
+            }),
+            ..plain
+        };
+        let json = log_options_to_json(&sched);
+        assert_eq!(json["snapshot_schedule"]["points"], 20);
+        assert_eq!(json["snapshot_schedule"]["first"], 0.01);
+        assert_eq!(log_options_from_json(&json), Some(sched));
+        // A schedule without its number of points is no log's.
+        let bad = serde_json::json!({"snapshot_schedule": {"first": 0.01}});
+        assert_eq!(log_options_from_json(&bad), None);
     }
 }
