@@ -47,8 +47,8 @@ pub fn bessel_j0(x: f64) -> f64 {
 /// a gas's weak peak.
 pub const K_STAR_MIN_SIGMA: f64 = std::f64::consts::PI;
 
-/// k* (1/length): the centre of the S(k) shell at k ≥ [`K_STAR_MIN_SIGMA`]/σ_min
-/// with the largest mean over the discs at (`x`, `y`) (any images) in the
+/// k* (1/length): the centre of the S(k) shell at k ≥ [`K_STAR_MIN_SIGMA`]/σ_min,
+/// short of the last (cut by k_max), with the largest mean over the discs at (`x`, `y`) (any images) in the
 /// periodic `sim_box`; `None` for walls or when no such shell holds a vector.
 pub fn first_peak_k(sim_box: &SimBox, sigma_min: f64, x: &[f64], y: &[f64]) -> Option<f64> {
     if !sim_box.boundary.iter().all(|b| b.is_periodic())
@@ -60,7 +60,8 @@ pub fn first_peak_k(sim_box: &SimBox, sigma_min: f64, x: &[f64], y: &[f64]) -> O
     }
     let sk = snapshot_sk(sim_box, sigma_min, x, y);
     let (dk, _, _) = shells(sim_box, sigma_min);
-    (1..sk.sums.len())
+    // The last shell is cut by k_max: few vectors, noisy.
+    (1..sk.sums.len().saturating_sub(1))
         .filter(|&s| sk.counts[s] > 0 && s as f64 * dk >= K_STAR_MIN_SIGMA / sigma_min)
         .max_by(|&a, &b| {
             let (sa, sb) = (
