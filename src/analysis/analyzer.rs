@@ -12,6 +12,7 @@ use carom_core::rates::expected_mean_free_time;
 
 use super::bond_correlation::BondCorrelation;
 use super::bond_order::BondOrder;
+use super::dynamics::Dynamics;
 use super::options::{budget_spacing, AnalysisOptions, DECORRELATION_COLLISIONS};
 use super::pair_correlation::PairCorrelation;
 use super::report::{Report, SpeciesInfo, WindowReport};
@@ -70,6 +71,8 @@ pub struct Analyzer {
     pub(super) bond_correlation: BondCorrelation,
     /// S(k) of one snapshot per time block (periodic boxes only).
     pub(super) structure_factor: Option<StructureFactor>,
+    /// MSD, snapshot VACF and F_s sums over time origins (physics.md §13).
+    pub(super) dynamics: Dynamics,
     /// Transport from the collision log, from the first snapshot analysed on
     /// (physics.md §14); `None` before it, or when the run does not qualify.
     pub(super) transport: Option<Transport>,
@@ -140,6 +143,7 @@ impl Analyzer {
             bond_order: BondOrder::default(),
             bond_correlation: BondCorrelation::new(&run.species, &run.sim_box, t_eq, run.t_end),
             structure_factor: StructureFactor::new(&run.sim_box, sigma_min, t_eq, run.t_end),
+            dynamics: Dynamics::new(&run, t_eq, sigma_min),
             every_default,
             every_from_budget,
             bin_width: (run.t_end - t_eq) / nbins as f64,
@@ -392,7 +396,7 @@ impl Analyzer {
 
     /// A snapshot's per-disc slices must agree in length, and its species indices
     /// must be the run's.
-    fn check_snapshot(
+    pub(super) fn check_snapshot(
         &self,
         t: f64,
         species_of: &[u16],
@@ -519,6 +523,7 @@ impl Analyzer {
             periodic: run.sim_box.boundary.map(|b| b.is_periodic()),
             elastic,
             window: self.window(collision_rate.per_disc),
+            dynamics: self.dynamics.report(collision_rate.per_disc),
             temperature,
             maxwell_boltzmann,
             maxwell_boltzmann_untested,

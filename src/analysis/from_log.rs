@@ -20,7 +20,7 @@ use thiserror::Error;
 
 use super::description::describe;
 use super::stats::StatsError;
-use super::{AnalysisOptions, Analyzer, Report};
+use super::{AnalysisOptions, Analyzer, Report, Unwrapper};
 
 /// Why a log could not be analysed.
 #[derive(Debug, Error)]
@@ -120,6 +120,9 @@ pub fn analyze_log(
         previous_thermo: None,
         vx: Vec::new(),
         vy: Vec::new(),
+        ux: Vec::new(),
+        uy: Vec::new(),
+        unwrapper: Unwrapper::new(),
     };
     for m in early {
         feed.message(m)?;
@@ -134,6 +137,8 @@ pub fn analyze_log(
         };
         feed.message(m)?;
     }
+    let gaps = feed.unwrapper.ambiguous_gaps();
+    feed.analyzer.ambiguous_gaps(gaps);
     Ok((feed.analyzer.finish()?, complete))
 }
 
@@ -145,6 +150,18 @@ struct Feed {
     previous_thermo: Option<(f64, f64, f64, u64)>,
     vx: Vec<f64>,
     vy: Vec<f64>,
+    /// Unwrapped positions of the last snapshot (physics.md §12).
+    ux: Vec<f64>,
+    uy: Vec<f64>,
+    unwrapper: Unwrapper,
+}
+
+/// The components of `v` into `x` and `y`.
+fn components(v: &[DVec2], x: &mut Vec<f64>, y: &mut Vec<f64>) {
+    x.clear();
+    y.clear();
+    x.extend(v.iter().map(|p| p.x));
+    y.extend(v.iter().map(|p| p.y));
 }
 
 impl Feed {
@@ -170,15 +187,12 @@ impl Feed {
                 }
             }
             LogMessage::Snapshot(s) => {
-                self.vx.clear();
-                self.vy.clear();
-                self.vx.extend(s.velocities.iter().map(|v: &DVec2| v.x));
-                self.vy.extend(s.velocities.iter().map(|v: &DVec2| v.y));
+                components(&s.velocities, &mut self.vx, &mut self.vy);
                 a.snapshot(s.time, &s.species, &self.vx, &self.vy)?;
-                self.vx.clear();
-                self.vy.clear();
-                self.vx.extend(s.positions.iter().map(|p: &DVec2| p.x));
-                self.vy.extend(s.positions.iter().map(|p: &DVec2| p.y));
+                components(self.unwrapper.push(&s), &mut self.ux, &mut self.uy);
+                let (u, v) = ([&self.ux[..], &self.uy], [&self.vx[..], &self.vy]);
+                a.motion(s.time, &s.species, u, v)?;
+                components(&s.positions, &mut self.vx, &mut self.vy);
                 a.positions(s.time, &s.species, &self.vx, &self.vy)?;
             }
             LogMessage::Thermo(t) => {

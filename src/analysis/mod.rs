@@ -9,7 +9,9 @@
 //! collision rate and the Enskog check, and for inelastic runs the energy budget
 //! and Haff's law; from the snapshots' positions the pair correlation g_ab(r),
 //! its contact values and the contact theorem, the bond-orientational order ψ6
-//! (Delaunay neighbours), g6(r), and S(k) with the translational order.
+//! (Delaunay neighbours), g6(r), and S(k) with the translational order; from
+//! their unwrapped positions ([`Analyzer::motion`]) the MSD, D, the snapshot VACF
+//! and F_s(k*, τ) (physics.md §13).
 //! [`stats`] holds the statistics (histograms, χ², KS, blocking).
 
 mod analyzer;
@@ -19,16 +21,21 @@ mod cell_list;
 mod collision_rate;
 mod contact;
 mod description;
+mod dynamics;
+mod dynamics_report;
 mod from_log;
 mod helfand;
 mod increment_correlator;
 mod inelastic;
+mod msd;
 mod neighbours;
 mod nufft;
 mod options;
+mod origins;
 mod pair_correlation;
 mod pressure;
 mod report;
+mod self_scattering;
 mod series;
 pub mod stats;
 mod structure_factor;
@@ -51,15 +58,20 @@ pub use contact::{
     ContactTheoremReport, ContactValue, PairCorrelationReport, PairReport, CONTACT_FIT_SIGMA,
 };
 pub use description::RunDescription;
+pub use dynamics::SEGMENTS as DYNAMICS_SEGMENTS;
+pub use dynamics_report::{DiffusionFit, DynamicsReport, SpeciesDynamics};
 pub use from_log::{analyze_log, AnalysisError, ReadObserver};
+pub use msd::D_WINDOW_COLLISIONS;
 pub use neighbours::GHOST_SPACINGS;
 pub use options::{AnalysisOptions, CORRELATED_SPACING, DECORRELATION_COLLISIONS, MAX_VELOCITIES};
+pub use origins::{MAX_DISC_ORIGINS, ORIGINS_PER_LEVEL};
 pub use pair_correlation::{BIN_WIDTH_SIGMA, BLOCKS as PAIR_CORRELATION_BLOCKS, R_MAX_SIGMA};
 pub use report::{
     ChiSquareReport, CollisionRateReport, DriftReport, EnergyBudget, EnskogReport, HaffReport,
     HistogramReport, InelasticReport, KsReport, PressureReport, Report, SonineReport, SpeciesInfo,
     SpeciesMb, SpeciesUntested, TemperatureReport, WindowReport,
 };
+pub use self_scattering::bessel_j0;
 pub use series::DRIFT_STD_ERRORS;
 pub use structure_factor::{StructureFactorReport, SK_K_MAX_SIGMA, SK_MAX_MODES, SK_SNAPSHOTS};
 pub use transport::{TRANSPORT_SEGMENTS, TRANSPORT_WINDOW};

@@ -8,6 +8,7 @@ use serde::Serialize;
 use super::bond_correlation::BondCorrelationReport;
 use super::bond_order::BondOrderReport;
 use super::contact::PairCorrelationReport;
+use super::dynamics_report::DynamicsReport;
 use super::stats::{Histogram, KsTest};
 use super::structure_factor::StructureFactorReport;
 use super::transport_report::TransportReport;
@@ -59,6 +60,9 @@ pub struct Report {
     /// S(k) and the translational order (physics.md §11); `null` unless the box
     /// is periodic and there are snapshots.
     pub structure_factor: Option<StructureFactorReport>,
+    /// MSD and D per species, the VACF at the snapshots and F_s(k*, τ) with τ_α
+    /// (physics.md §13); `null` without time origins after the equilibration time.
+    pub dynamics: Option<DynamicsReport>,
     /// D, η and λ from the collision log, with the exact VACF (physics.md §14);
     /// `null` unless the run is elastic and periodic and logs every collision.
     pub transport: Option<TransportReport>,

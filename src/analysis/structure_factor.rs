@@ -39,7 +39,7 @@ pub struct SnapshotSk {
 /// k-shells of the box: width dk, count, and the largest |k|. Shell s holds
 /// the vectors with round(|k|/dk) = s, so that the vectors along the axes lie
 /// at the centres of theirs, not on a boundary.
-fn shells(sim_box: &SimBox, sigma_min: f64) -> (f64, usize, f64) {
+pub(super) fn shells(sim_box: &SimBox, sigma_min: f64) -> (f64, usize, f64) {
     let tp = 2.0 * std::f64::consts::PI;
     let dk = tp / sim_box.size.x.min(sim_box.size.y);
     let k_max = (SK_K_MAX_SIGMA / sigma_min)

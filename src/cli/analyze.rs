@@ -12,6 +12,9 @@ use carom::analysis::{
 };
 use carom::io::ReadProgress;
 
+#[path = "analyze_dynamics.rs"]
+mod dynamics;
+
 use super::reading::ReadDisplay;
 use super::{AnalyzeArgs, CliError, Num};
 
@@ -296,6 +299,7 @@ pub fn text(r: &Report, args: &AnalyzeArgs, complete: bool) -> String {
         }
     }
     structure_text(r, &mut s);
+    dynamics::dynamics_text(r, &mut s);
     if let Some(t) = &r.transport {
         transport::transport_text(t, &mut s);
     }

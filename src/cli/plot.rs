@@ -7,9 +7,10 @@
 //! time since the first record, with Haff's law), `pressure` (Z against time with
 //! the mean and one standard error, and the halves' means when it drifts),
 //! `pair_correlation` (g_ab(r) per species pair with its contact value),
-//! `bond_order`, `g6` and `structure_factor` ([`structure`]), `vacf_exact`,
-//! `msd_exact`, `helfand_viscosity` and `helfand_conductivity` ([`transport`]).
-//! Axes are in the run's units.
+//! `bond_order`, `g6` and `structure_factor` ([`structure`]), `msd`, `vacf` and
+//! `self_scattering` ([`dynamics`]), `vacf_exact`, `msd_exact`,
+//! `helfand_viscosity` and `helfand_conductivity` ([`transport`]). Axes are in
+//! the run's units.
 
 use std::ops::Range;
 use std::path::Path;
@@ -26,6 +27,9 @@ use super::CliError;
 mod structure;
 #[path = "plot_transport.rs"]
 mod transport;
+
+#[path = "plot_dynamics.rs"]
+mod dynamics;
 
 const SIZE: (u32, u32) = (900, 600);
 
@@ -143,6 +147,15 @@ pub fn write_all(report: &Report, dir: &Path) -> Result<usize, CliError> {
             both!(dir, "helfand_conductivity", |root| transport::draw_helfand(
                 root, l, lambda, cond, t.window
             ));
+            n += 1;
+        }
+    }
+    if let Some(d) = report.dynamics.as_ref().filter(|d| !d.species.is_empty()) {
+        both!(dir, "msd", |root| dynamics::draw_msd(root, d));
+        both!(dir, "vacf", |root| dynamics::draw_vacf(root, d));
+        n += 2;
+        if d.k_star.is_some() {
+            both!(dir, "self_scattering", |root| dynamics::draw_fs(root, d));
             n += 1;
         }
     }

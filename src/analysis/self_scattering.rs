@@ -1,0 +1,170 @@
+//! The self intermediate scattering function (physics.md §13): in 2D the
+//! isotropic average of cos(k·Δu) over the directions of k is the Bessel function
+//! J₀(k|Δu|), so
+//!
+//!     F_s(k, τ) = ⟨J₀(k |u_i(t₀ + τ) − u_i(t₀)|)⟩,
+//!
+//! evaluated at k*, the first peak of S(k) of the first origin (periodic boxes;
+//! [`super::structure_factor`]'s shells on the box's wave vectors, searched from
+//! π/σ_min up). The α-time
+//! τ_α solves F_s(k*, τ_α) = 1/e, linearly interpolated in ln τ between the
+//! bracketing lags. J₀ is Abramowitz & Stegun 9.4.1 (|x| ≤ 3, |error| ≤ 5·10⁻⁸)
+//! and 9.4.3 (|x| > 3, modulus and phase to 1.6·10⁻⁸ and 7·10⁻⁸, so |error| ≤
+//! 10⁻⁷ x^(−1/2)): far below the statistical errors of F_s.
+
+use carom_core::SimBox;
+
+use super::structure_factor::{shells, snapshot_sk};
+
+/// The Bessel function J₀(x) to about 10⁻⁷ (Abramowitz & Stegun 9.4.1, 9.4.3).
+pub fn bessel_j0(x: f64) -> f64 {
+    let ax = x.abs();
+    if ax <= 3.0 {
+        let y = (ax / 3.0).powi(2);
+        1.0 + y
+            * (-2.249_999_7
+                + y * (1.265_620_8
+                    + y * (-0.316_386_6
+                        + y * (0.044_447_9 + y * (-0.003_944_4 + y * 0.000_210_0)))))
+    } else {
+        let y = 3.0 / ax;
+        let f0 = 0.797_884_56
+            + y * (-0.000_000_77
+                + y * (-0.005_527_40
+                    + y * (-0.000_095_12
+                        + y * (0.001_372_37 + y * (-0.000_728_05 + y * 0.000_144_76)))));
+        let theta = ax - std::f64::consts::FRAC_PI_4
+            + y * (-0.041_663_97
+                + y * (-0.000_039_54
+                    + y * (0.002_625_73
+                        + y * (-0.000_541_25 + y * (-0.000_293_33 + y * 0.000_135_58)))));
+        f0 * theta.cos() / ax.sqrt()
+    }
+}
+
+/// Shells below this many 1/σ_min are not searched for k*: a liquid's first
+/// peak lies near 2π/σ, and the few vectors of a small-k shell can scatter above
+/// a gas's weak peak.
+pub const K_STAR_MIN_SIGMA: f64 = std::f64::consts::PI;
+
+/// k* (1/length): the centre of the S(k) shell at k ≥ [`K_STAR_MIN_SIGMA`]/σ_min,
+/// short of the last (cut by k_max), with the largest mean over the discs at (`x`, `y`) (any images) in the
+/// periodic `sim_box`; `None` for walls or when no such shell holds a vector.
+pub fn first_peak_k(sim_box: &SimBox, sigma_min: f64, x: &[f64], y: &[f64]) -> Option<f64> {
+    if !sim_box.boundary.iter().all(|b| b.is_periodic())
+        || x.is_empty()
+        || sigma_min.is_nan()
+        || sigma_min <= 0.0
+    {
+        return None;
+    }
+    let sk = snapshot_sk(sim_box, sigma_min, x, y);
+    let (dk, _, _) = shells(sim_box, sigma_min);
+    // The last shell is cut by k_max: few vectors, noisy.
+    (1..sk.sums.len().saturating_sub(1))
+        .filter(|&s| sk.counts[s] > 0 && s as f64 * dk >= K_STAR_MIN_SIGMA / sigma_min)
+        .max_by(|&a, &b| {
+            let (sa, sb) = (
+                sk.sums[a] / sk.counts[a] as f64,
+                sk.sums[b] / sk.counts[b] as f64,
+            );
+            sa.total_cmp(&sb)
+        })
+        .map(|s| s as f64 * dk)
+}
+
+/// τ_α: the first lag where `fs` falls to 1/e, linear in ln τ between the two
+/// bracketing positive lags (`lag` increasing); `None` if it never does, or does
+/// already at the first positive lag (τ_α shorter than the lags, unbracketed).
+pub fn tau_alpha(lag: &[f64], fs: &[f64]) -> Option<f64> {
+    let target = (-1.0f64).exp();
+    let pts: Vec<(f64, f64)> = lag
+        .iter()
+        .zip(fs)
+        .filter(|(t, f)| **t > 0.0 && f.is_finite())
+        .map(|(&t, &f)| (t, f))
+        .collect();
+    if pts.first().is_some_and(|p| p.1 <= target) {
+        return None;
+    }
+    pts.windows(2).find_map(|w| {
+        let ((t0, f0), (t1, f1)) = (w[0], w[1]);
+        (f0 > target && f1 <= target).then(|| {
+            let w = (f0 - target) / (f0 - f1);
+            (t0.ln() + w * (t1.ln() - t0.ln())).exp()
+        })
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use std::f64::consts::PI;
+
+    /// J₀(x) = (1/π) ∫₀^π cos(x sin θ) dθ, by the midpoint rule on 2000 points
+    /// (exponentially accurate for this smooth periodic integrand): an
+    /// independent computation.
+    fn j0_integral(x: f64) -> f64 {
+        let n = 2000;
+        (0..n)
+            .map(|k| (x * (PI * (k as f64 + 0.5) / n as f64).sin()).cos())
+            .sum::<f64>()
+            / n as f64
+    }
+
+    #[test]
+    fn j0_matches_its_integral_tables_series_and_asymptote() {
+        // J₀(0) = 1; the first zero j₀,₁ = 2.404825557695773.
+        assert!((bessel_j0(0.0) - 1.0).abs() < 1e-12);
+        assert!(bessel_j0(2.404825557695773).abs() < 1e-7);
+        // Table values (A&S table 9.1): J₀(1) = 0.7651976866, J₀(5) =
+        // −0.1775967713, J₀(10) = −0.2459357645.
+        for (x, want) in [
+            (1.0, 0.765_197_686_6),
+            (5.0, -0.177_596_771_3),
+            (10.0, -0.245_935_764_5),
+        ] {
+            assert!((bessel_j0(x) - want).abs() < 1e-7, "J0({x})");
+        }
+        // The series 1 − x²/4 + x⁴/64 − x⁶/2304 at x = 0.1 (next term 4·10⁻¹⁴).
+        let x: f64 = 0.1;
+        let series = 1.0 - x * x / 4.0 + x.powi(4) / 64.0 - x.powi(6) / 2304.0;
+        assert!((bessel_j0(x) - series).abs() < 1e-7);
+        // Asymptote √(2/(πx)) cos(x − π/4), error ≈ (1/8x)·√(2/(πx)) ≤ 10⁻⁴ at 1000.
+        let x = 1000.0;
+        let asym = (2.0 / (PI * x)).sqrt() * (x - PI / 4.0).cos();
+        assert!((bessel_j0(x) - asym).abs() < 2e-5 * (2.0 / (PI * x)).sqrt() * 10.0);
+        // Everywhere on [−40, 40] (both branches, the switch at 3, even).
+        for k in 0..=800 {
+            let x = -40.0 + 0.1 * k as f64;
+            let (got, want) = (bessel_j0(x), j0_integral(x));
+            assert!((got - want).abs() < 1.2e-7, "J0({x}) = {got} vs {want}");
+        }
+    }
+
+    /// F_s falling from 1 through 0.5 at τ = 1 to 0.25 at τ = 4: 1/e is crossed
+    /// between them at ln τ = ln 4·(0.5 − 1/e)/(0.5 − 0.25); lag 0 is skipped;
+    /// no crossing, or a first positive lag already below, gives None.
+    #[test]
+    fn tau_alpha_interpolates_in_ln_tau() {
+        let e = (-1.0f64).exp();
+        let got = tau_alpha(&[0.0, 1.0, 4.0, 9.0], &[1.0, 0.5, 0.25, 0.1]).unwrap();
+        let want = (4f64.ln() * (0.5 - e) / 0.25).exp();
+        assert!((got - want).abs() < 1e-12, "{got} vs {want}");
+        assert_eq!(tau_alpha(&[0.0, 1.0, 2.0], &[1.0, 0.9, 0.5]), None);
+        assert_eq!(tau_alpha(&[0.0, 2.0, 3.0], &[1.0, 0.2, 0.1]), None);
+    }
+
+    /// A triangular lattice of spacing 1 has its first Bragg shell at 4π/√3;
+    /// walls give no k*.
+    #[test]
+    fn the_first_peak_of_a_lattice_is_its_bragg_shell() {
+        let (sb, x, y) = super::super::test_lattice::triangular(16, 18, 1.0);
+        let k = first_peak_k(&sb, 1.0, &x, &y).unwrap();
+        let (dk, _, _) = shells(&sb, 1.0);
+        let g0 = 4.0 * PI / 3f64.sqrt();
+        assert!((k - g0).abs() <= 0.5 * dk, "{k} vs {g0}");
+        let walled = SimBox::walled(10.0, 10.0, 1.0);
+        assert_eq!(first_peak_k(&walled, 1.0, &x, &y), None);
+    }
+}
