@@ -350,7 +350,10 @@ impl Analyzer {
     ) -> Result<(), StatsError> {
         self.check_snapshot(t, species_of, [x, y], ["x", "y"])?;
         let span = self.run.t_end - self.run.t_start;
-        if t < self.t_eq - 1e-12 * self.t_eq.abs().max(span) || !self.block_start(t) {
+        if t < self.t_eq - 1e-12 * self.t_eq.abs().max(span)
+            || !self.block_start(t)
+            || !self.opts.structure
+        {
             return Ok(());
         }
         let t = t.max(self.t_eq);

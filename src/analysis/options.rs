@@ -44,6 +44,9 @@ pub struct AnalysisOptions {
     /// Time bins for the pressure and collision-rate series (a power of two suits
     /// the blocking analysis).
     pub time_bins: usize,
+    /// Measure the structure (g(r), ψ6, g6, S(k)) from the snapshots' positions; `false` skips it, for a quick pass over the
+    /// collisions and velocities (`carom analyze --no-structure`).
+    pub structure: bool,
 }
 
 impl Default for AnalysisOptions {
@@ -54,6 +57,7 @@ impl Default for AnalysisOptions {
             max_velocities: MAX_VELOCITIES,
             speed_bins: 40,
             time_bins: 1024,
+            structure: true,
         }
     }
 }

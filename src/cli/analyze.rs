@@ -41,6 +41,7 @@ pub fn read_report(args: &AnalyzeArgs) -> Result<(Report, bool), CliError> {
         equilibrate: args.equilibrate,
         every: args.every,
         speed_bins: args.bins as usize,
+        structure: !args.no_structure,
         ..AnalysisOptions::default()
     };
     let report = analyze_log(&args.file, opts, &mut display);

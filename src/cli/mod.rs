@@ -145,6 +145,10 @@ pub struct AnalyzeArgs {
     #[arg(long, value_name = "N", default_value_t = 40,
           value_parser = clap::value_parser!(u32).range(4..))]
     pub bins: u32,
+    /// Skip the structure (g(r), ψ6, g6, S(k)): a quicker pass over the
+    /// collisions, velocities, dynamics and transport.
+    #[arg(long)]
+    pub no_structure: bool,
     /// No progress display.
     #[arg(short, long)]
     pub quiet: bool,
