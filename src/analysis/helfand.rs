@@ -47,13 +47,12 @@ pub(super) struct Helfand {
 }
 
 impl Helfand {
-    /// Moments from time `t0` (all zero there), for discs of `masses` with
+    /// Moments from time `t0` (all zero there), for discs of masses and
     /// centre-of-mass-frame velocities `w`; samples `dt` apart, `levels` levels,
     /// `segments` segments of `segment_length`.
     pub(super) fn new(
         t0: f64,
-        masses: &[f64],
-        w: impl Iterator<Item = DVec2>,
+        w: impl Iterator<Item = (f64, DVec2)>,
         dt: f64,
         levels: usize,
         (segments, segment_length): (usize, f64),
@@ -68,7 +67,7 @@ impl Helfand {
             segment_length,
             correlators: vec![IncrementCorrelator::new(dt, levels, segments); MOMENTS],
         };
-        h.reset_flux(masses, w);
+        h.reset_flux(w);
         for c in &mut h.correlators {
             c.push(0.0, 0);
         }
@@ -77,9 +76,9 @@ impl Helfand {
 
     /// Recomputes the kinetic fluxes from scratch (at a snapshot, so that rounding
     /// of the running sums does not accumulate).
-    pub(super) fn reset_flux(&mut self, masses: &[f64], w: impl Iterator<Item = DVec2>) {
+    pub(super) fn reset_flux(&mut self, w: impl Iterator<Item = (f64, DVec2)>) {
         self.flux = [0.0; MOMENTS];
-        for (&m, w) in masses.iter().zip(w) {
+        for (m, w) in w {
             for (f, k) in self.flux.iter_mut().zip(kinetic(m, w)) {
                 *f += k;
             }
@@ -151,7 +150,8 @@ mod tests {
     fn free_flight_grows_at_the_kinetic_flux() {
         let masses = [2.0, 0.5];
         let w = [DVec2::new(1.0, -3.0), DVec2::new(2.0, 2.0)];
-        let mut h = Helfand::new(1.0, &masses, w.into_iter(), 0.25, 2, (1, 10.0));
+        let w = masses.into_iter().zip(w);
+        let mut h = Helfand::new(1.0, w, 0.25, 2, (1, 10.0));
         h.advance(1.5);
         let flux = [-4.0, -8.0, 14.0, -26.0];
         for (k, f) in flux.into_iter().enumerate() {
@@ -171,7 +171,7 @@ mod tests {
     fn a_collision_adds_the_collisional_transfer() {
         let m = 1.5;
         let (wi, wj) = (DVec2::new(2.0, 0.0), DVec2::new(-1.0, 0.0));
-        let mut h = Helfand::new(0.0, &[m, m], [wi, wj].into_iter(), 1.0, 1, (1, 1.0));
+        let mut h = Helfand::new(0.0, [(m, wi), (m, wj)].into_iter(), 1.0, 1, (1, 1.0));
         let flux_before = h.flux;
         let r = DVec2::new(-1.2, 0.0);
         h.collide((m, m), r, (wi, wj), (wj, wi));

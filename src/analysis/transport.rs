@@ -8,7 +8,7 @@
 //! time segments, next to Enskog's values and the mode-coupling tail.
 //!
 //! Only elastic, fully periodic runs that log every collision qualify; the lags
-//! are set from the mean collision time t_c: Helfand samples every t_c/100, the
+//! are set from the mean collision time t_c: Helfand samples every t_c/20, the
 //! VACF from 0.01 t_c to 1000 t_c (or half a segment), window [10 t_c, 100 t_c].
 
 use carom_core::DVec2;
@@ -20,13 +20,18 @@ use super::transport_report::{
     EnskogTransport, Estimate, HelfandReport, SpeciesTransport, TransportReport,
 };
 use super::transport_theory::{chi_from_z, enskog, tail_amplitude};
-use super::vacf_exact::{ExactVacf, VacfSums};
+use super::vacf_exact::{ExactVacf, Replayed, VacfSums};
 use super::RunDescription;
 
 /// Time segments for the standard errors.
 pub const TRANSPORT_SEGMENTS: usize = 10;
 /// Live VACF origins at most.
 const ORIGINS: usize = 32;
+/// Live VACF disc-origins aimed at (fewer origins for larger N, at least 2): each
+/// reading costs N, and with N large one origin already averages over many discs.
+const ORIGIN_DISCS: usize = 65_536;
+/// Helfand samples per mean collision time.
+const SAMPLES_PER_COLLISION_TIME: f64 = 20.0;
 /// Bytes of VACF origins at most (each keeps v and X of every disc: 32 bytes).
 const ORIGIN_BYTES: usize = 1 << 29;
 /// The lag window, in collision times.
@@ -35,13 +40,8 @@ pub const TRANSPORT_WINDOW: [f64; 2] = [10.0, 100.0];
 /// The replayed run and its accumulators.
 #[derive(Debug, Clone)]
 pub(super) struct Transport {
-    mass: Vec<f64>,
-    radius: Vec<f64>,
+    discs: Vec<Replayed>,
     species: Vec<u16>,
-    v: Vec<DVec2>,
-    /// Displacement since the start at `t_last` of each disc.
-    x: Vec<DVec2>,
-    t_last: Vec<f64>,
     v_cm: DVec2,
     kt: f64,
     t_start: f64,
@@ -83,7 +83,7 @@ impl Transport {
             .iter()
             .map(|&s| run.species[s as usize].mass)
             .collect();
-        let radius = species_of
+        let radius: Vec<f64> = species_of
             .iter()
             .map(|&s| run.species[s as usize].radius)
             .collect();
@@ -97,12 +97,16 @@ impl Transport {
             .sum();
         let segment = (run.t_end - t) / TRANSPORT_SEGMENTS as f64;
         let segments = (TRANSPORT_SEGMENTS, segment);
-        let dt = t_c / 100.0;
+        let dt = t_c / SAMPLES_PER_COLLISION_TIME;
         let levels =
             ((segment / 4.0 / (RING as f64 * dt)).log2().ceil().max(0.0) as usize + 1).min(48);
-        let helfand = Helfand::new(t, &mass, v.iter().map(|&v| v - v_cm), dt, levels, segments);
+        let w = mass.iter().zip(&v).map(|(&m, &v)| (m, v - v_cm));
+        let helfand = Helfand::new(t, w, dt, levels, segments);
         let tau_max = (1000.0 * t_c).min(segment / 2.0);
-        let origins = ORIGINS.min(ORIGIN_BYTES / (32 * n)).max(1);
+        let origins = (ORIGIN_DISCS / n)
+            .clamp(2, ORIGINS)
+            .min(ORIGIN_BYTES / (32 * n))
+            .max(1);
         let vacf = ExactVacf::new(
             t,
             (0.01 * t_c, tau_max),
@@ -110,13 +114,18 @@ impl Transport {
             run.species.len(),
             segments,
         );
+        let discs = (0..n)
+            .map(|i| Replayed {
+                v: v[i],
+                x: DVec2::ZERO,
+                t,
+                mass: mass[i],
+                radius: radius[i],
+            })
+            .collect();
         Some(Transport {
-            mass,
-            radius,
+            discs,
             species: species_of.to_vec(),
-            x: vec![DVec2::ZERO; n],
-            t_last: vec![t; n],
-            v,
             v_cm,
             kt: kinetic / (n - 1) as f64,
             t_start: t,
@@ -135,8 +144,8 @@ impl Transport {
     fn advance(&mut self, t: f64) {
         self.helfand.advance(t);
         if self.vacf.next_event() <= t {
-            let state = (&self.v[..], &self.x[..], &self.t_last[..]);
-            self.vacf.advance(t, self.origin_stop, state, &self.species);
+            self.vacf
+                .advance(t, self.origin_stop, &self.discs, &self.species);
         }
         self.t_now = t;
     }
@@ -145,18 +154,20 @@ impl Transport {
     /// from i to j and the velocities after.
     pub(super) fn pair(&mut self, t: f64, (i, j): (usize, usize), n: DVec2, after: [DVec2; 2]) {
         self.advance(t);
-        let r = -(self.radius[i] + self.radius[j]) * n;
+        let (a, b) = (self.discs[i], self.discs[j]);
+        let r = -(a.radius + b.radius) * n;
         let c = self.v_cm;
         self.helfand.collide(
-            (self.mass[i], self.mass[j]),
+            (a.mass, b.mass),
             r,
-            (self.v[i] - c, after[0] - c),
-            (self.v[j] - c, after[1] - c),
+            (a.v - c, after[0] - c),
+            (b.v - c, after[1] - c),
         );
         for (k, v) in [(i, after[0]), (j, after[1])] {
-            self.x[k] += self.v[k] * (t - self.t_last[k]);
-            self.t_last[k] = t;
-            self.v[k] = v;
+            let d = &mut self.discs[k];
+            d.x = d.x_at(t);
+            d.t = t;
+            d.v = v;
         }
         self.pairs += 1;
     }
@@ -171,18 +182,15 @@ impl Transport {
     pub(super) fn check(&mut self, t: f64, (vx, vy): (&[f64], &[f64])) {
         self.advance(t);
         self.checked += 1;
-        let same = vx.len() == self.v.len()
-            && self
-                .v
-                .iter()
-                .zip(vx.iter().zip(vy))
-                .all(|(v, (&x, &y))| v.x == x && v.y == y);
+        let same = vx.len() == self.discs.len()
+            && (self.discs.iter().zip(vx.iter().zip(vy)))
+                .all(|(d, (&x, &y))| d.v.x == x && d.v.y == y);
         if !same {
             self.mismatched += 1;
         }
         let c = self.v_cm;
         self.helfand
-            .reset_flux(&self.mass, self.v.iter().map(|&v| v - c));
+            .reset_flux(self.discs.iter().map(|d| (d.mass, d.v - c)));
     }
 
     /// The report; `z` is the measured compressibility factor (for Enskog's χ),
@@ -194,7 +202,7 @@ impl Transport {
         phi: f64,
     ) -> Option<TransportReport> {
         self.advance(t_end);
-        let n = self.v.len();
+        let n = self.discs.len();
         let elapsed = self.t_now - self.t_start;
         if self.pairs == 0 || elapsed <= 0.0 {
             return None;
@@ -212,7 +220,7 @@ impl Transport {
             None
         };
         let density = n as f64 / self.area;
-        let m = self.mass[0];
+        let m = self.discs[0].mass;
         let species = (0..counts.len())
             .filter(|&s| counts[s] > 0)
             .map(|s| {
@@ -232,7 +240,7 @@ impl Transport {
         let enskog = match (one_species, z) {
             (true, Some(z)) if phi > 0.0 => {
                 let chi = chi_from_z(z, phi);
-                let e = enskog(2.0 * self.radius[0], m, density, self.kt, phi, chi);
+                let e = enskog(2.0 * self.discs[0].radius, m, density, self.kt, phi, chi);
                 Some(EnskogTransport {
                     chi,
                     diffusion: e.d,
@@ -488,6 +496,6 @@ mod tests {
         t.check(3.0, (&[1.0, 3.0], &[1.0, -1.5]));
         assert_eq!((t.checked, t.mismatched), (2, 1));
         // Disc 0 flew (3, 1) for 1, then (1, 1) for 2: displacement (5, 3) at 3.
-        assert_eq!(t.x[0] + t.v[0] * (3.0 - t.t_last[0]), DVec2::new(5.0, 3.0));
+        assert_eq!(t.discs[0].x_at(3.0), DVec2::new(5.0, 3.0));
     }
 }

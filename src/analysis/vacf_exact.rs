@@ -13,6 +13,25 @@
 
 use carom_core::DVec2;
 
+/// One disc of the replayed run: velocity, displacement since the start at its
+/// last collision `t`, mass and radius, side by side (one cache line: the
+/// collisions visit discs at random).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(super) struct Replayed {
+    pub(super) v: DVec2,
+    pub(super) x: DVec2,
+    pub(super) t: f64,
+    pub(super) mass: f64,
+    pub(super) radius: f64,
+}
+
+impl Replayed {
+    /// The displacement at time `now`.
+    pub(super) fn x_at(&self, now: f64) -> DVec2 {
+        self.x + self.v * (now - self.t)
+    }
+}
+
 /// Lag points per decade.
 pub(super) const PER_DECADE: usize = 10;
 
@@ -102,32 +121,20 @@ impl ExactVacf {
     }
 
     /// Handles every reading due at or before `t` (before a collision at `t`),
-    /// with the run's state: velocities `v`, displacements `x` at times `t_last`,
-    /// species of each disc. Origins start only up to `t_stop`; each lives
+    /// with the run's state `discs` and the species of each disc. Origins start only up to `t_stop`; each lives
     /// τ_max, so at most P + 1 are alive.
-    pub(super) fn advance(
-        &mut self,
-        t: f64,
-        t_stop: f64,
-        (v, x, t_last): (&[DVec2], &[DVec2], &[f64]),
-        species: &[u16],
-    ) {
+    pub(super) fn advance(&mut self, t: f64, t_stop: f64, discs: &[Replayed], species: &[u16]) {
         let lags = &self.lags;
         while self.next <= t {
             let now = self.next;
             let Some(k) = self.origins.iter().position(|o| o.t0 + lags[o.next] <= now) else {
                 // A new origin (readings due at the same time came first).
-                let x0 = x
-                    .iter()
-                    .zip(v)
-                    .zip(t_last)
-                    .map(|((&x, &v), &tl)| x + v * (now - tl))
-                    .collect();
+                let x0 = discs.iter().map(|d| d.x_at(now)).collect();
                 self.origins.push(Origin {
                     t0: now,
                     segment: ((now - self.t_first) / self.segment_length) as usize,
                     next: 0,
-                    v0: v.to_vec(),
+                    v0: discs.iter().map(|d| d.v).collect(),
                     x0,
                 });
                 self.started += 1;
@@ -141,11 +148,11 @@ impl ExactVacf {
             let o = &mut self.origins[k];
             let q = o.next;
             let segment = o.segment.min(self.sums[q][0].len() - 1);
-            for i in 0..v.len() {
+            for (i, d) in discs.iter().enumerate() {
                 let s = &mut self.sums[q][species[i] as usize][segment];
-                let dx = x[i] + v[i] * (now - t_last[i]) - o.x0[i];
+                let dx = d.x_at(now) - o.x0[i];
                 s.count += 1.0;
-                s.c += o.v0[i].dot(v[i]);
+                s.c += o.v0[i].dot(d.v);
                 s.integral += o.v0[i].dot(dx);
                 s.msd += dx.length_squared();
             }
@@ -162,6 +169,16 @@ impl ExactVacf {
 mod tests {
     use super::*;
 
+    fn disc(v: DVec2, x: DVec2, t: f64) -> Replayed {
+        Replayed {
+            v,
+            x,
+            t,
+            mass: 1.0,
+            radius: 0.5,
+        }
+    }
+
     /// Two discs of two species flying freely with constant velocities: from
     /// every origin C(τ) = |v|², ∫₀^τ C = |v|² τ and MSD = |v|² τ², exactly at
     /// each lag. Origins every τ_max/P = 2.5 from 0 up to t_stop = 12: five of
@@ -171,10 +188,11 @@ mod tests {
         let v = [DVec2::new(1.0, 2.0), DVec2::new(-3.0, 0.5)];
         let x = [DVec2::new(0.3, -0.2), DVec2::new(4.0, 1.0)];
         let t_last = [0.0, -1.0];
+        let discs: Vec<Replayed> = (0..2).map(|i| disc(v[i], x[i], t_last[i])).collect();
         let mut c = ExactVacf::new(0.0, (0.1, 10.0), 4, 2, (1, 100.0));
         assert_eq!(c.lags.len(), 1 + 21);
         assert!((c.lags[21] - 10.0).abs() < 1e-12);
-        c.advance(25.0, 12.0, (&v, &x, &t_last), &[0, 1]);
+        c.advance(25.0, 12.0, &discs, &[0, 1]);
         assert_eq!(c.started, 5);
         for (q, &tau) in c.lags.iter().enumerate() {
             for (s, v) in v.iter().enumerate() {
@@ -200,14 +218,10 @@ mod tests {
     #[test]
     fn a_turn_between_readings() {
         let mut c = ExactVacf::new(0.0, (0.1, 1.0), 1, 1, (1, 10.0));
-        let mut v = [DVec2::new(1.0, 0.0)];
-        let mut x = [DVec2::ZERO];
-        let mut t_last = [0.0];
-        c.advance(0.5, 0.0, (&v, &x, &t_last), &[0]);
-        x[0] += v[0] * 0.5;
-        t_last[0] = 0.5;
-        v[0] = DVec2::new(0.0, 2.0);
-        c.advance(2.0, 0.0, (&v, &x, &t_last), &[0]);
+        let mut d = [disc(DVec2::new(1.0, 0.0), DVec2::ZERO, 0.0)];
+        c.advance(0.5, 0.0, &d, &[0]);
+        d[0] = disc(DVec2::new(0.0, 2.0), d[0].x_at(0.5), 0.5);
+        c.advance(2.0, 0.0, &d, &[0]);
         for (q, &tau) in c.lags.iter().enumerate() {
             let s = c.sums[q][0][0];
             assert_eq!(s.count, 1.0, "{q}");
