@@ -65,9 +65,9 @@ pub fn analyze_log(
     }
     let complete = info.end == LogEnd::Complete;
     // Decompression on a second core, ahead of the analysis on this one.
-    let mut reader = LogReader::open(path)?.read_ahead();
+    let mut reader = LogReader::open(path)?;
     observer.pass("reading");
-    let mut shown = 0;
+    let shown = 0;
     // Messages read before the analysis could start (only when the run is learnt
     // from the first snapshot).
     let mut early: Vec<LogMessage> = Vec::new();
@@ -127,20 +127,46 @@ pub fn analyze_log(
     for m in early {
         feed.message(m)?;
     }
-    loop {
-        if let Some(p) = reader.progress_since(&mut shown) {
+    // Reading, decompressing and decoding on other threads, the analysis here.
+    // A truncated tail ends the stream (the scan already warned).
+    for item in decode_ahead(reader, shown) {
+        let (m, progress) = item?;
+        if let Some(p) = progress {
             observer.progress(p);
         }
-        // A truncated tail ends the stream (the scan already warned).
-        let Some(m) = reader.next_message()? else {
-            break;
-        };
         feed.message(m)?;
     }
     let gaps = feed.unwrapper.ambiguous_gaps();
     feed.analyzer.ambiguous_gaps(gaps);
     Ok((feed.analyzer.finish()?, complete))
 }
+
+/// Messages read and decoded on a thread of their own (the records themselves
+/// read ahead on another), handed over in order with the reading progress when
+/// it changed; the first error ends the stream. At most [`AHEAD`] messages wait.
+fn decode_ahead(
+    mut reader: LogReader,
+    mut shown: u64,
+) -> impl Iterator<Item = Result<(LogMessage, Option<ReadProgress>), ReadError>> {
+    let (tx, rx) = std::sync::mpsc::sync_channel(AHEAD);
+    std::thread::spawn(move || loop {
+        let progress = reader.progress_since(&mut shown);
+        let item = match reader.next_message() {
+            Ok(Some(m)) => Ok((m, progress)),
+            Ok(None) => return,
+            Err(e) => Err(e),
+        };
+        let failed = item.is_err();
+        // A closed channel: the analysis stopped; so does the reading.
+        if tx.send(item).is_err() || failed {
+            return;
+        }
+    });
+    rx.into_iter()
+}
+
+/// Decoded messages waiting for the analysis at most.
+const AHEAD: usize = 8;
 
 /// An [`Analyzer`] fed message by message.
 struct Feed {
