@@ -28,7 +28,6 @@ mod indexed;
 mod iter;
 mod replay;
 mod scan;
-mod source;
 
 pub use error::{LogEnd, ReadError};
 pub use indexed::scan_indexed;
@@ -41,12 +40,12 @@ use crate::log::format::{
     COMPACT_COLLISIONS_CHANNEL, METADATA_RUN, METADATA_SUMMARY, TOPICS,
 };
 use mcap::records::Record;
-use mcap::sans_io::{LinearReader, LinearReaderOptions};
+use mcap::sans_io::{LinearReadEvent, LinearReader, LinearReaderOptions};
 use replay::Replay;
-use source::{Inline, ReadAhead, RecordSource};
 use std::collections::{BTreeMap, HashMap};
 use std::fs::File;
 use std::io::{BufReader, Read, Seek, SeekFrom};
+use std::panic::AssertUnwindSafe;
 use std::path::Path;
 
 /// Reading options.
@@ -88,6 +87,8 @@ enum Found {
 
 /// Message header length inside a Message record (channel, sequence, two times).
 const MESSAGE_HEADER_LEN: usize = 2 + 4 + 8 + 8;
+/// Most bytes handed to the MCAP reader per read call.
+const READ_STEP: usize = 1 << 20;
 
 /// The longest record (bytes, compressed or not) accepted in a file of `len`
 /// bytes: a length read from a damaged file must not ask for an absurd allocation,
@@ -98,8 +99,9 @@ fn record_length_limit(len: u64) -> usize {
 
 /// A streaming reader of one carom log.
 pub struct LogReader<R: Read + Seek = BufReader<File>> {
-    records: RecordSource<R>,
+    source: R,
     label: String,
+    linear: LinearReader,
     record: Vec<u8>,
     opcode: u8,
     /// channel id → our channel index (None: a channel carom does not know).
@@ -119,6 +121,8 @@ pub struct LogReader<R: Read + Seek = BufReader<File>> {
     /// The replay of compact `/collisions` records (`Some` once the channel is
     /// found to hold them): batches decode through it into `batch`.
     replay: Option<Box<Replay>>,
+    /// Bytes taken from the source so far.
+    bytes_read: u64,
     /// The source's length (bytes).
     source_bytes: u64,
 }
@@ -173,21 +177,6 @@ pub(crate) fn parse_record(opcode: u8, data: &[u8]) -> Result<Record<'_>, String
     }
 }
 
-impl<R: Read + Seek + Send + 'static> LogReader<R> {
-    /// The same reader, reading and decompressing the rest of the source on a
-    /// thread of its own, a few MiB ahead of the caller (same records, same
-    /// errors, at the same points): for a long pass whose decoding and analysis
-    /// can use a second core.
-    pub fn read_ahead(mut self) -> Self {
-        if let RecordSource::Inline(inline) =
-            std::mem::replace(&mut self.records, RecordSource::Moved)
-        {
-            self.records = RecordSource::ReadAhead(ReadAhead::spawn(inline));
-        }
-        self
-    }
-}
-
 impl<R: Read + Seek> LogReader<R> {
     /// Read a log from any seekable source; `label` names it in errors.
     pub fn new(mut source: R, label: String, opts: ReadOptions) -> Result<Self, ReadError> {
@@ -216,12 +205,9 @@ impl<R: Read + Seek> LogReader<R> {
                 .with_record_length_limit(limit),
         );
         let mut r = LogReader {
-            records: RecordSource::Inline(Inline {
-                source,
-                linear,
-                bytes_read: 0,
-            }),
+            source,
             label,
+            linear,
             record: Vec::new(),
             opcode: 0,
             channels: HashMap::new(),
@@ -250,6 +236,7 @@ impl<R: Read + Seek> LogReader<R> {
             messages: 0,
             batch: CollisionBatch::default(),
             replay: None,
+            bytes_read: 0,
             source_bytes: len,
         };
         r.read_run_metadata()?;
@@ -297,13 +284,41 @@ impl<R: Read + Seek> LogReader<R> {
     }
 
     /// Pull the next raw record into `self.record`. Ok(false) at a clean end.
+    /// A panic of the mcap crate's reader is an error (see [`parse_record`]).
     fn next_record(&mut self) -> Result<bool, String> {
-        match self.records.next(&mut self.record)? {
-            Some(opcode) => {
-                self.opcode = opcode;
-                Ok(true)
+        std::panic::catch_unwind(AssertUnwindSafe(|| self.next_record_unguarded())).unwrap_or_else(
+            |_| Err("malformed record: a length beyond the end of its chunk or record".into()),
+        )
+    }
+
+    fn next_record_unguarded(&mut self) -> Result<bool, String> {
+        loop {
+            let event = match self.linear.next_event() {
+                None => return Ok(false),
+                Some(Err(e)) => return Err(e.to_string()),
+                Some(Ok(e)) => e,
+            };
+            match event {
+                LinearReadEvent::ReadRequest(need) => {
+                    let step = need.clamp(1, READ_STEP);
+                    let buf = self.linear.insert(step);
+                    let n = loop {
+                        match self.source.read(buf) {
+                            Ok(n) => break n,
+                            Err(e) if e.kind() == std::io::ErrorKind::Interrupted => continue,
+                            Err(e) => return Err(format!("I/O error: {e}")),
+                        }
+                    };
+                    self.linear.notify_read(n);
+                    self.bytes_read += n as u64;
+                }
+                LinearReadEvent::Record { data, opcode } => {
+                    self.record.clear();
+                    self.record.extend_from_slice(data);
+                    self.opcode = opcode;
+                    return Ok(true);
+                }
             }
-            None => Ok(false),
         }
     }
 
@@ -480,7 +495,7 @@ impl<R: Read + Seek> LogReader<R> {
     pub fn progress(&self) -> ReadProgress {
         ReadProgress {
             bytes_read: if self.end == LogEnd::Reading {
-                self.records.bytes_read().min(self.source_bytes)
+                self.bytes_read.min(self.source_bytes)
             } else {
                 self.source_bytes
             },
