@@ -89,6 +89,22 @@ fn an_elastic_periodic_run_shows_its_transport_in_json_text_and_figures() {
     let svg = std::fs::read_to_string(dir.join("figs/vacf_exact.svg")).unwrap();
     assert!(svg.contains("mode coupling"));
 
+    // Without the structure: no g(r), ψ6, g6 or S(k), the same transport (the
+    // same events in the same order).
+    let quick = json_of(&carom(
+        &dir,
+        &["analyze", "t.mcap", "--quiet", "--json", "--no-structure"],
+    ));
+    for key in [
+        "pair_correlation",
+        "bond_order",
+        "orientational_correlation",
+        "structure_factor",
+    ] {
+        assert!(!r[key].is_null() && quick[key].is_null(), "{key}");
+    }
+    assert_eq!(quick["transport"], r["transport"]);
+
     let text = ok(&carom(&dir, &["analyze", "t.mcap", "--quiet"]));
     let n = t["snapshots_checked"].as_u64().unwrap();
     for line in [
