@@ -29,7 +29,7 @@ pub const TRANSPORT_SEGMENTS: usize = 10;
 const ORIGINS: usize = 32;
 /// Live VACF disc-origins aimed at (fewer origins for larger N, at least 2): each
 /// reading costs N, and with N large one origin already averages over many discs.
-const ORIGIN_DISCS: usize = 65_536;
+const ORIGIN_DISCS: usize = 131_072;
 /// Helfand samples per mean collision time.
 const SAMPLES_PER_COLLISION_TIME: f64 = 20.0;
 /// Bytes of VACF origins at most (each keeps v and X of every disc: 32 bytes).
