@@ -32,6 +32,8 @@ pub use model::{
 };
 
 #[cfg(test)]
+mod schedule_tests;
+#[cfg(test)]
 mod schema_tests;
 #[cfg(test)]
 mod tests;
