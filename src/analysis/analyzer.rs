@@ -279,7 +279,7 @@ impl Analyzer {
     /// (length/time). Used for the temperature series, and for the velocity
     /// distribution when it is after `equilibrate`, at least `every` after the
     /// last snapshot used, and starts a block of the snapshot schedule
-    /// ([`Analyzer::block_start`]).
+    /// (`Analyzer::block_start`).
     ///
     /// Errors when the three slices differ in length or a species index is not one
     /// of the run's species.

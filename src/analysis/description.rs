@@ -50,7 +50,7 @@ pub struct RunDescription {
     pub snapshot_interval: Option<f64>,
     /// The log's `log.snapshot_schedule`, when it has one: snapshots inside each
     /// snapshot interval, which the structure and velocity tests skip
-    /// ([`Analyzer::block_start`]); `None`: every snapshot starts a block.
+    /// (`Analyzer::block_start`); `None`: every snapshot starts a block.
     pub snapshot_schedule: Option<SnapshotSchedule>,
 }
 

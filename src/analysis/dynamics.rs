@@ -3,7 +3,7 @@
 //! v_i ([`Analyzer::motion`]) are paired with stored origins ([`super::origins`]),
 //! and per pairing key, species and time segment of the origin the sums
 //!
-//!     Σ 1, Σ |Δu|², Σ |Δu|⁴, Σ v_i(t₀)·v_i(t), Σ J₀(k*|Δu|),   Δu = u_i(t) − u_i(t₀),
+//!   Σ 1, Σ |Δu|², Σ |Δu|⁴, Σ v_i(t₀)·v_i(t), Σ J₀(k*|Δu|),   Δu = u_i(t) − u_i(t₀),
 //!
 //! are accumulated, with the summed exact lags t − t₀. The report turns them into
 //! MSD(τ), α₂(τ), D ([`super::msd`]), the snapshot VACF C(τ) and F_s(k*, τ) with

@@ -2,7 +2,7 @@
 //! isotropic average of cos(k·Δu) over the directions of k is the Bessel function
 //! J₀(k|Δu|), so
 //!
-//!     F_s(k, τ) = ⟨J₀(k |u_i(t₀ + τ) − u_i(t₀)|)⟩,
+//!   F_s(k, τ) = ⟨J₀(k |u_i(t₀ + τ) − u_i(t₀)|)⟩,
 //!
 //! evaluated at k*, the first peak of S(k) of the first origin (periodic boxes;
 //! [`super::structure_factor`]'s shells on the box's wave vectors, searched from

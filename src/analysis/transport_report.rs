@@ -95,7 +95,7 @@ pub struct HelfandReport {
     pub helfand: Vec<f64>,
     /// The Green–Kubo running integral at τ, ∫₀^τ ⟨J(0) J(s)⟩ ds/(V kT^a).
     pub green_kubo: Vec<f64>,
-    /// The coefficient by Einstein–Helfand over the window (secant of Var[ΔG]).
+    /// The coefficient by Einstein–Helfand over the window (secant of Var\[ΔG\]).
     pub value_helfand: Estimate,
     /// The coefficient by Green–Kubo over the window (mean running integral).
     pub value_green_kubo: Estimate,
