@@ -15,7 +15,7 @@ use carom_core::DVec2;
 
 use super::helfand::Helfand;
 use super::increment_correlator::RING;
-use super::stats::block_average;
+use super::pair_correlation::mean_se;
 use super::transport_report::{
     EnskogTransport, Estimate, HelfandReport, SpeciesTransport, TransportReport,
 };
@@ -440,11 +440,10 @@ fn window_mean(taus: &[f64], f: &[f64], a: usize, b: usize) -> f64 {
     integral[integral.len() - 1] / (taus[b] - taus[a])
 }
 
-/// `value` with the standard error of the mean of its per-segment values.
+/// `value` with the standard error of the mean of its per-segment values (NaN
+/// with fewer than two).
 fn estimate(value: f64, per_segment: &[f64]) -> Estimate {
-    let std_error = block_average(per_segment, per_segment.len())
-        .map(|b| b.std_error)
-        .unwrap_or(f64::NAN);
+    let std_error = mean_se(per_segment).1;
     Estimate { value, std_error }
 }
 
