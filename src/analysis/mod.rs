@@ -37,6 +37,7 @@ mod pressure;
 mod report;
 mod self_scattering;
 mod series;
+mod sonine;
 pub mod stats;
 mod structure_factor;
 mod temperature;

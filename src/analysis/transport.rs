@@ -16,6 +16,7 @@ use carom_core::DVec2;
 use super::helfand::Helfand;
 use super::increment_correlator::RING;
 use super::pair_correlation::mean_se;
+use super::sonine::SONINE_FACTORS;
 use super::transport_report::{
     EnskogTransport, Estimate, HelfandReport, SpeciesTransport, TransportReport,
 };
@@ -240,9 +241,11 @@ impl Transport {
         let enskog = match (one_species, z) {
             (true, Some(z)) if phi > 0.0 => {
                 let chi = chi_from_z(z, phi);
-                let e = enskog(2.0 * self.discs[0].radius, m, density, self.kt, phi, chi);
+                let sigma = 2.0 * self.discs[0].radius;
+                let e = enskog(sigma, m, density, self.kt, [phi, chi], SONINE_FACTORS);
                 Some(EnskogTransport {
                     chi,
+                    sonine_factors: [SONINE_FACTORS.d, SONINE_FACTORS.eta, SONINE_FACTORS.lambda],
                     diffusion: e.d,
                     viscosity: e.eta,
                     thermal_conductivity: e.lambda,

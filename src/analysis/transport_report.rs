@@ -103,11 +103,15 @@ pub struct HelfandReport {
     pub difference: Estimate,
 }
 
-/// Enskog's values for this run (first Sonine approximation, physics.md §14.4).
+/// Enskog's values for this run, with the dilute gas's Sonine factors on their
+/// kinetic parts (physics.md §14.4–14.5).
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct EnskogTransport {
     /// The contact value χ used, from the measured Z = 1 + 2φχ.
     pub chi: f64,
+    /// The dilute gas's Sonine factors f_D, f_η, f_λ applied (the exact
+    /// Chapman–Enskog values over the first Sonine approximation).
+    pub sonine_factors: [f64; 3],
     /// D_E (length²/time).
     pub diffusion: f64,
     /// η_E.

@@ -1,15 +1,17 @@
 //! What kinetic theory expects of the transport coefficients of hard discs
-//! (physics.md §14.4): Enskog's self-diffusion, shear viscosity and thermal
-//! conductivity in the first Sonine approximation (Gass 1971),
+//! (physics.md §14.4–14.5): Enskog's self-diffusion, shear viscosity and thermal
+//! conductivity (Gass 1971), with the dilute gas's Sonine factors f (sonine.rs)
+//! on the kinetic parts,
 //!
-//!   D_E = D₀/χ,  η_E = η₀ [1/χ + 2φ + (1 + 8/π) φ²χ],
-//!   λ_E = λ₀ [1/χ + 3φ + (9/4 + 4/π) φ²χ],
+//!   D_E = f_D D₀/χ,  η_E = η₀ [f_η (1 + φχ)²/χ + (8/π) φ²χ],
+//!   λ_E = λ₀ [f_λ (1 + 3φχ/2)²/χ + (4/π) φ²χ],
 //!   D₀ = √(kT/πm)/(2nσ),  η₀ = √(mkT/π)/(2σ),  λ₀ = (2/σ) √(kT/πm),
 //!
 //! with χ = g(σ⁺) and φ the packing fraction, k_B = 1; and the amplitude of the
 //! VACF's long-time tail in 2D from mode coupling (Ernst, Hauge & van Leeuwen),
 //! C(t)/C(0) → 1/[8π n (D + ν) t], ν = η/(nm) the kinematic viscosity.
 
+use super::sonine::SonineFactors;
 use std::f64::consts::PI;
 
 /// Enskog's values for a one-species disc fluid.
@@ -21,15 +23,24 @@ pub(super) struct Enskog {
 }
 
 /// Enskog's D, η, λ for discs of diameter `sigma` and mass `m` at number density
-/// `n`, temperature `kt`, packing fraction `phi` and contact value `chi`.
-pub(super) fn enskog(sigma: f64, m: f64, n: f64, kt: f64, phi: f64, chi: f64) -> Enskog {
+/// `n`, temperature `kt`, packing fraction `phi` and contact value `chi`, with
+/// the Sonine factors `f` (all 1 for the first Sonine approximation).
+pub(super) fn enskog(
+    sigma: f64,
+    m: f64,
+    n: f64,
+    kt: f64,
+    [phi, chi]: [f64; 2],
+    f: SonineFactors,
+) -> Enskog {
     let d0 = (kt / (PI * m)).sqrt() / (2.0 * n * sigma);
     let eta0 = (m * kt / PI).sqrt() / (2.0 * sigma);
     let lambda0 = 2.0 / sigma * (kt / (PI * m)).sqrt();
+    let pc = phi * chi;
     Enskog {
-        d: d0 / chi,
-        eta: eta0 * (1.0 / chi + 2.0 * phi + (1.0 + 8.0 / PI) * phi * phi * chi),
-        lambda: lambda0 * (1.0 / chi + 3.0 * phi + (2.25 + 4.0 / PI) * phi * phi * chi),
+        d: f.d * d0 / chi,
+        eta: eta0 * (f.eta * (1.0 + pc).powi(2) / chi + 8.0 / PI * phi * pc),
+        lambda: lambda0 * (f.lambda * (1.0 + 1.5 * pc).powi(2) / chi + 4.0 / PI * phi * pc),
     }
 }
 
@@ -49,6 +60,12 @@ pub(super) fn tail_amplitude(n: f64, m: f64, d: f64, eta: f64) -> f64 {
 mod tests {
     use super::*;
 
+    const FIRST_SONINE: SonineFactors = SonineFactors {
+        d: 1.0,
+        eta: 1.0,
+        lambda: 1.0,
+    };
+
     /// In the dilute limit (χ = 1, φ → 0) the Enskog values are the Boltzmann
     /// ones, and they obey two identities of the first Sonine approximation in
     /// 2D: D₀ = (kT/m)/ω₀ with ω₀ = 2√π nσ√(kT/m) the collision rate
@@ -56,7 +73,7 @@ mod tests {
     #[test]
     fn dilute_values_obey_the_sonine_identities() {
         let (sigma, m, n, kt) = (1.3, 2.5, 0.01, 0.7);
-        let e = enskog(sigma, m, n, kt, 0.0, 1.0);
+        let e = enskog(sigma, m, n, kt, [0.0, 1.0], FIRST_SONINE);
         let omega0 = 2.0 * PI.sqrt() * n * sigma * (kt / m).sqrt();
         assert!((e.d - kt / m / omega0).abs() < 1e-14 * e.d);
         assert!((e.lambda - 4.0 * e.eta / m).abs() < 1e-14 * e.lambda);
@@ -68,13 +85,30 @@ mod tests {
     /// and 1/1.5 + 0.6 + 0.04·1.5·(9/4 + 4/π), and D is divided by χ.
     #[test]
     fn dense_factors() {
-        let dilute = enskog(1.0, 1.0, 0.3, 1.0, 0.0, 1.0);
-        let e = enskog(1.0, 1.0, 0.3, 1.0, 0.2, 1.5);
+        let dilute = enskog(1.0, 1.0, 0.3, 1.0, [0.0, 1.0], FIRST_SONINE);
+        let e = enskog(1.0, 1.0, 0.3, 1.0, [0.2, 1.5], FIRST_SONINE);
         assert!((e.d - dilute.d / 1.5).abs() < 1e-15);
         let eta_factor = 1.0 / 1.5 + 0.4 + 0.06 * (1.0 + 8.0 / PI);
         assert!((e.eta / dilute.eta - eta_factor).abs() < 1e-14);
         let lambda_factor = 1.0 / 1.5 + 0.6 + 0.06 * (2.25 + 4.0 / PI);
         assert!((e.lambda / dilute.lambda - lambda_factor).abs() < 1e-14);
+    }
+
+    /// The Sonine factors scale D and the kinetic parts (1 + φχ)²/χ and
+    /// (1 + 3φχ/2)²/χ only: at φ = 0.2, χ = 1.5 with f = (1.1, 1.2, 1.3),
+    /// η/η₀ = 1.2·1.69/1.5 + 0.48/π and λ/λ₀ = 1.3·2.1025/1.5 + 0.24/π.
+    #[test]
+    fn sonine_factors_scale_the_kinetic_parts() {
+        let f = SonineFactors {
+            d: 1.1,
+            eta: 1.2,
+            lambda: 1.3,
+        };
+        let dilute = enskog(1.0, 1.0, 0.3, 1.0, [0.0, 1.0], FIRST_SONINE);
+        let e = enskog(1.0, 1.0, 0.3, 1.0, [0.2, 1.5], f);
+        assert!((e.d / dilute.d - 1.1 / 1.5).abs() < 1e-14);
+        assert!((e.eta / dilute.eta - (1.2 * 1.69 / 1.5 + 0.48 / PI)).abs() < 1e-14);
+        assert!((e.lambda / dilute.lambda - (1.3 * 2.1025 / 1.5 + 0.24 / PI)).abs() < 1e-14);
     }
 
     #[test]
