@@ -18,6 +18,7 @@
 mod body;
 mod checkpoint;
 mod clock;
+mod gravity;
 mod lookahead;
 mod predict;
 mod resolve;
@@ -49,6 +50,10 @@ pub struct EngineParams {
     /// Collisions allowed at one instant before the engine reports a runaway
     /// (inelastic collapse) instead of hanging.
     pub max_events_without_time_advance: u64,
+    /// Uniform gravity g along −y (length/time²; physics.md §15): every disc falls,
+    /// r(t) = r + v t − ŷ g t²/2. Requires hard walls along y. 0 (the default)
+    /// turns it off; allowed: finite, ≥ 0.
+    pub gravity: f64,
 }
 
 impl Default for EngineParams {
@@ -57,6 +62,7 @@ impl Default for EngineParams {
             restitution: Restitution::Elastic,
             tc: 0.0,
             max_events_without_time_advance: 100_000,
+            gravity: 0.0,
         }
     }
 }
@@ -159,6 +165,7 @@ impl Engine {
     /// be faster (`split`), or one grid for all discs (as carom had before size
     /// classes; for tests of old checkpoints).
     fn with_grids(state: State, params: EngineParams, split: bool) -> Result<Engine, EngineError> {
+        gravity::check_gravity(params.gravity, &state.sim_box)?;
         let n = state.len();
         let mut grids = Grids::new(&state.sim_box, &state.species, &state.species_of, split);
         let images = (0..n)
@@ -289,19 +296,42 @@ impl Engine {
     /// Position of disc `i` at the current time (length), inside the box.
     pub fn position(&self, i: usize) -> DVec2 {
         let b = &self.bodies[self.index_of[i] as usize];
-        self.sim_box.wrap(b.at(self.clock))
+        self.sim_box.wrap(self.true_position(b))
     }
 
     /// Velocity of disc `i` (length/time).
     pub fn velocity(&self, i: usize) -> DVec2 {
-        self.bodies[self.index_of[i] as usize].v
+        self.true_velocity(&self.bodies[self.index_of[i] as usize])
+    }
+
+    /// A disc's position now (length): on its path, lowered by the fall in a field
+    /// (engine::gravity).
+    #[inline]
+    fn true_position(&self, b: &Body) -> DVec2 {
+        let g = self.params.gravity;
+        if g == 0.0 {
+            b.at(self.clock)
+        } else {
+            b.falling_at(self.clock, g)
+        }
+    }
+
+    /// A disc's velocity now (length/time): its path's, less g t in a field.
+    #[inline]
+    fn true_velocity(&self, b: &Body) -> DVec2 {
+        let g = self.params.gravity;
+        if g == 0.0 {
+            b.v
+        } else {
+            b.falling_velocity(self.clock, g)
+        }
     }
 
     /// Total kinetic energy K = Σ m v²/2 (energy).
     pub fn kinetic_energy(&self) -> f64 {
         self.bodies
             .iter()
-            .map(|b| 0.5 * self.species[b.species as usize].mass * b.v.length_squared())
+            .map(|b| 0.5 * self.species[b.species as usize].mass * self.true_velocity(b).length_squared())
             .sum()
     }
 
@@ -336,9 +366,9 @@ impl Engine {
         out.images.resize(n, [0; 2]);
         out.time = self.reported;
         for (b, &i) in self.bodies.iter().zip(&self.label) {
-            let (p, i) = (b.at(self.clock), i as usize);
+            let (p, i) = (self.true_position(b), i as usize);
             out.positions[i] = self.sim_box.wrap(p);
-            out.velocities[i] = b.v;
+            out.velocities[i] = self.true_velocity(b);
             out.images[i] = image_shift(&self.sim_box, p, out.positions[i], self.images[i]);
         }
     }

@@ -334,6 +334,9 @@ impl Engine {
     /// now, `v` its velocity.
     #[inline(always)]
     fn boundary_event(&self, i: usize, ri: DVec2, v: DVec2) -> (f64, Pending, Face) {
+        if self.params.gravity != 0.0 {
+            return self.boundary_event_falling(i, ri, v);
+        }
         let mut best = f64::INFINITY;
         let (mut kind, mut face) = (Pending::None, Face::new(0, false));
         let c = self.bodies[i].link.coords();

@@ -170,7 +170,7 @@ impl Engine {
         self.stats.energy_lost += res.energy_lost;
         self.predict(i);
         self.predict(j);
-        PairCollision {
+        let ev = PairCollision {
             time: self.reported,
             i: self.label[i],
             j: self.label[j],
@@ -182,7 +182,11 @@ impl Engine {
             energy_lost: res.energy_lost,
             virial,
             impulse: res.impulse_i,
+        };
+        if self.params.gravity != 0.0 {
+            return self.falling_pair(ev, now);
         }
+        ev
     }
 
     /// Resolve disc `i`'s collision with the wall `face` at the current time (the
@@ -208,16 +212,30 @@ impl Engine {
             self.last_collision[i] = now;
         }
         let m = self.mass(i);
-        let before = self.bodies[i].v;
-        let mut after = before;
+        let path_v = self.bodies[i].v;
+        let mut path_after = path_v;
+        // In a field the path velocity's y is the true one plus g t (engine::gravity):
+        // the wall reverses the true normal velocity.
+        let g = self.params.gravity;
+        let lift = if k == 1 { g * now } else { 0.0 };
+        let vk = path_v[k] - lift;
         // Applied as v_k + Δp/m, the arithmetic a reader of the log repeats.
-        let dp = wall_impulse(before[k], m, e);
-        after[k] = apply_wall_impulse(before[k], m, dp);
-        self.bodies[i].set_velocity(after, now);
+        let dp = wall_impulse(vk, m, e);
+        path_after[k] = apply_wall_impulse(vk, m, dp);
+        if lift != 0.0 {
+            path_after[k] += lift;
+        }
+        self.bodies[i].set_velocity(path_after, now);
         self.keep_origin_near([i]);
+        self.keep_fall_short();
         self.bodies[i].count = self.bodies[i].count.wrapping_add(1);
         let impulse = dp.abs();
-        let energy_lost = 0.5 * m * (1.0 - e * e) * before[k] * before[k];
+        let energy_lost = 0.5 * m * (1.0 - e * e) * vk * vk;
+        let (mut before, mut after) = (path_v, path_after);
+        if g != 0.0 {
+            before.y -= g * now;
+            after.y -= g * now;
+        }
         self.stats.wall_collisions += 1;
         self.stats.wall_impulse[k][face.high() as usize] += impulse;
         self.stats.energy_lost += energy_lost;

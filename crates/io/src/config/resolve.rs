@@ -89,6 +89,7 @@ impl Config {
             },
             tc: c.collision.tc,
             max_events_without_time_advance: c.collision.max_events_without_time_advance,
+            ..EngineParams::default()
         };
         Ok(RunSpec {
             system,

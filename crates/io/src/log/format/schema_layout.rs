@@ -408,6 +408,7 @@ fn checkpoint_fields(c: &LogCheckpoint) -> Values {
         ("next_reorder", vec![e.next_reorder]),
         ("image_x", i(e.images.iter().map(|m| m[0]))),
         ("image_y", i(e.images.iter().map(|m| m[1]))),
+        ("gravity", f([e.params.gravity])),
     ])
 }
 
@@ -433,6 +434,7 @@ fn sample_checkpoint() -> LogCheckpoint {
         restitution: Restitution::CentreOfMass(0.96875),
         tc: 1e-4,
         max_events_without_time_advance: 1001,
+        ..EngineParams::default()
     };
     let mut e = Engine::new(spec.build().unwrap(), params).unwrap();
     e.run_collisions(300).unwrap();
