@@ -119,17 +119,16 @@ impl Engine {
         (best, kind, face)
     }
 
-    /// The collision `ev`, resolved on the discs' paths, with its velocities made
-    /// the discs' true ones at the collision, internal time `now`.
+    /// Make the velocities of the collision `ev`, resolved on the discs' paths, the
+    /// discs' true ones at the collision, internal time `now`.
     #[cold]
     #[inline(never)]
-    pub(super) fn falling_pair(&self, mut ev: PairCollision, now: f64) -> PairCollision {
+    pub(super) fn falling_pair(&self, ev: &mut PairCollision, now: f64) {
         let lift = DVec2::new(0.0, self.params.gravity * now);
         ev.vi_before -= lift;
         ev.vj_before -= lift;
         ev.vi_after -= lift;
         ev.vj_after -= lift;
-        ev
     }
 
     /// In the field, ask for an early restart of the clock once it has run for

@@ -331,7 +331,9 @@ impl Engine {
     pub fn kinetic_energy(&self) -> f64 {
         self.bodies
             .iter()
-            .map(|b| 0.5 * self.species[b.species as usize].mass * self.true_velocity(b).length_squared())
+            .map(|b| {
+                0.5 * self.species[b.species as usize].mass * self.true_velocity(b).length_squared()
+            })
             .sum()
     }
 

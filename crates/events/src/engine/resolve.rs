@@ -170,7 +170,7 @@ impl Engine {
         self.stats.energy_lost += res.energy_lost;
         self.predict(i);
         self.predict(j);
-        let ev = PairCollision {
+        let mut ev = PairCollision {
             time: self.reported,
             i: self.label[i],
             j: self.label[j],
@@ -184,7 +184,7 @@ impl Engine {
             impulse: res.impulse_i,
         };
         if self.params.gravity != 0.0 {
-            return self.falling_pair(ev, now);
+            self.falling_pair(&mut ev, now);
         }
         ev
     }
