@@ -119,6 +119,16 @@ impl Engine {
         (best, kind, face)
     }
 
+    /// Disc `i`'s earliest event from now, predicted in the field or without one,
+    /// as the engine's parameters say (for callers outside the event loop).
+    pub(super) fn predict_any(&mut self, i: usize) {
+        if self.params.gravity != 0.0 {
+            self.predict::<true>(i);
+        } else {
+            self.predict::<false>(i);
+        }
+    }
+
     /// Make the velocities of the collision `ev`, resolved on the discs' paths, the
     /// discs' true ones at the collision, internal time `now`.
     #[cold]

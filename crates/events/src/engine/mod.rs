@@ -222,7 +222,7 @@ impl Engine {
         };
         engine.reorder();
         for i in 0..n {
-            engine.predict(i);
+            engine.predict_any(i);
         }
         engine.queue.retune(engine.bodies.as_slice(), engine.clock);
         Ok(engine)
@@ -409,6 +409,26 @@ impl Engine {
     /// next scheduled event: schedule a stop ([`Engine::schedule`], or use
     /// [`Engine::run_until`]) rather than waiting for collisions that never come.
     pub fn next_event(&mut self) -> Result<Option<Event>, EngineError> {
+        if self.params.gravity != 0.0 {
+            self.next_event_falling()
+        } else {
+            self.next_event_in::<false>()
+        }
+    }
+
+    /// [`Engine::next_event`] in a field (engine::gravity): a copy of the loop of
+    /// its own, so that the loop without one is compiled as if fields did not exist.
+    #[cold]
+    #[inline(never)]
+    fn next_event_falling(&mut self) -> Result<Option<Event>, EngineError> {
+        self.next_event_in::<true>()
+    }
+
+    /// [`Engine::next_event`] with the discs falling in the field (`FALL`) or
+    /// flying straight: a compile-time choice threaded through resolution and
+    /// prediction.
+    #[inline(always)]
+    fn next_event_in<const FALL: bool>(&mut self) -> Result<Option<Event>, EngineError> {
         loop {
             self.tuner.left -= 1;
             if self.tuner.left == 0 {
@@ -465,19 +485,19 @@ impl Engine {
                     if self.bodies[j].count != b.partner_count {
                         self.move_clock(t);
                         self.stats.stale_events += 1;
-                        self.predict(i);
+                        self.predict::<FALL>(i);
                         continue;
                     }
                     self.advance_clock(t)?;
-                    return Ok(Some(Event::Pair(self.collide(i, j, aux.image()))));
+                    return Ok(Some(Event::Pair(self.collide::<FALL>(i, j, aux.image()))));
                 }
                 Pending::Wall => {
                     self.advance_clock(t)?;
-                    return Ok(Some(Event::Wall(self.hit_wall(i, aux.face()))));
+                    return Ok(Some(Event::Wall(self.hit_wall::<FALL>(i, aux.face()))));
                 }
                 Pending::Cell => {
                     self.move_clock(t);
-                    self.cross(i, aux.face());
+                    self.cross::<FALL>(i, aux.face());
                 }
                 Pending::None => unreachable!("a disc with no event has time +∞"),
             }

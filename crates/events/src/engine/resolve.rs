@@ -115,7 +115,12 @@ impl Engine {
     /// Resolve the pair collision of discs i and j (j seen through the image with
     /// `image`) at the current time with the configured rule, or
     /// elastically under the TC model, and predict both discs' next events.
-    pub(super) fn collide(&mut self, i: usize, j: usize, image: Image) -> PairCollision {
+    pub(super) fn collide<const FALL: bool>(
+        &mut self,
+        i: usize,
+        j: usize,
+        image: Image,
+    ) -> PairCollision {
         let now = self.clock;
         let shift = image.shift(self.sim_box.size);
         let dr = self.bodies[j].at(now) + shift - self.bodies[i].at(now);
@@ -168,8 +173,8 @@ impl Engine {
         self.stats.pair_collisions += 1;
         self.stats.virial_sum += virial;
         self.stats.energy_lost += res.energy_lost;
-        self.predict(i);
-        self.predict(j);
+        self.predict::<FALL>(i);
+        self.predict::<FALL>(j);
         let mut ev = PairCollision {
             time: self.reported,
             i: self.label[i],
@@ -183,7 +188,7 @@ impl Engine {
             virial,
             impulse: res.impulse_i,
         };
-        if self.params.gravity != 0.0 {
+        if FALL {
             self.falling_pair(&mut ev, now);
         }
         ev
@@ -191,7 +196,7 @@ impl Engine {
 
     /// Resolve disc `i`'s collision with the wall `face` at the current time (the
     /// wall's restitution, or elastic under the TC model) and predict its next event.
-    pub(super) fn hit_wall(&mut self, i: usize, face: Face) -> WallCollision {
+    pub(super) fn hit_wall<const FALL: bool>(&mut self, i: usize, face: Face) -> WallCollision {
         let k = face.axis();
         let side = if face.high() {
             WallSide::High
@@ -239,7 +244,7 @@ impl Engine {
         self.stats.wall_collisions += 1;
         self.stats.wall_impulse[k][face.high() as usize] += impulse;
         self.stats.energy_lost += energy_lost;
-        self.predict(i);
+        self.predict::<FALL>(i);
         WallCollision {
             time: self.reported,
             i: self.label[i],
@@ -254,7 +259,7 @@ impl Engine {
 
     /// Move disc `i` across its cell's `face` into the next cell (through the
     /// periodic edge if there is no next cell) and predict its next event.
-    pub(super) fn cross(&mut self, i: usize, face: Face) {
+    pub(super) fn cross<const FALL: bool>(&mut self, i: usize, face: Face) {
         let k = face.axis();
         let up = face.high();
         let mut c = self.bodies[i].link.coords();
@@ -285,9 +290,9 @@ impl Engine {
             self.keep_origin_near([i]);
             // The position moved by one box length: partners' image shifts change.
             self.bodies[i].count = self.bodies[i].count.wrapping_add(1);
-            self.predict(i);
+            self.predict::<FALL>(i);
         } else {
-            self.predict_after_crossing(i, k, up);
+            self.predict_after_crossing::<FALL>(i, k, up);
         }
     }
 }
