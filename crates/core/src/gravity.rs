@@ -107,9 +107,56 @@ pub fn crossing_time_falling(
     (down, false)
 }
 
+/// The barometric β_g = m g/kT (1/length) whose law n ∝ exp(−β_g (y − a)),
+/// truncated to centres in [a, a + `span`], has mean height `mean` above a
+/// (length): the maximum-likelihood fit of physics.md (15.8),
+/// mean = 1/β − D e^{−βD}/(1 − e^{−βD}) with D = `span`, solved by bisection on
+/// ln β. 0 for a uniform profile (mean ≥ D/2), +∞ for mean ≤ 0; NaN for NaN input.
+pub fn barometric_beta(mean: f64, span: f64) -> f64 {
+    if mean.is_nan() || span.is_nan() {
+        return f64::NAN;
+    }
+    if mean <= 0.0 {
+        return f64::INFINITY;
+    }
+    if mean >= 0.5 * span {
+        return 0.0;
+    }
+    // The truncated mean, decreasing in β from D/2 (β → 0) to 1/β (β D ≫ 1).
+    let truncated = |b: f64| {
+        let x = b * span;
+        if x < 1e-6 {
+            span * (0.5 - x / 12.0)
+        } else {
+            1.0 / b - span / x.exp_m1()
+        }
+    };
+    let (mut lo, mut hi) = ((1e-12 / span).ln(), (1e12 / mean).ln());
+    for _ in 0..200 {
+        let mid = 0.5 * (lo + hi);
+        if truncated(mid.exp()) > mean {
+            lo = mid;
+        } else {
+            hi = mid;
+        }
+    }
+    (0.5 * (lo + hi)).exp()
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// β = 0.1 on a span of 30: the truncated mean is 10 − 30/(e³ − 1) = 8.4281…,
+    /// and the fit gives β back; a very tall span gives 1/mean.
+    #[test]
+    fn the_barometric_fit_inverts_the_truncated_mean() {
+        let mean = 10.0 - 30.0 / 3f64.exp_m1();
+        assert!((barometric_beta(mean, 30.0) - 0.1).abs() < 1e-12);
+        assert!((barometric_beta(5.0, 1e6) - 0.2).abs() < 1e-12);
+        assert_eq!(barometric_beta(20.0, 30.0), 0.0);
+        assert_eq!(barometric_beta(0.0, 30.0), f64::INFINITY);
+    }
 
     /// Dropped from rest at height 2 with g = 1: it falls 2 in t = 2 (2 = t²/2).
     #[test]

@@ -13,7 +13,11 @@ fn spec(text: &str) -> crate::RunSpec {
 #[test]
 fn gravity_is_refused_when_negative_or_with_a_periodic_y_or_compact_records() {
     for (text, field, says) in [
-        (r#"{"gravity": -1, "box": {"boundary": "walls"}}"#, "gravity", "value -1"),
+        (
+            r#"{"gravity": -1, "box": {"boundary": "walls"}}"#,
+            "gravity",
+            "value -1",
+        ),
         (r#"{"gravity": 1}"#, "gravity", "periodic y"),
         (
             r#"{"gravity": 1, "box": {"boundary": {"x": "walls", "y": "periodic"}}}"#,
@@ -38,11 +42,19 @@ fn gravity_reaches_the_engine_with_full_collision_records() {
     let s = spec(r#"{"gravity": 0.25, "box": {"boundary": {"x": "periodic", "y": "walls"}}}"#);
     assert_eq!(s.params.gravity, 0.25);
     assert_eq!(s.log.collision_detail, CollisionDetail::Full);
-    assert!(s.config_json.contains("\"gravity\": 0.25"), "{}", s.config_json);
+    assert!(
+        s.config_json.contains("\"gravity\": 0.25"),
+        "{}",
+        s.config_json
+    );
     let plain = spec("{}");
     assert_eq!(plain.params.gravity, 0.0);
     assert_eq!(plain.log.collision_detail, CollisionDetail::Compact);
-    assert!(!plain.config_json.contains("gravity"), "{}", plain.config_json);
+    assert!(
+        !plain.config_json.contains("gravity"),
+        "{}",
+        plain.config_json
+    );
     // `--set gravity=…` works like any field.
     let c = Config::from_json_with_sets(
         r#"{"box": {"boundary": "walls"}}"#,
