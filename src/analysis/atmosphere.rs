@@ -20,6 +20,10 @@ pub const BLOCKS: usize = 16;
 /// Bins of the density profile per smallest diameter.
 const BINS_PER_DIAMETER: f64 = 2.0;
 
+/// One snapshot's heights: its time, U, and per species the sum of heights above
+/// a and the number of discs.
+type Heights = (f64, f64, Vec<(f64, usize)>);
+
 /// The heights seen so far.
 #[derive(Debug, Clone)]
 pub(super) struct Atmosphere {
@@ -30,9 +34,8 @@ pub(super) struct Atmosphere {
     bin_width: f64,
     /// Centres per species per height bin, summed over snapshots.
     counts: Vec<Vec<f64>>,
-    /// Per snapshot: its time, U, and per species the sum of heights above a and
-    /// the number of discs.
-    snapshots: Vec<(f64, f64, Vec<(f64, usize)>)>,
+    /// Per snapshot (see [`Heights`]).
+    snapshots: Vec<Heights>,
 }
 
 /// The barometric fit of one species.

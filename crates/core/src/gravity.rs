@@ -27,12 +27,12 @@ pub fn fall_height(y: f64, u: f64, g: f64, t: f64) -> f64 {
 /// beyond and rising.
 #[inline]
 pub fn rise_time(h: f64, u: f64, g: f64) -> f64 {
-    // `!(u > 0)` also sends NaN to +∞.
-    if !(u > 0.0) {
+    // Not rising (u ≤ 0, or NaN): never.
+    if u.is_nan() || u <= 0.0 {
         return f64::INFINITY;
     }
     let d = u * u - 2.0 * g * h;
-    if !(d >= 0.0) {
+    if d.is_nan() || d < 0.0 {
         return f64::INFINITY;
     }
     // u + √d > 0: no cancellation, no division by zero.
