@@ -353,7 +353,8 @@ pub struct EnskogReport {
 /// against time is [`TemperatureReport::series`].
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct InelasticReport {
-    /// Energy at the first and last record against the energy dissipated between.
+    /// Energy at the first and last record against the energy dissipated between;
+    /// `null` in a field (the records hold no potential energy; see `gravity`).
     pub energy: Option<EnergyBudget>,
     /// Haff's law check (normal restitution only).
     pub haff: Option<HaffReport>,

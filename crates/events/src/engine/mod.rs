@@ -12,8 +12,10 @@
 //!
 //! The engine is split by phase, one `impl` block per file: prediction and the
 //! neighbour scan (`predict`), resolution of collisions, wall hits and crossings
-//! (`resolve`), the clock and renumbering (`clock`), fetching ahead (`lookahead`)
-//! and the checkpoint (`checkpoint`). See docs/performance.md, "engine".
+//! (`resolve`), the clock and renumbering (`clock`), fetching ahead (`lookahead`),
+//! the checkpoint (`checkpoint`) and uniform gravity (`gravity`: the same paths,
+//! with the fall added where a disc's own height matters; the event loop is
+//! compiled twice, with and without it). See docs/performance.md, "engine".
 
 mod body;
 mod checkpoint;
