@@ -29,6 +29,7 @@ fn a_dilute_gas_is_ballistic_at_short_lags() {
         pair_rate: None,
         snapshot_interval: Some(dt),
         snapshot_schedule: None,
+        gravity: 0.0,
     };
     let mut a = Analyzer::new(run, AnalysisOptions::default()).unwrap();
     let mut engine = Engine::new(state, params).unwrap();

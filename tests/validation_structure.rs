@@ -80,6 +80,7 @@ fn measure_spec(spec: SystemSpec, eq: f64, snapshots: u64, gap: f64) -> Measured
         pair_rate: None,
         snapshot_interval: Some(dt),
         snapshot_schedule: None,
+        gravity: 0.0,
     };
     let opts = AnalysisOptions {
         equilibrate: Some(t_eq),

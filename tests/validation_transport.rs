@@ -65,6 +65,7 @@ fn measure(n: usize, phi: f64, seed: u64, per_disc: f64) -> Measured {
         pair_rate: Some(1.0 / t_c),
         snapshot_interval: Some(dt),
         snapshot_schedule: None,
+        gravity: 0.0,
     };
     let opts = AnalysisOptions {
         equilibrate: Some(t_eq),

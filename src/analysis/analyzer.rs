@@ -10,6 +10,7 @@
 use carom_core::observables::{degrees_of_freedom, packing_fraction, temperature};
 use carom_core::rates::expected_mean_free_time;
 
+use super::atmosphere::Atmosphere;
 use super::bond_correlation::BondCorrelation;
 use super::bond_order::BondOrder;
 use super::dynamics::Dynamics;
@@ -81,6 +82,8 @@ pub struct Analyzer {
     /// Pair collisions since it started; a source that gives fewer details
     /// ([`Analyzer::pair_detail`]) gets no transport report.
     pub(super) transport_pairs: u64,
+    /// Heights and potential energy in a field (physics.md §15); `None` without one.
+    pub(super) atmosphere: Option<Atmosphere>,
 }
 
 impl Analyzer {
@@ -167,6 +170,14 @@ impl Analyzer {
             transport: None,
             transport_tried: false,
             transport_pairs: 0,
+            atmosphere: (run.gravity > 0.0).then(|| {
+                Atmosphere::new(
+                    run.gravity,
+                    [run.sim_box.size.x, run.sim_box.size.y],
+                    run.species.iter().map(|s| s.mass).collect(),
+                    run.species.iter().map(|s| s.radius).collect(),
+                )
+            }),
             run,
         })
     }
@@ -350,10 +361,13 @@ impl Analyzer {
     ) -> Result<(), StatsError> {
         self.check_snapshot(t, species_of, [x, y], ["x", "y"])?;
         let span = self.run.t_end - self.run.t_start;
-        if t < self.t_eq - 1e-12 * self.t_eq.abs().max(span)
-            || !self.block_start(t)
-            || !self.opts.structure
-        {
+        if t < self.t_eq - 1e-12 * self.t_eq.abs().max(span) || !self.block_start(t) {
+            return Ok(());
+        }
+        if let Some(a) = &mut self.atmosphere {
+            a.add(t, species_of, y);
+        }
+        if !self.opts.structure {
             return Ok(());
         }
         let t = t.max(self.t_eq);
@@ -509,6 +523,10 @@ impl Analyzer {
                 .then(|| tr.report(self.run.t_end, pressure.as_ref().map(|p| p.z), phi))
                 .flatten()
         });
+        let gravity = self.atmosphere.as_ref().and_then(|a| {
+            let kinetic: Vec<(f64, f64)> = self.energy_series.iter().map(|e| (e.0, e.1)).collect();
+            a.report(&kinetic, kt_used)
+        });
         let run = &self.run;
         Ok(Report {
             n: run.n(),
@@ -542,6 +560,7 @@ impl Analyzer {
                 .as_ref()
                 .and_then(StructureFactor::report),
             transport,
+            gravity,
         })
     }
 

@@ -52,6 +52,8 @@ pub struct RunDescription {
     /// snapshot interval, which the structure and velocity tests skip
     /// (`Analyzer::block_start`); `None`: every snapshot starts a block.
     pub snapshot_schedule: Option<SnapshotSchedule>,
+    /// Uniform gravity g along −y (length/time², physics.md §15; 0: none).
+    pub gravity: f64,
 }
 
 impl RunDescription {
@@ -76,6 +78,7 @@ impl RunDescription {
             pair_rate: None,
             snapshot_interval: None,
             snapshot_schedule: None,
+            gravity: 0.0,
         }
     }
 }
@@ -85,6 +88,7 @@ struct Resolved {
     species: Vec<Species>,
     sim_box: SimBox,
     restitution: Restitution,
+    gravity: f64,
 }
 
 /// From the configuration stored in a log of format ≤ 1.1.
@@ -94,6 +98,7 @@ fn from_config(config: &str) -> Result<Resolved, ConfigError> {
         species: spec.system.species,
         sim_box: spec.system.sim_box,
         restitution: spec.params.restitution,
+        gravity: spec.params.gravity,
     })
 }
 
@@ -124,6 +129,7 @@ fn from_snapshot(s: &Snapshot) -> Result<Resolved, String> {
             boundary: [b(s.boundary[0]), b(s.boundary[1])],
         },
         restitution: Restitution::Elastic,
+        gravity: 0.0,
     })
 }
 
@@ -167,6 +173,7 @@ pub(super) fn describe(
         species: f.species.clone(),
         sim_box: f.sim_box,
         restitution: f.restitution,
+        gravity: f.gravity,
     });
     let resolved = match stored.map_or_else(|| from_config(&info.run.config), Ok) {
         Ok(r) => r,
@@ -190,6 +197,7 @@ pub(super) fn describe(
         species: resolved.species,
         sim_box: resolved.sim_box,
         restitution: resolved.restitution,
+        gravity: resolved.gravity,
         collision_stride: log.collision_every.max(1),
         // Every k-th collision (k > 1) gives only an estimate of the sums that the
         // /thermo records hold exactly.

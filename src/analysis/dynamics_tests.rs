@@ -20,6 +20,7 @@ fn run(species: Vec<Species>, t_end: f64, interval: f64) -> RunDescription {
         pair_rate: None,
         snapshot_interval: Some(interval),
         snapshot_schedule: None,
+        gravity: 0.0,
     }
 }
 

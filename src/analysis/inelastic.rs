@@ -101,7 +101,10 @@ pub(super) fn report(a: &Analyzer) -> InelasticReport {
         "sum over logged collisions × stride"
     };
     let lost = lost.unwrap_or(a.lost_from_collisions);
+    // In a field the budget needs the potential energy, which the thermo records
+    // do not carry (the gravity report has K + U at the snapshots).
     let budget = match (e0, e1) {
+        _ if a.run.gravity > 0.0 => None,
         (Some(e0), Some(e1)) => Some(EnergyBudget {
             initial: e0,
             final_: e1,

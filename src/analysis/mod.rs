@@ -15,6 +15,7 @@
 //! [`stats`] holds the statistics (histograms, χ², KS, blocking).
 
 mod analyzer;
+mod atmosphere;
 mod bond_correlation;
 mod bond_order;
 mod cell_list;
@@ -51,6 +52,7 @@ mod vacf_exact;
 mod velocity;
 
 pub use analyzer::Analyzer;
+pub use atmosphere::{BarometricFit, GravityReport};
 pub use bond_correlation::{
     BondCorrelationReport, G6_BIN_WIDTH_SIGMA, G6_R_MAX_SIGMA, G6_SNAPSHOTS,
 };

@@ -5,6 +5,7 @@
 
 use serde::Serialize;
 
+use super::atmosphere::GravityReport;
 use super::bond_correlation::BondCorrelationReport;
 use super::bond_order::BondOrderReport;
 use super::contact::PairCorrelationReport;
@@ -66,6 +67,9 @@ pub struct Report {
     /// D, η and λ from the collision log, with the exact VACF (physics.md §14);
     /// `null` unless the run is elastic and periodic and logs every collision.
     pub transport: Option<TransportReport>,
+    /// Potential energy, n(y) and the barometric fit (physics.md §15); `null`
+    /// without a field or without snapshots after the equilibration time.
+    pub gravity: Option<GravityReport>,
 }
 
 /// One species of the run.
@@ -349,7 +353,8 @@ pub struct EnskogReport {
 /// against time is [`TemperatureReport::series`].
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct InelasticReport {
-    /// Energy at the first and last record against the energy dissipated between.
+    /// Energy at the first and last record against the energy dissipated between;
+    /// `null` in a field (the records hold no potential energy; see `gravity`).
     pub energy: Option<EnergyBudget>,
     /// Haff's law check (normal restitution only).
     pub haff: Option<HaffReport>,

@@ -304,6 +304,9 @@ pub fn text(r: &Report, args: &AnalyzeArgs, complete: bool) -> String {
     if let Some(t) = &r.transport {
         transport::transport_text(t, &mut s);
     }
+    if let Some(g) = &r.gravity {
+        gravity_text(g, &mut s);
+    }
     if let Some(i) = &r.inelastic {
         if let Some(e) = &i.energy {
             let _ = writeln!(
@@ -419,5 +422,43 @@ fn thinned(m: &carom::analysis::SpeciesMb) -> String {
             }
         ),
         _ => String::new(),
+    }
+}
+
+/// The lines of a run in a field (physics.md §15): potential and total energy, and
+/// the barometric fit per species.
+fn gravity_text(g: &carom::analysis::GravityReport, s: &mut String) {
+    use std::fmt::Write;
+    let total = match (g.total_energy_first, g.total_energy_last) {
+        (Some(a), Some(b)) => format!(
+            "; K + U = {:.6} at the first snapshot, {:.6} at the last (relative change {:.3e})",
+            Num(a),
+            Num(b),
+            (b - a) / a.abs()
+        ),
+        _ => String::new(),
+    };
+    let _ = writeln!(
+        s,
+        "gravity  g = {}, potential energy U = Σ m g y = {:.6} (mean of {} snapshots){total}",
+        g.g,
+        Num(g.potential_energy),
+        g.snapshots
+    );
+    for b in &g.barometric {
+        let se = b
+            .beta_std_error
+            .map_or("?".to_owned(), |e| format!("{e:.5}"));
+        let dev = b.beta_std_error.map_or(String::new(), |e| {
+            format!(" ({} apart)", sigmas(b.beta - b.beta_expected, e))
+        });
+        let _ = writeln!(
+            s,
+            "barometric law  species {}: fitted m g/kT = {:.5} ± {se}, known m g/kT = {:.5}{dev}; n(a) = {:.5} (the fitted law at the floor)",
+            b.species,
+            Num(b.beta),
+            Num(b.beta_expected),
+            Num(b.floor_density)
+        );
     }
 }

@@ -9,13 +9,14 @@
 //! `pair_correlation` (g_ab(r) per species pair with its contact value),
 //! `bond_order`, `g6` and `structure_factor` ([`structure`]), `msd`, `vacf` and
 //! `self_scattering` ([`dynamics`]), `vacf_exact`, `msd_exact`,
-//! `helfand_viscosity` and `helfand_conductivity` ([`transport`]). Axes are in
-//! the run's units.
+//! `helfand_viscosity` and `helfand_conductivity` ([`transport`]),
+//! `density_profile` (n(y) per species on a log axis with the fitted barometric
+//! law, in a field). Axes are in the run's units.
 
 use std::ops::Range;
 use std::path::Path;
 
-use carom::analysis::{HistogramReport, Report, SpeciesMb};
+use carom::analysis::{GravityReport, HistogramReport, Report, SpeciesMb};
 use plotters::coord::combinators::LogCoord;
 use plotters::coord::types::RangedCoordf64;
 use plotters::coord::Shift;
@@ -149,6 +150,10 @@ pub fn write_all(report: &Report, dir: &Path) -> Result<usize, CliError> {
             ));
             n += 1;
         }
+    }
+    if let Some(g) = report.gravity.as_ref().filter(|g| g.heights.len() >= 2) {
+        both!(dir, "density_profile", |root| draw_density_profile(root, g));
+        n += 1;
     }
     if let Some(d) = report.dynamics.as_ref().filter(|d| !d.species.is_empty()) {
         both!(dir, "msd", |root| dynamics::draw_msd(root, d));
@@ -506,4 +511,78 @@ fn draw_pair_correlation<DB: DrawingBackend>(
         }
     }
     legend(&mut chart)
+}
+
+/// n(y) per species (bin centres, log scale) and each species' fitted barometric
+/// law n(a) e^{−β (y − a)} (physics.md (15.6)), with the known m g/kT in the caption.
+fn draw_density_profile<DB: DrawingBackend>(
+    root: &DrawingArea<DB, Shift>,
+    g: &GravityReport,
+) -> DrawResult<DB> {
+    let half = 0.5 * g.bin_width;
+    let points: Vec<Vec<(f64, f64)>> = g
+        .density
+        .iter()
+        .map(|d| {
+            g.heights
+                .iter()
+                .zip(d)
+                .filter(|(_, &n)| n > 0.0)
+                .map(|(&y, &n)| (y + half, n))
+                .collect()
+        })
+        .collect();
+    let all = || points.iter().flatten();
+    let (y0, y1) = (0.0, g.heights.last().map_or(1.0, |h| h + g.bin_width));
+    let lo = all().map(|p| p.1).fold(f64::INFINITY, f64::min);
+    let hi = all().map(|p| p.1).fold(0.0, f64::max);
+    if !(lo.is_finite() && hi > 0.0) {
+        return Ok(());
+    }
+    let caption = match g.barometric.first() {
+        Some(b) => format!(
+            "density profile; fitted m g/kT = {:.4}, known {:.4}",
+            b.beta, b.beta_expected
+        ),
+        None => "density profile".to_owned(),
+    };
+    let mut chart = ChartBuilder::on(root)
+        .caption(caption, ("sans-serif", 22))
+        .margin(15)
+        .x_label_area_size(45)
+        .y_label_area_size(70)
+        .build_cartesian_2d(y0..y1, (0.8 * lo..1.25 * hi).log_scale())?;
+    chart
+        .configure_mesh()
+        .x_desc("height y (length)")
+        .y_desc("n(y) (1/length²)")
+        .y_label_formatter(&|v| format!("{v:.3}"))
+        .draw()?;
+    for (s, pts) in points.iter().enumerate() {
+        let color = Palette99::pick(s).to_rgba();
+        chart
+            .draw_series(pts.iter().map(|&p| Circle::new(p, 3, color.filled())))?
+            .label(format!("species {s}"))
+            .legend(move |(x, y)| Circle::new((x + 7, y), 3, color.filled()));
+    }
+    for b in &g.barometric {
+        let color = Palette99::pick(b.species).to_rgba();
+        let a = b.floor;
+        let line: Vec<(f64, f64)> = (0..=100)
+            .map(|k| y0 + (y1 - y0) * k as f64 / 100.0)
+            .map(|y| (y, b.floor_density * (-b.beta * (y - a)).exp()))
+            .filter(|p| p.1 >= 0.8 * lo)
+            .collect();
+        chart
+            .draw_series(LineSeries::new(line, color.stroke_width(2)))?
+            .label(format!("barometric fit, species {}", b.species))
+            .legend(move |(x, y)| {
+                PathElement::new(vec![(x, y), (x + 15, y)], color.stroke_width(2))
+            });
+    }
+    chart
+        .configure_series_labels()
+        .background_style(WHITE.mix(0.8))
+        .border_style(BLACK)
+        .draw()
 }

@@ -40,6 +40,7 @@ pub fn analyse_state(
         pair_rate,
         snapshot_interval: Some(dt),
         snapshot_schedule: None,
+        gravity: params.gravity,
     };
     let mut a = Analyzer::new(run, opts).unwrap();
     let mut engine = Engine::new(state, params).unwrap();

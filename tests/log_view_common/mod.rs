@@ -214,6 +214,7 @@ pub fn checkpoint(cp: &LogCheckpoint) -> Value {
         restitution,
         tc,
         max_events_without_time_advance,
+        gravity,
     } = params;
     let carom::events::Stats {
         pair_collisions,
@@ -268,6 +269,7 @@ pub fn checkpoint(cp: &LogCheckpoint) -> Value {
         "scheduled_tag": ints(scheduled.iter().map(|s| s.2)),
         "next_seq": next_seq, "labels": u(labels), "next_reorder": next_reorder,
         "image_x": ints(images.iter().map(|m| m[0])), "image_y": ints(images.iter().map(|m| m[1])),
+        "gravity": f(*gravity),
     });
     let mut all = state;
     all.as_object_mut()

@@ -198,7 +198,7 @@ pub fn centre_of_mass_impulse(vi: DVec2, vj: DVec2, mi: f64, mj: f64, n: DVec2, 
 /// `n` is the line of centres from i to j at contact (any length). The energy lost is the model's
 /// closed form: (1 − e²) μ u²/2 for normal restitution, (1 − R²) μ |g|²/2 for the
 /// centre-of-mass model, with μ = m_i m_j/(m_i + m_j).
-#[inline]
+#[inline(always)]
 pub fn resolve(vi: DVec2, vj: DVec2, mi: f64, mj: f64, n: DVec2, rule: Restitution) -> Resolution {
     let (impulse_i, energy_lost) = match rule {
         Restitution::Elastic => (normal_impulse(vi, vj, mi, mj, n, 1.0), 0.0),

@@ -81,6 +81,12 @@ pub enum EngineError {
     /// A checkpoint could not be restored.
     #[error("checkpoint: {0}")]
     BadCheckpoint(String),
+    /// A gravity the engine cannot run (physics.md §15).
+    #[error(
+        "gravity: {0} (allowed: finite g ≥ 0, and g > 0 only with hard walls along y: \
+         box.boundary {{\"x\": …, \"y\": \"walls\"}} or \"walls\")"
+    )]
+    BadGravity(String),
 }
 
 /// What a runaway of [`EngineError::Stalled`] is and what cures it, for a run whose

@@ -219,7 +219,7 @@ impl EventQueue {
     }
 
     /// The earliest event: (time, disc). With every time +∞ the time is +∞.
-    #[inline]
+    #[inline(always)]
     pub fn peek<T: EventTimes + ?Sized>(&mut self, times: &T) -> (Time, u32) {
         loop {
             if let Some(&top) = self.heap.first() {

@@ -92,6 +92,7 @@ fn draw(case: u64) -> (SystemSpec, EngineParams) {
         restitution,
         tc,
         max_events_without_time_advance: 2_000,
+        ..EngineParams::default()
     };
     (spec, params)
 }

@@ -707,6 +707,7 @@ fn oracle_random_dynamics() {
             restitution,
             tc,
             max_events_without_time_advance: 1000,
+            ..EngineParams::default()
         };
         let name = format!(
             "random case {case}: {params:?} {:?} {:?}",

@@ -182,6 +182,7 @@ fn dense_params(tc: f64) -> EngineParams {
         restitution: Restitution::Normal(0.5),
         tc,
         max_events_without_time_advance: 10_000,
+        ..EngineParams::default()
     }
 }
 
@@ -422,6 +423,7 @@ fn runaway_guard_counts_only_collisions_at_one_instant() {
         restitution: Restitution::Normal(0.1),
         tc: 0.0,
         max_events_without_time_advance: 1,
+        ..EngineParams::default()
     };
     let mut stops = 0;
     for seed in 1..=8 {
@@ -505,6 +507,7 @@ fn a_pair_left_without_normal_velocity_does_not_meet_again_at_once() {
                 restitution: rule,
                 tc: 1e-3,
                 max_events_without_time_advance: 10,
+                ..EngineParams::default()
             };
             let mut engine = Engine::new(state, params).expect("engine");
             engine.schedule(10.0, 0).expect("schedule");
@@ -544,6 +547,7 @@ fn restitution_zero_with_the_tc_model_runs_without_stalling() {
             restitution: rule,
             tc: 1e-3,
             max_events_without_time_advance: 100_000,
+            ..EngineParams::default()
         };
         let mut engine =
             Engine::new(state(400, 0.3, [Boundary::Periodic; 2], 0), params).expect("engine");
@@ -606,6 +610,7 @@ fn wedge(tc: f64) -> Engine {
         restitution: Restitution::Elastic,
         tc,
         max_events_without_time_advance: 10_000,
+        ..EngineParams::default()
     };
     Engine::new(state, params).expect("engine")
 }

@@ -127,6 +127,8 @@ impl Engine {
         {
             return Err(bad(format!("species index {s} out of range")));
         }
+        super::gravity::check_gravity(cp.params.gravity, &cp.sim_box)
+            .map_err(|e| bad(e.to_string()))?;
         for (name, t) in [("now", cp.now), ("epoch", cp.epoch), ("clock", cp.clock)] {
             if !t.is_finite() {
                 return Err(bad(format!("{name} is {t}, not a finite time")));

@@ -162,8 +162,14 @@ impl Engine {
         }
         // The queue is refiled from the shifted times by the renumbering that
         // follows.
+        let g = self.params.gravity;
         for b in self.bodies.iter_mut() {
             b.r0 = b.at(shift);
+            if g != 0.0 {
+                // The new origin and velocity are the true ones now (engine::gravity).
+                b.r0.y -= 0.5 * g * shift * shift;
+                b.v.y -= g * shift;
+            }
             b.event_time -= shift;
         }
         for t in self.last_collision.iter_mut() {

@@ -12,12 +12,15 @@
 //!
 //! The engine is split by phase, one `impl` block per file: prediction and the
 //! neighbour scan (`predict`), resolution of collisions, wall hits and crossings
-//! (`resolve`), the clock and renumbering (`clock`), fetching ahead (`lookahead`)
-//! and the checkpoint (`checkpoint`). See docs/performance.md, "engine".
+//! (`resolve`), the clock and renumbering (`clock`), fetching ahead (`lookahead`),
+//! the checkpoint (`checkpoint`) and uniform gravity (`gravity`: the same paths,
+//! with the fall added where a disc's own height matters; the event loop is
+//! compiled twice, with and without it). See docs/performance.md, "engine".
 
 mod body;
 mod checkpoint;
 mod clock;
+mod gravity;
 mod lookahead;
 mod predict;
 mod resolve;
@@ -49,6 +52,10 @@ pub struct EngineParams {
     /// Collisions allowed at one instant before the engine reports a runaway
     /// (inelastic collapse) instead of hanging.
     pub max_events_without_time_advance: u64,
+    /// Uniform gravity g along −y (length/time²; physics.md §15): every disc falls,
+    /// r(t) = r + v t − ŷ g t²/2. Requires hard walls along y. 0 (the default)
+    /// turns it off; allowed: finite, ≥ 0.
+    pub gravity: f64,
 }
 
 impl Default for EngineParams {
@@ -57,6 +64,7 @@ impl Default for EngineParams {
             restitution: Restitution::Elastic,
             tc: 0.0,
             max_events_without_time_advance: 100_000,
+            gravity: 0.0,
         }
     }
 }
@@ -159,6 +167,7 @@ impl Engine {
     /// be faster (`split`), or one grid for all discs (as carom had before size
     /// classes; for tests of old checkpoints).
     fn with_grids(state: State, params: EngineParams, split: bool) -> Result<Engine, EngineError> {
+        gravity::check_gravity(params.gravity, &state.sim_box)?;
         let n = state.len();
         let mut grids = Grids::new(&state.sim_box, &state.species, &state.species_of, split);
         let images = (0..n)
@@ -215,7 +224,7 @@ impl Engine {
         };
         engine.reorder();
         for i in 0..n {
-            engine.predict(i);
+            engine.predict_any(i);
         }
         engine.queue.retune(engine.bodies.as_slice(), engine.clock);
         Ok(engine)
@@ -289,19 +298,44 @@ impl Engine {
     /// Position of disc `i` at the current time (length), inside the box.
     pub fn position(&self, i: usize) -> DVec2 {
         let b = &self.bodies[self.index_of[i] as usize];
-        self.sim_box.wrap(b.at(self.clock))
+        self.sim_box.wrap(self.true_position(b))
     }
 
     /// Velocity of disc `i` (length/time).
     pub fn velocity(&self, i: usize) -> DVec2 {
-        self.bodies[self.index_of[i] as usize].v
+        self.true_velocity(&self.bodies[self.index_of[i] as usize])
+    }
+
+    /// A disc's position now (length): on its path, lowered by the fall in a field
+    /// (engine::gravity).
+    #[inline]
+    fn true_position(&self, b: &Body) -> DVec2 {
+        let g = self.params.gravity;
+        if g == 0.0 {
+            b.at(self.clock)
+        } else {
+            b.falling_at(self.clock, g)
+        }
+    }
+
+    /// A disc's velocity now (length/time): its path's, less g t in a field.
+    #[inline]
+    fn true_velocity(&self, b: &Body) -> DVec2 {
+        let g = self.params.gravity;
+        if g == 0.0 {
+            b.v
+        } else {
+            b.falling_velocity(self.clock, g)
+        }
     }
 
     /// Total kinetic energy K = Σ m v²/2 (energy).
     pub fn kinetic_energy(&self) -> f64 {
         self.bodies
             .iter()
-            .map(|b| 0.5 * self.species[b.species as usize].mass * b.v.length_squared())
+            .map(|b| {
+                0.5 * self.species[b.species as usize].mass * self.true_velocity(b).length_squared()
+            })
             .sum()
     }
 
@@ -336,9 +370,9 @@ impl Engine {
         out.images.resize(n, [0; 2]);
         out.time = self.reported;
         for (b, &i) in self.bodies.iter().zip(&self.label) {
-            let (p, i) = (b.at(self.clock), i as usize);
+            let (p, i) = (self.true_position(b), i as usize);
             out.positions[i] = self.sim_box.wrap(p);
-            out.velocities[i] = b.v;
+            out.velocities[i] = self.true_velocity(b);
             out.images[i] = image_shift(&self.sim_box, p, out.positions[i], self.images[i]);
         }
     }
@@ -377,6 +411,26 @@ impl Engine {
     /// next scheduled event: schedule a stop ([`Engine::schedule`], or use
     /// [`Engine::run_until`]) rather than waiting for collisions that never come.
     pub fn next_event(&mut self) -> Result<Option<Event>, EngineError> {
+        if self.params.gravity != 0.0 {
+            self.next_event_falling()
+        } else {
+            self.next_event_in::<false>()
+        }
+    }
+
+    /// [`Engine::next_event`] in a field (engine::gravity): a copy of the loop of
+    /// its own, so that the loop without one is compiled as if fields did not exist.
+    #[cold]
+    #[inline(never)]
+    fn next_event_falling(&mut self) -> Result<Option<Event>, EngineError> {
+        self.next_event_in::<true>()
+    }
+
+    /// [`Engine::next_event`] with the discs falling in the field (`FALL`) or
+    /// flying straight: a compile-time choice threaded through resolution and
+    /// prediction.
+    #[inline(always)]
+    fn next_event_in<const FALL: bool>(&mut self) -> Result<Option<Event>, EngineError> {
         loop {
             self.tuner.left -= 1;
             if self.tuner.left == 0 {
@@ -433,19 +487,19 @@ impl Engine {
                     if self.bodies[j].count != b.partner_count {
                         self.move_clock(t);
                         self.stats.stale_events += 1;
-                        self.predict(i);
+                        self.predict::<FALL>(i);
                         continue;
                     }
                     self.advance_clock(t)?;
-                    return Ok(Some(Event::Pair(self.collide(i, j, aux.image()))));
+                    return Ok(Some(Event::Pair(self.collide::<FALL>(i, j, aux.image()))));
                 }
                 Pending::Wall => {
                     self.advance_clock(t)?;
-                    return Ok(Some(Event::Wall(self.hit_wall(i, aux.face()))));
+                    return Ok(Some(Event::Wall(self.hit_wall::<FALL>(i, aux.face()))));
                 }
                 Pending::Cell => {
                     self.move_clock(t);
-                    self.cross(i, aux.face());
+                    self.cross::<FALL>(i, aux.face());
                 }
                 Pending::None => unreachable!("a disc with no event has time +∞"),
             }

@@ -112,7 +112,7 @@ impl Engine {
     /// Find disc `i`'s earliest event from the current time and queue it: its next
     /// cell crossing or wall collision, or its earliest pair collision with a disc
     /// of its 3 × 3 block of cells (which becomes its pair candidate).
-    pub(super) fn predict(&mut self, i: usize) {
+    pub(super) fn predict<const FALL: bool>(&mut self, i: usize) {
         let now = self.clock;
         let bi = self.bodies[i];
         let ri = bi.at(now);
@@ -121,7 +121,7 @@ impl Engine {
         if !self.grids.single() {
             self.scan_other_classes(i, ri, &mut found);
         }
-        let boundary = self.boundary_event(i, ri, bi.v);
+        let boundary = self.boundary_event::<FALL>(i, ri, bi.v);
         self.file_event(i, &found, boundary);
     }
 
@@ -161,7 +161,12 @@ impl Engine {
     /// computed again, from the two paths as they are now; when the partner has, the
     /// candidate no longer says when the discs of the six cells seen before can
     /// meet, and the whole block is scanned again instead.
-    pub(super) fn predict_after_crossing(&mut self, i: usize, k: usize, up: bool) {
+    pub(super) fn predict_after_crossing<const FALL: bool>(
+        &mut self,
+        i: usize,
+        k: usize,
+        up: bool,
+    ) {
         let now = self.clock;
         let bi = self.bodies[i];
         let ri = bi.at(now);
@@ -169,7 +174,7 @@ impl Engine {
         if bi.partner != NO_DISC {
             let bp = &self.bodies[bi.partner as usize];
             if bp.count != bi.partner_count {
-                self.predict(i);
+                self.predict::<FALL>(i);
                 return;
             }
             // Seeing the partner's image at r_j + s L is seeing i at r_i − s L.
@@ -200,7 +205,7 @@ impl Engine {
         if !self.grids.single() {
             self.scan_other_classes(i, ri, &mut candidate);
         }
-        let boundary = self.boundary_event(i, ri, bi.v);
+        let boundary = self.boundary_event::<FALL>(i, ri, bi.v);
         self.file_event(i, &candidate, boundary);
     }
 
@@ -333,7 +338,15 @@ impl Engine {
     /// kind, face), in the grid of its size class. `ri` is its position
     /// now, `v` its velocity.
     #[inline(always)]
-    fn boundary_event(&self, i: usize, ri: DVec2, v: DVec2) -> (f64, Pending, Face) {
+    fn boundary_event<const FALL: bool>(
+        &self,
+        i: usize,
+        ri: DVec2,
+        v: DVec2,
+    ) -> (f64, Pending, Face) {
+        if FALL {
+            return self.boundary_event_falling(i, ri, v);
+        }
         let mut best = f64::INFINITY;
         let (mut kind, mut face) = (Pending::None, Face::new(0, false));
         let c = self.bodies[i].link.coords();

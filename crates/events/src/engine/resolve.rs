@@ -115,7 +115,12 @@ impl Engine {
     /// Resolve the pair collision of discs i and j (j seen through the image with
     /// `image`) at the current time with the configured rule, or
     /// elastically under the TC model, and predict both discs' next events.
-    pub(super) fn collide(&mut self, i: usize, j: usize, image: Image) -> PairCollision {
+    pub(super) fn collide<const FALL: bool>(
+        &mut self,
+        i: usize,
+        j: usize,
+        image: Image,
+    ) -> PairCollision {
         let now = self.clock;
         let shift = image.shift(self.sim_box.size);
         let dr = self.bodies[j].at(now) + shift - self.bodies[i].at(now);
@@ -168,9 +173,9 @@ impl Engine {
         self.stats.pair_collisions += 1;
         self.stats.virial_sum += virial;
         self.stats.energy_lost += res.energy_lost;
-        self.predict(i);
-        self.predict(j);
-        PairCollision {
+        self.predict::<FALL>(i);
+        self.predict::<FALL>(j);
+        let mut ev = PairCollision {
             time: self.reported,
             i: self.label[i],
             j: self.label[j],
@@ -182,12 +187,16 @@ impl Engine {
             energy_lost: res.energy_lost,
             virial,
             impulse: res.impulse_i,
+        };
+        if FALL {
+            self.falling_pair(&mut ev, now);
         }
+        ev
     }
 
     /// Resolve disc `i`'s collision with the wall `face` at the current time (the
     /// wall's restitution, or elastic under the TC model) and predict its next event.
-    pub(super) fn hit_wall(&mut self, i: usize, face: Face) -> WallCollision {
+    pub(super) fn hit_wall<const FALL: bool>(&mut self, i: usize, face: Face) -> WallCollision {
         let k = face.axis();
         let side = if face.high() {
             WallSide::High
@@ -208,20 +217,34 @@ impl Engine {
             self.last_collision[i] = now;
         }
         let m = self.mass(i);
-        let before = self.bodies[i].v;
-        let mut after = before;
+        let path_v = self.bodies[i].v;
+        let mut path_after = path_v;
+        // In a field the path velocity's y is the true one plus g t (engine::gravity):
+        // the wall reverses the true normal velocity.
+        let g = self.params.gravity;
+        let lift = if k == 1 { g * now } else { 0.0 };
+        let vk = path_v[k] - lift;
         // Applied as v_k + Δp/m, the arithmetic a reader of the log repeats.
-        let dp = wall_impulse(before[k], m, e);
-        after[k] = apply_wall_impulse(before[k], m, dp);
-        self.bodies[i].set_velocity(after, now);
+        let dp = wall_impulse(vk, m, e);
+        path_after[k] = apply_wall_impulse(vk, m, dp);
+        if lift != 0.0 {
+            path_after[k] += lift;
+        }
+        self.bodies[i].set_velocity(path_after, now);
         self.keep_origin_near([i]);
+        self.keep_fall_short();
         self.bodies[i].count = self.bodies[i].count.wrapping_add(1);
         let impulse = dp.abs();
-        let energy_lost = 0.5 * m * (1.0 - e * e) * before[k] * before[k];
+        let energy_lost = 0.5 * m * (1.0 - e * e) * vk * vk;
+        let (mut before, mut after) = (path_v, path_after);
+        if g != 0.0 {
+            before.y -= g * now;
+            after.y -= g * now;
+        }
         self.stats.wall_collisions += 1;
         self.stats.wall_impulse[k][face.high() as usize] += impulse;
         self.stats.energy_lost += energy_lost;
-        self.predict(i);
+        self.predict::<FALL>(i);
         WallCollision {
             time: self.reported,
             i: self.label[i],
@@ -236,7 +259,7 @@ impl Engine {
 
     /// Move disc `i` across its cell's `face` into the next cell (through the
     /// periodic edge if there is no next cell) and predict its next event.
-    pub(super) fn cross(&mut self, i: usize, face: Face) {
+    pub(super) fn cross<const FALL: bool>(&mut self, i: usize, face: Face) {
         let k = face.axis();
         let up = face.high();
         let mut c = self.bodies[i].link.coords();
@@ -267,9 +290,9 @@ impl Engine {
             self.keep_origin_near([i]);
             // The position moved by one box length: partners' image shifts change.
             self.bodies[i].count = self.bodies[i].count.wrapping_add(1);
-            self.predict(i);
+            self.predict::<FALL>(i);
         } else {
-            self.predict_after_crossing(i, k, up);
+            self.predict_after_crossing::<FALL>(i, k, up);
         }
     }
 }

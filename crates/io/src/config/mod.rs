@@ -32,6 +32,8 @@ pub use model::{
 };
 
 #[cfg(test)]
+mod gravity_tests;
+#[cfg(test)]
 mod schedule_tests;
 #[cfg(test)]
 mod schema_tests;

@@ -48,6 +48,19 @@ pub struct Config {
     /// What the MCAP log records and how often.
     #[serde(default)]
     pub log: LogConfig,
+    /// Uniform gravity g along −y (length/time²; physics.md §15): every disc falls,
+    /// y(t) = y + u t − g t²/2, and the potential energy m g y counts in the
+    /// energy. Default 0 (none); allowed: finite, ≥ 0, and > 0 only with hard walls
+    /// along y (`box.boundary` `"walls"` or `{"x": …, "y": "walls"}`). With a field,
+    /// collisions are logged in full (`log.collision_detail` `"full"`): compact
+    /// records cannot replay velocities that change between collisions.
+    #[serde(default, skip_serializing_if = "is_zero")]
+    pub gravity: f64,
+}
+
+/// Whether `x` is 0 (a field left out of the stored configuration).
+fn is_zero(x: &f64) -> bool {
+    *x == 0.0
 }
 
 /// One kind of disc.
@@ -463,6 +476,7 @@ impl Default for Config {
             collision: CollisionConfig::default(),
             stop: StopConfig::default(),
             log: LogConfig::default(),
+            gravity: 0.0,
         }
     }
 }

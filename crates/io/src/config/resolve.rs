@@ -89,13 +89,20 @@ impl Config {
             },
             tc: c.collision.tc,
             max_events_without_time_advance: c.collision.max_events_without_time_advance,
+            gravity: c.gravity,
         };
+        let mut log = c.log.options();
+        if c.gravity > 0.0 && c.log.collision_detail.is_none() {
+            // Compact records cannot replay velocities that change between
+            // collisions (see Config::gravity).
+            log.collision_detail = CollisionDetail::Full;
+        }
         Ok(RunSpec {
             system,
             params,
             stop: c.stop.stop(),
             max_time_without_collision: c.stop.max_time_without_collision,
-            log: c.log.options(),
+            log,
             config_json: self.canonical_json(),
         })
     }

@@ -89,6 +89,7 @@ fn maximal_values() -> Vec<Value> {
             collisions: Some(1),
             max_time_without_collision: Some(1.0),
         },
+        gravity: 1.0,
         ..Config::default()
     };
     c.collision.coefficient = Some(1.0);

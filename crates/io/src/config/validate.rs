@@ -24,6 +24,7 @@ impl Config {
         self.check_initial_state(n)?;
         self.check_collision()?;
         self.check_stop()?;
+        self.check_gravity()?;
         if self.log.collision_detail == Some(CollisionDetailConfig::Compact)
             && self.log.collision_every > 1
         {
@@ -126,6 +127,34 @@ impl Config {
                     "0 ≤ e_w ≤ 1",
                 ));
             }
+        }
+        Ok(())
+    }
+
+    /// The field: finite g ≥ 0, walls along y when g > 0, and full collision
+    /// records (compact ones replay velocities that only collisions change).
+    fn check_gravity(&self) -> Result<(), ConfigError> {
+        let g = self.gravity;
+        if !(g.is_finite() && g >= 0.0) {
+            return Err(ConfigError::invalid(
+                "gravity",
+                format!("value {g}"),
+                "finite g ≥ 0 (length/time², along −y); 0 for none",
+            ));
+        }
+        if g > 0.0 && self.sim_box.boundary.axes()[1] == AxisBoundary::Periodic {
+            return Err(ConfigError::invalid(
+                "gravity",
+                format!("g = {g} with a periodic y axis: discs would fall for ever"),
+                "hard walls along y with a field: box.boundary \"walls\" or                  {\"x\": \"periodic\", \"y\": \"walls\"}; or gravity 0",
+            ));
+        }
+        if g > 0.0 && self.log.collision_detail == Some(CollisionDetailConfig::Compact) {
+            return Err(ConfigError::invalid(
+                "log.collision_detail",
+                format!("\"compact\" with gravity {g}: compact records replay velocities that only collisions change, and a field changes them in between"),
+                "\"full\" (or no log.collision_detail, which is full with a field)",
+            ));
         }
         Ok(())
     }

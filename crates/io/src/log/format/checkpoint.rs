@@ -19,7 +19,7 @@ use carom_events::{Checkpoint, EngineParams, Stats};
 pub const CHECKPOINT_MSG: &str = "\
 # The complete state of a carom run, from which it resumes bit-identically.
 # Per-disc arrays have one entry per disc; units are the run's.
-uint32 format_version             # 3 (2: without the images at the end)
+uint32 format_version             # 4 (3: without gravity at the end; 2: nor the images)
 # --- run driver ---
 float64 run_start_time            # simulated time at which the run started (time)
 uint64 logged_collisions          # collisions written to /collisions so far
@@ -82,10 +82,13 @@ uint64 next_reorder               # pair-collision count at which the engine nex
 # --- periodic images (format_version 3 on) ---
 int32[] image_x                   # net periodic edges crossed since the run began, per disc in internal order:
 int32[] image_y                   #   the unwrapped position now is x + vx * (clock - t) + image_x * box_x
+# --- uniform gravity (format_version 4 on) ---
+float64 gravity                   # g along -y (length/time^2; 0: none); then x, y, vx, vy are a path: the
+                                  #   position at clock is (x + vx c, y + vy c - g c^2/2), velocity (vx, vy - g c), c = clock - t
 ";
 
 /// Format version written in `format_version`.
-pub const CHECKPOINT_FORMAT_VERSION: u32 = 3;
+pub const CHECKPOINT_FORMAT_VERSION: u32 = 4;
 
 /// The run driver's state at a checkpoint (what it needs, beyond the engine, to
 /// continue the log exactly as the uninterrupted run would have).
@@ -188,6 +191,7 @@ impl LogCheckpoint {
         w.put(c.next_reorder);
         w.seq_iter(c.images.iter().map(|m| m[0]));
         w.seq_iter(c.images.iter().map(|m| m[1]));
+        w.put(c.params.gravity);
     }
 
     /// Decode from CDR. Checks the layout and the lengths of paired arrays; the
@@ -195,7 +199,7 @@ impl LogCheckpoint {
     pub fn decode(data: &[u8]) -> Result<Self, CdrError> {
         let mut r = CdrReader::new(data)?;
         let version: u32 = r.get("format_version")?;
-        // Version 2 is version 3 without the images.
+        // Version 3 is version 4 without gravity, version 2 also without the images.
         if !(2..=CHECKPOINT_FORMAT_VERSION).contains(&version) {
             return Err(CdrError::Invalid {
                 field: "format_version",
@@ -258,10 +262,11 @@ impl LogCheckpoint {
                 })
             }
         };
-        let params = EngineParams {
+        let mut params = EngineParams {
             restitution,
             tc: r.get("tc")?,
             max_events_without_time_advance: r.get("max_events_without_time_advance")?,
+            ..EngineParams::default()
         };
         let now = r.get("now")?;
         let epoch = r.get("epoch")?;
@@ -354,6 +359,9 @@ impl LogCheckpoint {
         } else {
             Vec::new()
         };
+        if version >= 4 {
+            params.gravity = r.get("gravity")?;
+        }
         Ok(LogCheckpoint {
             driver,
             engine: Checkpoint {
@@ -412,6 +420,7 @@ mod tests {
             restitution: Restitution::Normal(0.95),
             tc: 1e-4,
             max_events_without_time_advance: 1000,
+            ..EngineParams::default()
         };
         let mut e = Engine::new(spec.build().unwrap(), params).unwrap();
         e.run_collisions(500).unwrap();

@@ -9,7 +9,8 @@
 //! "mass"}], "box": {"size": [Lx, Ly], "boundary": ["periodic" | "walls", …],
 //! "wall_restitution": [e_w or null, …]}, "collision": {"model", "coefficient",
 //! "tc"}, "n_discs", "collision_every" (null when collisions are not logged),
-//! "accessible_area"}`; every number in shortest round-trip form.
+//! "accessible_area", "gravity" (only when not 0)}`; every number in shortest
+//! round-trip form.
 
 use crate::options::LogOptions;
 use carom_core::observables::{accessible_area, disc_count};
@@ -36,6 +37,9 @@ pub struct RunFacts {
     /// The area disc centres reach (length², physics.md §5): the box area when
     /// periodic, `carom_core::observables::accessible_area` with walls.
     pub accessible_area: f64,
+    /// Uniform gravity g along −y (length/time², physics.md §15; 0: none). In the
+    /// JSON only when not 0 (`"gravity"`), so facts without a field read as before.
+    pub gravity: f64,
 }
 
 impl RunFacts {
@@ -55,6 +59,7 @@ impl RunFacts {
             n_discs: disc_count(species) as u64,
             collision_every: log.collisions.then_some(log.collision_every),
             accessible_area: accessible_area(species, sim_box),
+            gravity: params.gravity,
         }
     }
 
@@ -94,6 +99,7 @@ impl RunFacts {
             n_discs: self.n_discs,
             collision_every: self.collision_every,
             accessible_area: self.accessible_area,
+            gravity: self.gravity,
         };
         serde_json::to_value(wire).expect("the facts always serialise")
     }
@@ -133,6 +139,7 @@ impl RunFacts {
             n_discs: w.n_discs,
             collision_every: w.collision_every,
             accessible_area: w.accessible_area,
+            gravity: w.gravity,
         })
     }
 }
@@ -147,6 +154,13 @@ struct FactsJson {
     n_discs: u64,
     collision_every: Option<u64>,
     accessible_area: f64,
+    #[serde(default, skip_serializing_if = "is_zero")]
+    gravity: f64,
+}
+
+/// Whether `x` is 0 (gravity left out of the JSON).
+fn is_zero(x: &f64) -> bool {
+    *x == 0.0
 }
 
 #[derive(Serialize, Deserialize)]

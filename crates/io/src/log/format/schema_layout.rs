@@ -348,7 +348,7 @@ fn checkpoint_fields(c: &LogCheckpoint) -> Values {
     };
     let b = &e.sim_box.boundary;
     named(vec![
-        ("format_version", vec![3]),
+        ("format_version", vec![4]),
         ("run_start_time", f([d.run_start_time])),
         ("logged_collisions", vec![d.logged_collisions]),
         ("next_sequence", u(d.next_sequence)),
@@ -408,6 +408,7 @@ fn checkpoint_fields(c: &LogCheckpoint) -> Values {
         ("next_reorder", vec![e.next_reorder]),
         ("image_x", i(e.images.iter().map(|m| m[0]))),
         ("image_y", i(e.images.iter().map(|m| m[1]))),
+        ("gravity", f([e.params.gravity])),
     ])
 }
 
@@ -433,6 +434,7 @@ fn sample_checkpoint() -> LogCheckpoint {
         restitution: Restitution::CentreOfMass(0.96875),
         tc: 1e-4,
         max_events_without_time_advance: 1001,
+        ..EngineParams::default()
     };
     let mut e = Engine::new(spec.build().unwrap(), params).unwrap();
     e.run_collisions(300).unwrap();
@@ -496,18 +498,18 @@ fn a_checkpoint_with_unequal_paired_arrays_is_refused() {
     }
 }
 
-/// A checkpoint of format 2 is format 3 without the images at the end: it reads
-/// with no images (the engine then counts them from 0).
+/// A checkpoint of format 2 is format 4 without the images and gravity at the end:
+/// it reads with no images (the engine then counts them from 0) and g = 0.
 #[test]
 fn a_format_2_checkpoint_reads_without_images() {
     let c = sample_checkpoint();
     let v2: String = CHECKPOINT_MSG
         .lines()
-        .filter(|l| !l.starts_with("int32[] image_"))
+        .filter(|l| !l.starts_with("int32[] image_") && !l.starts_with("float64 gravity"))
         .map(|l| format!("{l}\n"))
         .collect();
     let mut fields = checkpoint_fields(&c);
-    fields.retain(|(n, _)| !n.starts_with("image_"));
+    fields.retain(|(n, _)| !n.starts_with("image_") && n != "gravity");
     fields
         .iter_mut()
         .find(|(n, _)| n == "format_version")
