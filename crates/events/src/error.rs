@@ -81,6 +81,9 @@ pub enum EngineError {
     /// A checkpoint could not be restored.
     #[error("checkpoint: {0}")]
     BadCheckpoint(String),
+    /// A thermostat with a bad parameter, or a caller's use of its reserved tag.
+    #[error("{0}")]
+    BadThermostat(String),
 }
 
 /// What a runaway of [`EngineError::Stalled`] is and what cures it, for a run whose

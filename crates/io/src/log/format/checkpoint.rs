@@ -8,18 +8,19 @@
 //!
 //! Every `f64` is stored bit for bit (±∞ included), so an engine restored from a
 //! decoded checkpoint continues bit-identically. The engine draws random numbers
-//! only while building the initial state, so there is no RNG state to store.
+//! while building the initial state and, with a thermostat, from the thermostat's
+//! own generator, whose state is stored.
 
 use super::cdr::{CdrError, CdrReader, CdrWriter};
 use super::snapshot::boundary_code;
 use carom_core::{Boundary, DVec2, Restitution, SimBox, Species};
-use carom_events::{Checkpoint, EngineParams, Stats};
+use carom_events::{Checkpoint, EngineParams, Stats, Thermostat, ThermostatState, ThermostatStats};
 
 /// `ros2msg` text of the schema `carom_msgs/msg/Checkpoint`.
 pub const CHECKPOINT_MSG: &str = "\
 # The complete state of a carom run, from which it resumes bit-identically.
 # Per-disc arrays have one entry per disc; units are the run's.
-uint32 format_version             # 3 (2: without the images at the end)
+uint32 format_version             # 4 (3: without the thermostat at the end; 2: nor the images)
 # --- run driver ---
 float64 run_start_time            # simulated time at which the run started (time)
 uint64 logged_collisions          # collisions written to /collisions so far
@@ -82,10 +83,17 @@ uint64 next_reorder               # pair-collision count at which the engine nex
 # --- periodic images (format_version 3 on) ---
 int32[] image_x                   # net periodic edges crossed since the run began, per disc in internal order:
 int32[] image_y                   #   the unwrapped position now is x + vx * (clock - t) + image_x * box_x
+# --- thermostat (format_version 4 on; its next event is the scheduled event of tag 18446744073709551614) ---
+uint8 thermostat_kind             # 0 = none, 1 = Andersen, 2 = driven
+float64 thermostat_a              # Andersen: kT (energy); driven: xi2 (length^2/time^3); 0 for none
+float64 thermostat_b              # Andersen: rate per disc (1/time); driven: interval (time); 0 for none
+uint64[2] thermostat_rng          # the Pcg64Mcg generator's 128-bit state: high, low 64 bits
+uint64 thermostat_events          # thermostat events so far
+float64 thermostat_energy_added   # kinetic energy the thermostat added so far (energy)
 ";
 
 /// Format version written in `format_version`.
-pub const CHECKPOINT_FORMAT_VERSION: u32 = 3;
+pub const CHECKPOINT_FORMAT_VERSION: u32 = 4;
 
 /// The run driver's state at a checkpoint (what it needs, beyond the engine, to
 /// continue the log exactly as the uninterrupted run would have).
@@ -188,6 +196,22 @@ impl LogCheckpoint {
         w.put(c.next_reorder);
         w.seq_iter(c.images.iter().map(|m| m[0]));
         w.seq_iter(c.images.iter().map(|m| m[1]));
+        let t = c.thermostat.unwrap_or(ThermostatState {
+            thermostat: Thermostat::Andersen { kt: 0.0, rate: 0.0 },
+            rng: 0,
+            stats: ThermostatStats::default(),
+        });
+        let (kind, a, b) = match (c.thermostat.is_some(), t.thermostat) {
+            (false, _) => (0u8, 0.0, 0.0),
+            (true, Thermostat::Andersen { kt, rate }) => (1, kt, rate),
+            (true, Thermostat::Driven { xi2, interval }) => (2, xi2, interval),
+        };
+        w.put(kind);
+        w.put(a);
+        w.put(b);
+        w.array(&[(t.rng >> 64) as u64, t.rng as u64]);
+        w.put(t.stats.events);
+        w.put(t.stats.energy_added);
     }
 
     /// Decode from CDR. Checks the layout and the lengths of paired arrays; the
@@ -195,7 +219,7 @@ impl LogCheckpoint {
     pub fn decode(data: &[u8]) -> Result<Self, CdrError> {
         let mut r = CdrReader::new(data)?;
         let version: u32 = r.get("format_version")?;
-        // Version 2 is version 3 without the images.
+        // Version 2 is version 3 without the images; 3 is 4 without the thermostat.
         if !(2..=CHECKPOINT_FORMAT_VERSION).contains(&version) {
             return Err(CdrError::Invalid {
                 field: "format_version",
@@ -354,6 +378,11 @@ impl LogCheckpoint {
         } else {
             Vec::new()
         };
+        let thermostat = if version >= 4 {
+            decode_thermostat(&mut r)?
+        } else {
+            None
+        };
         Ok(LogCheckpoint {
             driver,
             engine: Checkpoint {
@@ -383,9 +412,42 @@ impl LogCheckpoint {
                 labels,
                 next_reorder,
                 images,
+                thermostat,
             },
         })
     }
+}
+
+/// The thermostat fields at the end of a checkpoint of format 4 on.
+fn decode_thermostat(r: &mut CdrReader) -> Result<Option<ThermostatState>, CdrError> {
+    let kind: u8 = r.get("thermostat_kind")?;
+    let a: f64 = r.get("thermostat_a")?;
+    let b: f64 = r.get("thermostat_b")?;
+    let rng: [u64; 2] = r.fixed("thermostat_rng")?;
+    let events = r.get("thermostat_events")?;
+    let energy_added = r.get("thermostat_energy_added")?;
+    let thermostat = match kind {
+        0 => return Ok(None),
+        1 => Thermostat::Andersen { kt: a, rate: b },
+        2 => Thermostat::Driven {
+            xi2: a,
+            interval: b,
+        },
+        k => {
+            return Err(CdrError::Invalid {
+                field: "thermostat_kind",
+                problem: format!("unknown thermostat kind {k} (allowed: 0, 1, 2)"),
+            })
+        }
+    };
+    Ok(Some(ThermostatState {
+        thermostat,
+        rng: (rng[0] as u128) << 64 | rng[1] as u128,
+        stats: ThermostatStats {
+            events,
+            energy_added,
+        },
+    }))
 }
 
 #[cfg(test)]

@@ -348,7 +348,7 @@ fn checkpoint_fields(c: &LogCheckpoint) -> Values {
     };
     let b = &e.sim_box.boundary;
     named(vec![
-        ("format_version", vec![3]),
+        ("format_version", vec![4]),
         ("run_start_time", f([d.run_start_time])),
         ("logged_collisions", vec![d.logged_collisions]),
         ("next_sequence", u(d.next_sequence)),
@@ -408,7 +408,33 @@ fn checkpoint_fields(c: &LogCheckpoint) -> Values {
         ("next_reorder", vec![e.next_reorder]),
         ("image_x", i(e.images.iter().map(|m| m[0]))),
         ("image_y", i(e.images.iter().map(|m| m[1]))),
-    ])
+    ]
+    .into_iter()
+    .chain(thermostat_fields(e.thermostat))
+    .collect::<Vec<_>>())
+}
+
+/// The thermostat's fields by schema name (format 4 on).
+fn thermostat_fields(t: Option<carom_events::ThermostatState>) -> Vec<(&'static str, Vec<u64>)> {
+    use carom_events::Thermostat;
+    let (kind, a, b, rng, events, added) = match t {
+        None => (0, 0.0, 0.0, 0u128, 0, 0.0),
+        Some(t) => {
+            let (kind, a, b) = match t.thermostat {
+                Thermostat::Andersen { kt, rate } => (1, kt, rate),
+                Thermostat::Driven { xi2, interval } => (2, xi2, interval),
+            };
+            (kind, a, b, t.rng, t.stats.events, t.stats.energy_added)
+        }
+    };
+    vec![
+        ("thermostat_kind", vec![kind]),
+        ("thermostat_a", f([a])),
+        ("thermostat_b", f([b])),
+        ("thermostat_rng", vec![(rng >> 64) as u64, rng as u64]),
+        ("thermostat_events", vec![events]),
+        ("thermostat_energy_added", f([added])),
+    ]
 }
 
 /// A checkpoint after 300 collisions of a binary mixture, walled in x, with one
@@ -435,9 +461,13 @@ fn sample_checkpoint() -> LogCheckpoint {
         max_events_without_time_advance: 1001,
     };
     let mut e = Engine::new(spec.build().unwrap(), params).unwrap();
+    // An Andersen thermostat, so that its fields are not all zero.
+    let andersen = carom_events::Thermostat::Andersen { kt: 1.5, rate: 0.25 };
+    e.set_thermostat(Some(andersen), 9).unwrap();
     e.run_collisions(300).unwrap();
     e.schedule(e.now() + 1.0, 42).unwrap();
     let mut engine = e.checkpoint();
+    assert!(engine.thermostat.unwrap().stats.events > 0);
     // Images all distinct and of both signs (300 collisions cross few edges).
     for (k, m) in engine.images.iter_mut().enumerate() {
         *m = [-1 - k as i32, 1000 + k as i32];
@@ -503,11 +533,11 @@ fn a_format_2_checkpoint_reads_without_images() {
     let c = sample_checkpoint();
     let v2: String = CHECKPOINT_MSG
         .lines()
-        .filter(|l| !l.starts_with("int32[] image_"))
+        .filter(|l| !l.starts_with("int32[] image_") && !l.contains(" thermostat_"))
         .map(|l| format!("{l}\n"))
         .collect();
     let mut fields = checkpoint_fields(&c);
-    fields.retain(|(n, _)| !n.starts_with("image_"));
+    fields.retain(|(n, _)| !n.starts_with("image_") && !n.starts_with("thermostat_"));
     fields
         .iter_mut()
         .find(|(n, _)| n == "format_version")
@@ -517,6 +547,7 @@ fn a_format_2_checkpoint_reads_without_images() {
     assert!(read.engine.images.is_empty());
     let mut want = c;
     want.engine.images.clear();
+    want.engine.thermostat = None;
     assert_eq!(read, want);
     fields
         .iter_mut()
