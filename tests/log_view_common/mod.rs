@@ -270,20 +270,21 @@ pub fn checkpoint(cp: &LogCheckpoint) -> Value {
         "next_seq": next_seq, "labels": u(labels), "next_reorder": next_reorder,
         "image_x": ints(images.iter().map(|m| m[0])), "image_y": ints(images.iter().map(|m| m[1])),
     });
-    let (kind, a, b, rng, events, added) = match thermostat {
-        None => (0, 0.0, 0.0, 0u128, 0, 0.0),
+    let (kind, a, b, rng, events, added, origin) = match thermostat {
+        None => (0, 0.0, 0.0, 0u128, 0, 0.0, 0.0),
         Some(t) => {
             let (kind, a, b) = match t.thermostat {
                 carom::events::Thermostat::Andersen { kt, rate } => (1, kt, rate),
                 carom::events::Thermostat::Driven { xi2, interval } => (2, xi2, interval),
             };
-            (kind, a, b, t.rng, t.stats.events, t.stats.energy_added)
+            (kind, a, b, t.rng, t.stats.events, t.stats.energy_added, t.origin)
         }
     };
     let thermostat = json!({
         "thermostat_kind": kind, "thermostat_a": f(a), "thermostat_b": f(b),
         "thermostat_rng": ints([(rng >> 64) as u64, rng as u64]),
         "thermostat_events": events, "thermostat_energy_added": f(added),
+        "thermostat_origin": f(origin),
     });
     let mut all = state;
     all.as_object_mut()

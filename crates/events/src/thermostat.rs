@@ -84,6 +84,8 @@ pub struct ThermostatState {
     pub rng: u128,
     /// Its running totals.
     pub stats: ThermostatStats,
+    /// The time it was set (time): driving kick k comes at `origin` + k Δt.
+    pub origin: f64,
 }
 
 /// The tag of the thermostat's next event among the engine's scheduled events;

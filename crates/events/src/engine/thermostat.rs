@@ -32,6 +32,8 @@ pub(super) struct Running {
     thermostat: Thermostat,
     rng: Pcg64Mcg,
     stats: ThermostatStats,
+    /// The time it was set (time).
+    origin: f64,
 }
 
 impl Running {
@@ -41,22 +43,26 @@ impl Running {
             thermostat: self.thermostat,
             rng: self.rng.state(),
             stats: self.stats,
+            origin: self.origin,
         }
     }
 
     /// The thermostat of a checkpoint's `state`.
     pub(super) fn from_state(s: &ThermostatState) -> Result<Running, String> {
         s.thermostat.validate()?;
-        if !s.stats.energy_added.is_finite() {
-            return Err(format!(
-                "thermostat energy added is {}, not finite",
-                s.stats.energy_added
-            ));
+        for (name, x) in [
+            ("energy added", s.stats.energy_added),
+            ("origin", s.origin),
+        ] {
+            if !x.is_finite() {
+                return Err(format!("thermostat {name} is {x}, not finite"));
+            }
         }
         Ok(Running {
             thermostat: s.thermostat,
             rng: Pcg64Mcg::new(s.rng),
             stats: s.stats,
+            origin: s.origin,
         })
     }
 }
@@ -91,6 +97,7 @@ impl Engine {
                 thermostat,
                 rng: Pcg64Mcg::seed_from_u64(seed ^ STREAM),
                 stats: ThermostatStats::default(),
+                origin: self.reported,
             })
         });
         if self.thermostat.is_some() {
@@ -111,17 +118,22 @@ impl Engine {
             .map_or(ThermostatStats::default(), |r| r.stats)
     }
 
-    /// The time from one thermostat event to the next (time): exponential of mean
-    /// 1/(N ν) for Andersen, the interval for driving.
-    fn thermostat_wait(&mut self) -> f64 {
+    /// The time of the thermostat's next event (time): after an exponential wait
+    /// of mean 1/(N ν) for Andersen; for driving the next multiple of the interval
+    /// from the time it was set, origin + (k + 1) Δt after k kicks (not summed,
+    /// so that rounding does not accumulate).
+    fn thermostat_next(&mut self) -> f64 {
         let n = self.len() as f64;
+        let now = self.reported;
         let r = self.thermostat.as_mut().expect("a thermostat is set");
         match r.thermostat {
             Thermostat::Andersen { rate, .. } => {
                 let e: f64 = r.rng.sample(Exp1);
-                e / (n * rate)
+                now + e / (n * rate)
             }
-            Thermostat::Driven { interval, .. } => interval,
+            Thermostat::Driven { interval, .. } => {
+                (r.origin + (r.stats.events + 1) as f64 * interval).max(now)
+            }
         }
     }
 
@@ -176,7 +188,7 @@ impl Engine {
     /// Schedule the thermostat's next event, one wait from now (none if the wait
     /// is infinite: a rate so small that N ν rounds to 0).
     fn schedule_thermostat(&mut self) {
-        let t = self.reported + self.thermostat_wait();
+        let t = self.thermostat_next();
         if t.is_finite() {
             self.push_scheduled(t, THERMOSTAT_TAG);
         }

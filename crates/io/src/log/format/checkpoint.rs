@@ -90,6 +90,7 @@ float64 thermostat_b              # Andersen: rate per disc (1/time); driven: in
 uint64[2] thermostat_rng          # the Pcg64Mcg generator's 128-bit state: high, low 64 bits
 uint64 thermostat_events          # thermostat events so far
 float64 thermostat_energy_added   # kinetic energy the thermostat added so far (energy)
+float64 thermostat_origin         # time the thermostat was set: driving kick k comes at origin + k * interval (time)
 ";
 
 /// Format version written in `format_version`.
@@ -200,6 +201,7 @@ impl LogCheckpoint {
             thermostat: Thermostat::Andersen { kt: 0.0, rate: 0.0 },
             rng: 0,
             stats: ThermostatStats::default(),
+            origin: 0.0,
         });
         let (kind, a, b) = match (c.thermostat.is_some(), t.thermostat) {
             (false, _) => (0u8, 0.0, 0.0),
@@ -212,6 +214,7 @@ impl LogCheckpoint {
         w.array(&[(t.rng >> 64) as u64, t.rng as u64]);
         w.put(t.stats.events);
         w.put(t.stats.energy_added);
+        w.put(t.origin);
     }
 
     /// Decode from CDR. Checks the layout and the lengths of paired arrays; the
@@ -426,6 +429,7 @@ fn decode_thermostat(r: &mut CdrReader) -> Result<Option<ThermostatState>, CdrEr
     let rng: [u64; 2] = r.fixed("thermostat_rng")?;
     let events = r.get("thermostat_events")?;
     let energy_added = r.get("thermostat_energy_added")?;
+    let origin = r.get("thermostat_origin")?;
     let thermostat = match kind {
         0 => return Ok(None),
         1 => Thermostat::Andersen { kt: a, rate: b },
@@ -447,6 +451,7 @@ fn decode_thermostat(r: &mut CdrReader) -> Result<Option<ThermostatState>, CdrEr
             events,
             energy_added,
         },
+        origin,
     }))
 }
 

@@ -417,14 +417,14 @@ fn checkpoint_fields(c: &LogCheckpoint) -> Values {
 /// The thermostat's fields by schema name (format 4 on).
 fn thermostat_fields(t: Option<carom_events::ThermostatState>) -> Vec<(&'static str, Vec<u64>)> {
     use carom_events::Thermostat;
-    let (kind, a, b, rng, events, added) = match t {
-        None => (0, 0.0, 0.0, 0u128, 0, 0.0),
+    let (kind, a, b, rng, events, added, origin) = match t {
+        None => (0, 0.0, 0.0, 0u128, 0, 0.0, 0.0),
         Some(t) => {
             let (kind, a, b) = match t.thermostat {
                 Thermostat::Andersen { kt, rate } => (1, kt, rate),
                 Thermostat::Driven { xi2, interval } => (2, xi2, interval),
             };
-            (kind, a, b, t.rng, t.stats.events, t.stats.energy_added)
+            (kind, a, b, t.rng, t.stats.events, t.stats.energy_added, t.origin)
         }
     };
     vec![
@@ -434,6 +434,7 @@ fn thermostat_fields(t: Option<carom_events::ThermostatState>) -> Vec<(&'static 
         ("thermostat_rng", vec![(rng >> 64) as u64, rng as u64]),
         ("thermostat_events", vec![events]),
         ("thermostat_energy_added", f([added])),
+        ("thermostat_origin", f([origin])),
     ]
 }
 
