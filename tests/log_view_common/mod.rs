@@ -277,7 +277,15 @@ pub fn checkpoint(cp: &LogCheckpoint) -> Value {
                 carom::events::Thermostat::Andersen { kt, rate } => (1, kt, rate),
                 carom::events::Thermostat::Driven { xi2, interval } => (2, xi2, interval),
             };
-            (kind, a, b, t.rng, t.stats.events, t.stats.energy_added, t.origin)
+            (
+                kind,
+                a,
+                b,
+                t.rng,
+                t.stats.events,
+                t.stats.energy_added,
+                t.origin,
+            )
         }
     };
     let thermostat = json!({

@@ -63,7 +63,10 @@ fn thermostat_events_come_at_their_rate() {
     e.run_until(t).unwrap();
     let got = e.thermostat_stats().events as f64;
     let expected = 400.0 * rate * t;
-    eprintln!("Andersen events: {got} (expected {expected} ± {})", expected.sqrt());
+    eprintln!(
+        "Andersen events: {got} (expected {expected} ± {})",
+        expected.sqrt()
+    );
     assert!((got - expected).abs() < 4.0 * expected.sqrt(), "{got}");
 
     let mut e = fluid(400, 0.3, 11);
@@ -88,8 +91,14 @@ fn thermostat_events_come_at_their_rate() {
 #[test]
 fn andersen_events_are_poisson_and_each_redraws_one_disc() {
     let mut e = fluid(400, 0.3, 12);
-    e.set_thermostat(Some(Thermostat::Andersen { kt: 1.0, rate: 0.05 }), 12)
-        .unwrap();
+    e.set_thermostat(
+        Some(Thermostat::Andersen {
+            kt: 1.0,
+            rate: 0.05,
+        }),
+        12,
+    )
+    .unwrap();
     let mut counts = Vec::new();
     for k in 1..=400 {
         let before = e.thermostat_stats().events;
@@ -99,9 +108,15 @@ fn andersen_events_are_poisson_and_each_redraws_one_disc() {
     let m = counts.len() as f64;
     let mean = counts.iter().sum::<f64>() / m;
     let var = counts.iter().map(|c| (c - mean).powi(2)).sum::<f64>() / (m - 1.0);
-    eprintln!("counts per window: mean {mean}, variance/mean {}", var / mean);
+    eprintln!(
+        "counts per window: mean {mean}, variance/mean {}",
+        var / mean
+    );
     assert!((mean - 10.0).abs() < 4.0 * (10.0 / m).sqrt(), "mean {mean}");
-    assert!((var / mean - 1.0).abs() < 4.0 * (2.0 / (m - 1.0)).sqrt(), "{var}");
+    assert!(
+        (var / mean - 1.0).abs() < 4.0 * (2.0 / (m - 1.0)).sqrt(),
+        "{var}"
+    );
 
     let (mut events, mut one) = (0, 0);
     while events < 300 {
@@ -112,7 +127,10 @@ fn andersen_events_are_poisson_and_each_redraws_one_disc() {
             // Two redraws may come before one collision.
             let redraws = e.thermostat_stats().events - seen;
             let changed = changed_discs(&before, &e.state().velocities, &ev);
-            assert!(changed as u64 <= redraws, "{changed} discs changed by {redraws}");
+            assert!(
+                changed as u64 <= redraws,
+                "{changed} discs changed by {redraws}"
+            );
             events += redraws;
             one += changed as u64;
         }
@@ -159,7 +177,11 @@ fn driving_keeps_the_momentum_and_counts_the_energy_it_adds() {
     // The cross terms m v·Δv average 0 but add a variance Σ_kicks 2K ξ² Δt ≈
     // 200 · 2 · 440 · 10⁻³ = 176 (K ≈ 400 → 480): 79.8 ± 13.3, within 4 of them.
     // (Seed 13 gives 108.5, +2.2; the steady-state validation tests the variance.)
-    assert!((s.energy_added - 79.8).abs() < 4.0 * 13.3, "{}", s.energy_added);
+    assert!(
+        (s.energy_added - 79.8).abs() < 4.0 * 13.3,
+        "{}",
+        s.energy_added
+    );
     let p = e.state().momentum();
     assert!(p.length() < 1e-11, "momentum {p}");
 }
@@ -174,7 +196,10 @@ fn andersen_energy_is_counted() {
     e.run_until(30.0).unwrap();
     let dk = e.kinetic_energy() - k0;
     let added = e.thermostat_stats().energy_added;
-    assert!((dk - added).abs() < 1e-10 * e.kinetic_energy(), "{dk} vs {added}");
+    assert!(
+        (dk - added).abs() < 1e-10 * e.kinetic_energy(),
+        "{dk} vs {added}"
+    );
     // Relaxing towards kT = 2 from 1 with rate 0.1: K grows by about
     // (1 − e^(−3)) · 399 ≈ 379; anything positive and well short of 2·399 holds.
     assert!(added > 200.0 && added < 600.0, "{added}");
@@ -212,10 +237,18 @@ fn a_thermostatted_run_resumes_bit_identically() {
         a.schedule(a.now() + 2.0, 7).unwrap();
         let mut b = Engine::from_checkpoint(a.checkpoint()).unwrap();
         assert_eq!(b.thermostat(), Some(thermostat));
-        let ta: Vec<Event> = (0..30_000).map(|_| a.next_event().unwrap().unwrap()).collect();
-        let tb: Vec<Event> = (0..30_000).map(|_| b.next_event().unwrap().unwrap()).collect();
+        let ta: Vec<Event> = (0..30_000)
+            .map(|_| a.next_event().unwrap().unwrap())
+            .collect();
+        let tb: Vec<Event> = (0..30_000)
+            .map(|_| b.next_event().unwrap().unwrap())
+            .collect();
         assert_eq!(ta, tb, "{thermostat:?}");
-        assert!(a.thermostat_stats().events > 50, "{:?}", a.thermostat_stats());
+        assert!(
+            a.thermostat_stats().events > 50,
+            "{:?}",
+            a.thermostat_stats()
+        );
         assert_eq!(a.checkpoint(), b.checkpoint());
         assert_eq!(state_hash(&a), state_hash(&b));
         // Another seed is another trajectory.
@@ -278,7 +311,13 @@ fn bad_thermostats_are_refused() {
     )
     .unwrap();
     let cp = e.checkpoint();
-    assert_eq!(cp.scheduled.iter().filter(|s| s.2 == THERMOSTAT_TAG).count(), 1);
+    assert_eq!(
+        cp.scheduled
+            .iter()
+            .filter(|s| s.2 == THERMOSTAT_TAG)
+            .count(),
+        1
+    );
     e.set_thermostat(None, 0).unwrap();
     assert!(e.checkpoint().scheduled.is_empty());
 }

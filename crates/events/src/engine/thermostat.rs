@@ -50,10 +50,7 @@ impl Running {
     /// The thermostat of a checkpoint's `state`.
     pub(super) fn from_state(s: &ThermostatState) -> Result<Running, String> {
         s.thermostat.validate()?;
-        for (name, x) in [
-            ("energy added", s.stats.energy_added),
-            ("origin", s.origin),
-        ] {
+        for (name, x) in [("energy added", s.stats.energy_added), ("origin", s.origin)] {
             if !x.is_finite() {
                 return Err(format!("thermostat {name} is {x}, not finite"));
             }

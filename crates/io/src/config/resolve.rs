@@ -90,13 +90,19 @@ impl Config {
             tc: c.collision.tc,
             max_events_without_time_advance: c.collision.max_events_without_time_advance,
         };
+        let mut log = c.log.options();
+        if c.thermostat.is_some() {
+            // Compact records cannot replay velocities the thermostat changed.
+            log.collision_detail = CollisionDetail::Full;
+        }
         Ok(RunSpec {
             system,
             params,
             stop: c.stop.stop(),
             max_time_without_collision: c.stop.max_time_without_collision,
-            log: c.log.options(),
+            log,
             config_json: self.canonical_json(),
+            thermostat: c.thermostat.map(|t| t.thermostat()),
         })
     }
 }
