@@ -542,6 +542,7 @@ impl Analyzer {
                 .as_ref()
                 .and_then(StructureFactor::report),
             transport,
+            thermostat: None,
         })
     }
 

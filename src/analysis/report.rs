@@ -66,6 +66,9 @@ pub struct Report {
     /// D, η and λ from the collision log, with the exact VACF (physics.md §14);
     /// `null` unless the run is elastic and periodic and logs every collision.
     pub transport: Option<TransportReport>,
+    /// The thermostat's target against the measured temperature (physics.md
+    /// §15); `null` without a thermostat.
+    pub thermostat: Option<super::thermostat::ThermostatReport>,
 }
 
 /// One species of the run.
