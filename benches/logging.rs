@@ -173,6 +173,7 @@ fn bench(c: &mut Criterion) {
             max_time_without_collision: None,
             log,
             config_json: "{}".into(),
+            thermostat: None,
         };
         let mut size = 0;
         group.bench_function(name, |b| {

@@ -561,6 +561,7 @@ impl Analyzer {
                 .and_then(StructureFactor::report),
             transport,
             gravity,
+            thermostat: None,
         })
     }
 

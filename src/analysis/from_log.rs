@@ -15,7 +15,7 @@ use carom_core::DVec2;
 use carom_io::{
     scan_indexed, scan_observed, LogEnd, LogMessage, LogReader, ReadError, ReadProgress,
 };
-use carom_io::{Snapshot, KIND_PAIR};
+use carom_io::{Config, Snapshot, KIND_PAIR};
 use thiserror::Error;
 
 use super::description::describe;
@@ -138,7 +138,15 @@ pub fn analyze_log(
     }
     let gaps = feed.unwrapper.ambiguous_gaps();
     feed.analyzer.ambiguous_gaps(gaps);
-    Ok((feed.analyzer.finish()?, complete))
+    let mut report = feed.analyzer.finish()?;
+    // The thermostat, from the stored configuration (logs before thermostats,
+    // and configurations that cannot be read, have none).
+    if let Ok(spec) = Config::from_json_str(&info.run.config).and_then(|c| c.to_run_spec()) {
+        if let Some(t) = &spec.thermostat {
+            super::thermostat::apply(t, spec.params.restitution, &mut report);
+        }
+    }
+    Ok((report, complete))
 }
 
 /// Messages read and decoded on a thread of their own (the records themselves

@@ -44,6 +44,7 @@ mod structure_factor;
 mod temperature;
 #[cfg(test)]
 mod test_lattice;
+mod thermostat;
 mod transport;
 mod transport_report;
 mod transport_theory;
@@ -77,6 +78,9 @@ pub use report::{
 pub use self_scattering::bessel_j0;
 pub use series::DRIFT_STD_ERRORS;
 pub use structure_factor::{StructureFactorReport, SK_K_MAX_SIGMA, SK_MAX_MODES, SK_SNAPSHOTS};
+pub use thermostat::{
+    driven_a2, driven_steady_temperature, enskog_rate_coefficient, ThermostatReport,
+};
 pub use transport::{TRANSPORT_SEGMENTS, TRANSPORT_WINDOW};
 pub use transport_report::{
     EnskogTransport, Estimate, HelfandReport, SpeciesTransport, TransportReport,

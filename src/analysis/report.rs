@@ -70,6 +70,9 @@ pub struct Report {
     /// Potential energy, n(y) and the barometric fit (physics.md §15); `null`
     /// without a field or without snapshots after the equilibration time.
     pub gravity: Option<GravityReport>,
+    /// The thermostat's target against the measured temperature (physics.md
+    /// §16); `null` without a thermostat.
+    pub thermostat: Option<super::thermostat::ThermostatReport>,
 }
 
 /// One species of the run.

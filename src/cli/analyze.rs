@@ -307,6 +307,9 @@ pub fn text(r: &Report, args: &AnalyzeArgs, complete: bool) -> String {
     if let Some(g) = &r.gravity {
         gravity_text(g, &mut s);
     }
+    if let Some(t) = &r.thermostat {
+        thermostat_text(t, &mut s);
+    }
     if let Some(i) = &r.inelastic {
         if let Some(e) = &i.energy {
             let _ = writeln!(
@@ -351,6 +354,30 @@ pub fn text(r: &Report, args: &AnalyzeArgs, complete: bool) -> String {
 /// How a species' snapshots were thinned, for the text report ("" when all of the
 /// window's snapshots were used).
 /// The lines of bond order, g6(r) and S(k) (physics.md §11).
+/// The thermostat's target against the measured temperature (physics.md §16);
+/// it replaces the energy budget, which a thermostat does not close.
+fn thermostat_text(t: &carom::analysis::ThermostatReport, s: &mut String) {
+    use std::fmt::Write;
+    let opt = |x: Option<f64>| x.map_or("–".to_owned(), |v| format!("{:.5}", Num(v)));
+    match (t.target_kt, t.granular_temperature) {
+        (Some(target), _) => {
+            let _ = writeln!(
+                s,
+                "thermostat  Andersen, rate {} per disc: kT = 2K/(2N) = {:.5} against the target {:.5} (relative difference {:+.2e}); energy is not conserved",
+                opt(t.rate), Num(t.kt_all_components), Num(target), t.relative_difference.unwrap_or(f64::NAN)
+            );
+        }
+        (None, Some(tg)) => {
+            let _ = writeln!(
+                s,
+                "thermostat  driven, ξ² = {}, kicks every {}: granular T = K/N = {:.5}; steady T from the energy balance {} (Enskog–Henderson rate), {} (measured rate); energy is not conserved",
+                opt(t.xi2), opt(t.interval), Num(tg), opt(t.predicted_temperature), opt(t.predicted_temperature_from_rate)
+            );
+        }
+        _ => {}
+    }
+}
+
 fn structure_text(r: &Report, s: &mut String) {
     use std::fmt::Write;
     if let Some(b) = &r.bond_order {

@@ -39,6 +39,10 @@ pub fn run(spec: &RunSpec, out: &Path, mut control: Control<'_>) -> Result<RunSu
     let n = state.len();
     let facts = RunFacts::new(&state.species, &state.sim_box, &spec.params, &spec.log);
     let engine = Engine::new(state, spec.params)
+        .and_then(|mut e| {
+            e.set_thermostat(spec.thermostat, spec.system.seed)?;
+            Ok(e)
+        })
         .map_err(|source| RunError::Engine {
             source,
             time: 0.0,

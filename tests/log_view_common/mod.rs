@@ -207,6 +207,7 @@ pub fn checkpoint(cp: &LogCheckpoint) -> Value {
         species,
         species_of,
         stats,
+        thermostat,
         times,
         velocities,
     } = engine;
@@ -271,10 +272,37 @@ pub fn checkpoint(cp: &LogCheckpoint) -> Value {
         "image_x": ints(images.iter().map(|m| m[0])), "image_y": ints(images.iter().map(|m| m[1])),
         "gravity": f(*gravity),
     });
+    let (kind, a, b, rng, events, added, origin) = match thermostat {
+        None => (0, 0.0, 0.0, 0u128, 0, 0.0, 0.0),
+        Some(t) => {
+            let (kind, a, b) = match t.thermostat {
+                carom::events::Thermostat::Andersen { kt, rate } => (1, kt, rate),
+                carom::events::Thermostat::Driven { xi2, interval } => (2, xi2, interval),
+            };
+            (
+                kind,
+                a,
+                b,
+                t.rng,
+                t.stats.events,
+                t.stats.energy_added,
+                t.origin,
+            )
+        }
+    };
+    let thermostat = json!({
+        "thermostat_kind": kind, "thermostat_a": f(a), "thermostat_b": f(b),
+        "thermostat_rng": ints([(rng >> 64) as u64, rng as u64]),
+        "thermostat_events": events, "thermostat_energy_added": f(added),
+        "thermostat_origin": f(origin),
+    });
     let mut all = state;
     all.as_object_mut()
         .unwrap()
         .extend(per_disc.as_object().unwrap().clone());
+    all.as_object_mut()
+        .unwrap()
+        .extend(thermostat.as_object().unwrap().clone());
     all
 }
 

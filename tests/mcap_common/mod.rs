@@ -45,6 +45,7 @@ pub fn system(n: usize, eta: f64, walls: bool, mixture: bool, seed: u64) -> Syst
 pub fn spec(system: SystemSpec, stop: Stop, log: LogOptions) -> RunSpec {
     RunSpec {
         config_json: format!("{{\"test\": true, \"seed\": {}}}", system.seed),
+        thermostat: None,
         system,
         params: EngineParams::default(),
         stop,

@@ -5,6 +5,7 @@
 //! the engine copies itself out and back in `engine/checkpoint.rs`.
 
 use crate::engine::{EngineParams, Stats};
+use crate::thermostat::ThermostatState;
 use carom_core::{DVec2, SimBox, Species};
 
 /// Everything an [`Engine`](crate::Engine) holds, as plain arrays (one entry per disc unless noted).
@@ -87,4 +88,7 @@ pub struct Checkpoint {
     /// per-disc arrays. Empty in checkpoints written before carom counted them: the
     /// count then restarts at 0.
     pub images: Vec<[i32; 2]>,
+    /// The thermostat with its generator and totals, if one is set; its next event
+    /// is the entry of `scheduled` with tag [`THERMOSTAT_TAG`](crate::THERMOSTAT_TAG).
+    pub thermostat: Option<ThermostatState>,
 }

@@ -87,6 +87,9 @@ pub enum EngineError {
          box.boundary {{\"x\": …, \"y\": \"walls\"}} or \"walls\")"
     )]
     BadGravity(String),
+    /// A thermostat with a bad parameter, or a caller's use of its reserved tag.
+    #[error("{0}")]
+    BadThermostat(String),
 }
 
 /// What a runaway of [`EngineError::Stalled`] is and what cures it, for a run whose

@@ -40,6 +40,7 @@ mod invariants;
 mod memory;
 mod queue;
 mod state;
+mod thermostat;
 
 pub use checkpoint::Checkpoint;
 pub use engine::{Engine, EngineParams, Stats};
@@ -50,6 +51,7 @@ pub use init::{
 };
 pub use invariants::{InvariantChecker, Violation};
 pub use state::State;
+pub use thermostat::{Thermostat, ThermostatState, ThermostatStats, THERMOSTAT_TAG};
 
 /// "No disc": the end of a cell's list, an empty place in the event calendar, a
 /// disc without a pair candidate; in a [`Checkpoint`] too.

@@ -152,6 +152,8 @@ pub struct RunSpec {
     pub log: LogOptions,
     /// The user's configuration as JSON text, stored verbatim in the log's metadata.
     pub config_json: String,
+    /// The thermostat, if any (its generator is seeded from `system.seed`).
+    pub thermostat: Option<carom_events::Thermostat>,
 }
 
 /// The most records of one kind (snapshots, thermo, checkpoints or scenes) a run may ask

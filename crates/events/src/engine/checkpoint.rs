@@ -12,7 +12,7 @@
 
 use super::body::{Aux, Body, Pending};
 use super::clock::origin_limit;
-use super::{lookahead, Engine};
+use super::{lookahead, thermostat, Engine};
 use crate::cells::Link;
 use crate::checkpoint::Checkpoint;
 use crate::classes::Grids;
@@ -85,6 +85,7 @@ impl Engine {
                 .iter()
                 .map(|&d| self.images[d as usize])
                 .collect(),
+            thermostat: self.thermostat.as_ref().map(|r| r.state()),
         }
     }
 
@@ -235,6 +236,22 @@ impl Engine {
             })
             .collect::<Result<_, EngineError>>()?;
         let limit = origin_limit(cp.sim_box.size, grids.first.width);
+        let thermostat = match &cp.thermostat {
+            Some(s) => Some(Box::new(thermostat::Running::from_state(s).map_err(bad)?)),
+            None => None,
+        };
+        let thermostat_events = cp
+            .scheduled
+            .iter()
+            .filter(|s| s.2 == crate::THERMOSTAT_TAG)
+            .count();
+        if thermostat_events != thermostat.is_some() as usize {
+            return Err(bad(format!(
+                "{thermostat_events} thermostat events scheduled with {} thermostat \
+                 (allowed: one event with a thermostat, none without)",
+                if thermostat.is_some() { "a" } else { "no" }
+            )));
+        }
         Ok(Engine {
             sim_box: cp.sim_box,
             species: cp.species,
@@ -258,6 +275,7 @@ impl Engine {
             look_ahead: lookahead::worthwhile(n),
             tuner: lookahead::Tuner::new(n),
             origin_limit: limit,
+            thermostat,
         })
     }
 }

@@ -24,6 +24,7 @@ mod gravity;
 mod lookahead;
 mod predict;
 mod resolve;
+mod thermostat;
 
 use crate::cells::Link;
 use crate::classes::Grids;
@@ -133,6 +134,8 @@ pub struct Engine {
     /// The largest |r0| component before the clock is restarted early (length;
     /// [`Engine::keep_origin_near`]; derived from the box and the grid).
     origin_limit: f64,
+    /// The thermostat, if one is set (`engine::thermostat`).
+    thermostat: Option<Box<thermostat::Running>>,
 }
 
 #[inline]
@@ -221,6 +224,7 @@ impl Engine {
             reported: state.time,
             same_time_collisions: 0,
             stats: Stats::default(),
+            thermostat: None,
         };
         engine.reorder();
         for i in 0..n {
@@ -389,7 +393,7 @@ impl Engine {
 
     /// Ask for an [`Event::Scheduled`] with `tag` at time `time` (≥ now). Events at the
     /// same time are delivered in the order they were scheduled, before any collision
-    /// at that time.
+    /// at that time. The tag [`crate::THERMOSTAT_TAG`] is the thermostat's own.
     pub fn schedule(&mut self, time: f64, tag: u64) -> Result<(), EngineError> {
         if time.is_nan() || time < self.reported || time.is_infinite() {
             return Err(EngineError::ScheduleInPast {
@@ -397,9 +401,12 @@ impl Engine {
                 now: self.reported,
             });
         }
-        self.scheduled
-            .push(Reverse((time_key(time), self.next_seq, tag)));
-        self.next_seq += 1;
+        if tag == crate::THERMOSTAT_TAG {
+            return Err(EngineError::BadThermostat(format!(
+                "tag {tag} is the thermostat's own (allowed: any other tag)"
+            )));
+        }
+        self.push_scheduled(time, tag);
         Ok(())
     }
 
@@ -467,6 +474,10 @@ impl Engine {
                     self.scheduled.pop();
                     self.move_clock(internal);
                     self.reported = self.reported.max(ts);
+                    if tag == crate::THERMOSTAT_TAG {
+                        self.thermostat_event()?;
+                        continue;
+                    }
                     return Ok(Some(Event::Scheduled {
                         time: self.reported,
                         tag,

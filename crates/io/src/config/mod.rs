@@ -27,7 +27,7 @@ pub use front::{apply_set, load_config};
 pub use model::{
     AxisBoundary, BoundaryConfig, BoxConfig, CollisionConfig, CollisionDetailConfig,
     CollisionModel, CompressionConfig, Config, LogConfig, PlacementConfig, SnapshotScheduleConfig,
-    SpeciesConfig, StopConfig, VelocitiesConfig, DEFAULT_COUNT, DEFAULT_DURATION,
+    SpeciesConfig, StopConfig, ThermostatConfig, VelocitiesConfig, DEFAULT_COUNT, DEFAULT_DURATION,
     DEFAULT_PACKING_FRACTION,
 };
 
@@ -39,3 +39,5 @@ mod schedule_tests;
 mod schema_tests;
 #[cfg(test)]
 mod tests;
+#[cfg(test)]
+mod thermostat_tests;

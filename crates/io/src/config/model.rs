@@ -56,11 +56,50 @@ pub struct Config {
     /// records cannot replay velocities that change between collisions.
     #[serde(default, skip_serializing_if = "is_zero")]
     pub gravity: f64,
+    /// A thermostat acting on the velocities at exact random or regular times
+    /// (physics.md §16). Default: none (constant energy, or cooling when inelastic).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub thermostat: Option<ThermostatConfig>,
 }
 
-/// Whether `x` is 0 (a field left out of the stored configuration).
-fn is_zero(x: &f64) -> bool {
-    *x == 0.0
+/// A thermostat, by its `kind`.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(tag = "kind", rename_all = "kebab-case", deny_unknown_fields)]
+pub enum ThermostatConfig {
+    /// `{"kind": "andersen", "kT": 2, "rate": 0.1}`: each disc's velocity is
+    /// redrawn from Maxwell–Boltzmann at `kT` at the events of a Poisson process of
+    /// `rate` per disc (physics.md §16.1).
+    Andersen {
+        /// Target temperature kT (energy); allowed: finite, > 0.
+        #[serde(rename = "kT")]
+        kt: f64,
+        /// Redraws per disc and unit time ν (1/time); allowed: finite, > 0.
+        rate: f64,
+    },
+    /// `{"kind": "driven", "xi2": 0.01, "interval": 0.01}`: every `interval` each
+    /// disc gets a Gaussian velocity kick of variance `xi2 · interval` per component,
+    /// with the kicks' total momentum removed (physics.md §16.2).
+    Driven {
+        /// Driving strength ξ² (length²/time³); allowed: finite, > 0.
+        xi2: f64,
+        /// Time between kicks Δt (time); allowed: finite, > 0, and small against the
+        /// mean free time for the steady state of §16.2.
+        interval: f64,
+    },
+}
+
+impl ThermostatConfig {
+    /// The engine's thermostat.
+    pub fn thermostat(&self) -> carom_events::Thermostat {
+        match *self {
+            ThermostatConfig::Andersen { kt, rate } => {
+                carom_events::Thermostat::Andersen { kt, rate }
+            }
+            ThermostatConfig::Driven { xi2, interval } => {
+                carom_events::Thermostat::Driven { xi2, interval }
+            }
+        }
+    }
 }
 
 /// One kind of disc.
@@ -477,6 +516,7 @@ impl Default for Config {
             stop: StopConfig::default(),
             log: LogConfig::default(),
             gravity: 0.0,
+            thermostat: None,
         }
     }
 }
@@ -509,4 +549,9 @@ fn de_count<'de, D: Deserializer<'de>>(d: D) -> Result<u64, D::Error> {
 
 fn de_opt_count<'de, D: Deserializer<'de>>(d: D) -> Result<Option<u64>, D::Error> {
     de_count(d).map(Some)
+}
+
+/// Whether `x` is 0 (a field left out of the stored configuration).
+fn is_zero(x: &f64) -> bool {
+    *x == 0.0
 }

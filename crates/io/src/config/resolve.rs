@@ -92,9 +92,9 @@ impl Config {
             gravity: c.gravity,
         };
         let mut log = c.log.options();
-        if c.gravity > 0.0 && c.log.collision_detail.is_none() {
+        if (c.gravity > 0.0 && c.log.collision_detail.is_none()) || c.thermostat.is_some() {
             // Compact records cannot replay velocities that change between
-            // collisions (see Config::gravity).
+            // collisions (see Config::gravity) or that the thermostat changed.
             log.collision_detail = CollisionDetail::Full;
         }
         Ok(RunSpec {
@@ -104,6 +104,7 @@ impl Config {
             max_time_without_collision: c.stop.max_time_without_collision,
             log,
             config_json: self.canonical_json(),
+            thermostat: c.thermostat.map(|t| t.thermostat()),
         })
     }
 }

@@ -99,6 +99,11 @@ fn maximal_values() -> Vec<Value> {
         first: 0.5,
     });
     let mut d = c.clone();
+    c.thermostat = Some(ThermostatConfig::Andersen { kt: 1.0, rate: 1.0 });
+    d.thermostat = Some(ThermostatConfig::Driven {
+        xi2: 1.0,
+        interval: 1.0,
+    });
     c.placement = PlacementConfig::Explicit(vec![[0.0, 0.0]]);
     c.velocities = VelocitiesConfig::Explicit(vec![[0.0, 0.0]]);
     d.sim_box.boundary = BoundaryConfig::PerAxis {

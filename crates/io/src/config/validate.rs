@@ -39,6 +39,25 @@ impl Config {
                  \"compact\" with log.collision_every = 1",
             ));
         }
+        if let Some(t) = &self.thermostat {
+            t.thermostat().validate().map_err(|m| {
+                // "thermostat.FIELD: value V (allowed: A)" from the engine's check.
+                let (field, rest) = m.split_once(": ").unwrap_or(("thermostat", &m));
+                let (problem, allowed) = rest
+                    .trim_end_matches(')')
+                    .split_once(" (allowed: ")
+                    .unwrap_or((rest, "a finite number > 0"));
+                ConfigError::invalid(field, problem, allowed)
+            })?;
+            if self.log.collision_detail == Some(CollisionDetailConfig::Compact) {
+                return Err(ConfigError::invalid(
+                    "log.collision_detail",
+                    "\"compact\" with a thermostat: compact records replay velocities \
+                     from collisions alone, and the thermostat changes them in between",
+                    "\"full\" (or no log.collision_detail) with a thermostat",
+                ));
+            }
+        }
         // A run of known length starts at time 0 and lasts stop.duration.
         check_log_options(&self.log.options(), &self.stop.stop(), 0.0, "stop.duration")?;
         Ok(())

@@ -8,18 +8,19 @@
 //!
 //! Every `f64` is stored bit for bit (±∞ included), so an engine restored from a
 //! decoded checkpoint continues bit-identically. The engine draws random numbers
-//! only while building the initial state, so there is no RNG state to store.
+//! while building the initial state and, with a thermostat, from the thermostat's
+//! own generator, whose state is stored.
 
 use super::cdr::{CdrError, CdrReader, CdrWriter};
 use super::snapshot::boundary_code;
 use carom_core::{Boundary, DVec2, Restitution, SimBox, Species};
-use carom_events::{Checkpoint, EngineParams, Stats};
+use carom_events::{Checkpoint, EngineParams, Stats, Thermostat, ThermostatState, ThermostatStats};
 
 /// `ros2msg` text of the schema `carom_msgs/msg/Checkpoint`.
 pub const CHECKPOINT_MSG: &str = "\
 # The complete state of a carom run, from which it resumes bit-identically.
 # Per-disc arrays have one entry per disc; units are the run's.
-uint32 format_version             # 4 (3: without gravity at the end; 2: nor the images)
+uint32 format_version             # 4 (3: without gravity and the thermostat at the end; 2: nor the images)
 # --- run driver ---
 float64 run_start_time            # simulated time at which the run started (time)
 uint64 logged_collisions          # collisions written to /collisions so far
@@ -85,6 +86,14 @@ int32[] image_y                   #   the unwrapped position now is x + vx * (cl
 # --- uniform gravity (format_version 4 on) ---
 float64 gravity                   # g along -y (length/time^2; 0: none); then x, y, vx, vy are a path: the
                                   #   position at clock is (x + vx c, y + vy c - g c^2/2), velocity (vx, vy - g c), c = clock - t
+# --- thermostat (format_version 4 on; its next event is the scheduled event of tag 18446744073709551614) ---
+uint8 thermostat_kind             # 0 = none, 1 = Andersen, 2 = driven
+float64 thermostat_a              # Andersen: kT (energy); driven: xi2 (length^2/time^3); 0 for none
+float64 thermostat_b              # Andersen: rate per disc (1/time); driven: interval (time); 0 for none
+uint64[2] thermostat_rng          # the Pcg64Mcg generator's 128-bit state: high, low 64 bits
+uint64 thermostat_events          # thermostat events so far
+float64 thermostat_energy_added   # kinetic energy the thermostat added so far (energy)
+float64 thermostat_origin         # time the thermostat was set: driving kick k comes at origin + k * interval (time)
 ";
 
 /// Format version written in `format_version`.
@@ -199,7 +208,9 @@ impl LogCheckpoint {
     pub fn decode(data: &[u8]) -> Result<Self, CdrError> {
         let mut r = CdrReader::new(data)?;
         let version: u32 = r.get("format_version")?;
-        // Version 3 is version 4 without gravity, version 2 also without the images.
+        // Version 3 is version 4 without gravity and the thermostat, version 2 also
+        // without the images.
+        // Version 2 is version 3 without the images; 3 is 4 without the thermostat.
         if !(2..=CHECKPOINT_FORMAT_VERSION).contains(&version) {
             return Err(CdrError::Invalid {
                 field: "format_version",
@@ -362,6 +373,11 @@ impl LogCheckpoint {
         if version >= 4 {
             params.gravity = r.get("gravity")?;
         }
+        let thermostat = if version >= 4 {
+            decode_thermostat(&mut r)?
+        } else {
+            None
+        };
         Ok(LogCheckpoint {
             driver,
             engine: Checkpoint {
@@ -391,9 +407,44 @@ impl LogCheckpoint {
                 labels,
                 next_reorder,
                 images,
+                thermostat,
             },
         })
     }
+}
+
+/// The thermostat fields at the end of a checkpoint of format 4 on.
+fn decode_thermostat(r: &mut CdrReader) -> Result<Option<ThermostatState>, CdrError> {
+    let kind: u8 = r.get("thermostat_kind")?;
+    let a: f64 = r.get("thermostat_a")?;
+    let b: f64 = r.get("thermostat_b")?;
+    let rng: [u64; 2] = r.fixed("thermostat_rng")?;
+    let events = r.get("thermostat_events")?;
+    let energy_added = r.get("thermostat_energy_added")?;
+    let origin = r.get("thermostat_origin")?;
+    let thermostat = match kind {
+        0 => return Ok(None),
+        1 => Thermostat::Andersen { kt: a, rate: b },
+        2 => Thermostat::Driven {
+            xi2: a,
+            interval: b,
+        },
+        k => {
+            return Err(CdrError::Invalid {
+                field: "thermostat_kind",
+                problem: format!("unknown thermostat kind {k} (allowed: 0, 1, 2)"),
+            })
+        }
+    };
+    Ok(Some(ThermostatState {
+        thermostat,
+        rng: (rng[0] as u128) << 64 | rng[1] as u128,
+        stats: ThermostatStats {
+            events,
+            energy_added,
+        },
+        origin,
+    }))
 }
 
 #[cfg(test)]

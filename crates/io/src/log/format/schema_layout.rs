@@ -347,69 +347,106 @@ fn checkpoint_fields(c: &LogCheckpoint) -> Values {
         Restitution::Normal(x) => (2, x),
     };
     let b = &e.sim_box.boundary;
-    named(vec![
-        ("format_version", vec![4]),
-        ("run_start_time", f([d.run_start_time])),
-        ("logged_collisions", vec![d.logged_collisions]),
-        ("next_sequence", u(d.next_sequence)),
-        ("box_x", f([e.sim_box.size.x])),
-        ("box_y", f([e.sim_box.size.y])),
-        ("boundary_x", vec![code(&b[0])]),
-        ("boundary_y", vec![code(&b[1])]),
-        ("wall_restitution_x", f([we(&b[0])])),
-        ("wall_restitution_y", f([we(&b[1])])),
-        (
-            "species_count",
-            e.species.iter().map(|s| s.count as u64).collect(),
-        ),
-        ("species_radius", f(e.species.iter().map(|s| s.radius))),
-        ("species_mass", f(e.species.iter().map(|s| s.mass))),
-        ("species", u(e.species_of.clone())),
-        ("restitution_kind", vec![kind]),
-        ("restitution", f([coef])),
-        ("tc", f([e.params.tc])),
-        (
-            "max_events_without_time_advance",
-            vec![e.params.max_events_without_time_advance],
-        ),
-        ("now", f([e.now])),
-        ("epoch", f([e.epoch])),
-        ("clock", f([e.clock])),
-        ("same_time_collisions", vec![e.same_time_collisions]),
-        ("pair_collisions", vec![s.pair_collisions]),
-        ("wall_collisions", vec![s.wall_collisions]),
-        ("cell_crossings", vec![s.cell_crossings]),
-        ("stale_events", vec![s.stale_events]),
-        ("virial_sum", f([s.virial_sum])),
-        ("wall_impulse", f(s.wall_impulse.iter().flatten().copied())),
-        ("energy_lost", f([s.energy_lost])),
-        ("x", f(e.positions.iter().map(|p| p.x))),
-        ("y", f(e.positions.iter().map(|p| p.y))),
-        ("vx", f(e.velocities.iter().map(|v| v.x))),
-        ("vy", f(e.velocities.iter().map(|v| v.y))),
-        ("t", f(e.times.clone())),
-        ("collision_count", u(e.counts.clone())),
-        ("last_collision", f(e.last_collision.clone())),
-        ("event_time", f(e.event_times.clone())),
-        ("pair_time", f(e.pair_times.clone())),
-        ("pending_partner", u(e.pending.iter().map(|p| p[0]))),
-        ("pending_partner_count", u(e.pending.iter().map(|p| p[1]))),
-        ("pending_kind", u(e.pending.iter().map(|p| p[2]))),
-        ("cell_head", u(e.cell_head.clone())),
-        ("cell_next", u(e.cell_next.clone())),
-        ("cell_prev", u(e.cell_prev.clone())),
-        ("cell_column", u(e.cell.iter().map(|c| c[0]))),
-        ("cell_row", u(e.cell.iter().map(|c| c[1]))),
-        ("scheduled_time", f(e.scheduled.iter().map(|s| s.0))),
-        ("scheduled_seq", e.scheduled.iter().map(|s| s.1).collect()),
-        ("scheduled_tag", e.scheduled.iter().map(|s| s.2).collect()),
-        ("next_seq", vec![e.next_seq]),
-        ("labels", u(e.labels.clone())),
-        ("next_reorder", vec![e.next_reorder]),
-        ("image_x", i(e.images.iter().map(|m| m[0]))),
-        ("image_y", i(e.images.iter().map(|m| m[1]))),
-        ("gravity", f([e.params.gravity])),
-    ])
+    named(
+        vec![
+            ("format_version", vec![4]),
+            ("run_start_time", f([d.run_start_time])),
+            ("logged_collisions", vec![d.logged_collisions]),
+            ("next_sequence", u(d.next_sequence)),
+            ("box_x", f([e.sim_box.size.x])),
+            ("box_y", f([e.sim_box.size.y])),
+            ("boundary_x", vec![code(&b[0])]),
+            ("boundary_y", vec![code(&b[1])]),
+            ("wall_restitution_x", f([we(&b[0])])),
+            ("wall_restitution_y", f([we(&b[1])])),
+            (
+                "species_count",
+                e.species.iter().map(|s| s.count as u64).collect(),
+            ),
+            ("species_radius", f(e.species.iter().map(|s| s.radius))),
+            ("species_mass", f(e.species.iter().map(|s| s.mass))),
+            ("species", u(e.species_of.clone())),
+            ("restitution_kind", vec![kind]),
+            ("restitution", f([coef])),
+            ("tc", f([e.params.tc])),
+            (
+                "max_events_without_time_advance",
+                vec![e.params.max_events_without_time_advance],
+            ),
+            ("now", f([e.now])),
+            ("epoch", f([e.epoch])),
+            ("clock", f([e.clock])),
+            ("same_time_collisions", vec![e.same_time_collisions]),
+            ("pair_collisions", vec![s.pair_collisions]),
+            ("wall_collisions", vec![s.wall_collisions]),
+            ("cell_crossings", vec![s.cell_crossings]),
+            ("stale_events", vec![s.stale_events]),
+            ("virial_sum", f([s.virial_sum])),
+            ("wall_impulse", f(s.wall_impulse.iter().flatten().copied())),
+            ("energy_lost", f([s.energy_lost])),
+            ("x", f(e.positions.iter().map(|p| p.x))),
+            ("y", f(e.positions.iter().map(|p| p.y))),
+            ("vx", f(e.velocities.iter().map(|v| v.x))),
+            ("vy", f(e.velocities.iter().map(|v| v.y))),
+            ("t", f(e.times.clone())),
+            ("collision_count", u(e.counts.clone())),
+            ("last_collision", f(e.last_collision.clone())),
+            ("event_time", f(e.event_times.clone())),
+            ("pair_time", f(e.pair_times.clone())),
+            ("pending_partner", u(e.pending.iter().map(|p| p[0]))),
+            ("pending_partner_count", u(e.pending.iter().map(|p| p[1]))),
+            ("pending_kind", u(e.pending.iter().map(|p| p[2]))),
+            ("cell_head", u(e.cell_head.clone())),
+            ("cell_next", u(e.cell_next.clone())),
+            ("cell_prev", u(e.cell_prev.clone())),
+            ("cell_column", u(e.cell.iter().map(|c| c[0]))),
+            ("cell_row", u(e.cell.iter().map(|c| c[1]))),
+            ("scheduled_time", f(e.scheduled.iter().map(|s| s.0))),
+            ("scheduled_seq", e.scheduled.iter().map(|s| s.1).collect()),
+            ("scheduled_tag", e.scheduled.iter().map(|s| s.2).collect()),
+            ("next_seq", vec![e.next_seq]),
+            ("labels", u(e.labels.clone())),
+            ("next_reorder", vec![e.next_reorder]),
+            ("image_x", i(e.images.iter().map(|m| m[0]))),
+            ("image_y", i(e.images.iter().map(|m| m[1]))),
+            ("gravity", f([e.params.gravity])),
+        ]
+        .into_iter()
+        .chain(thermostat_fields(e.thermostat))
+        .collect::<Vec<_>>(),
+    )
+}
+
+/// The thermostat's fields by schema name (format 4 on).
+fn thermostat_fields(t: Option<carom_events::ThermostatState>) -> Vec<(&'static str, Vec<u64>)> {
+    use carom_events::Thermostat;
+    let (kind, a, b, rng, events, added, origin) = match t {
+        None => (0, 0.0, 0.0, 0u128, 0, 0.0, 0.0),
+        Some(t) => {
+            let (kind, a, b) = match t.thermostat {
+                Thermostat::Andersen { kt, rate } => (1, kt, rate),
+                Thermostat::Driven { xi2, interval } => (2, xi2, interval),
+            };
+            (
+                kind,
+                a,
+                b,
+                t.rng,
+                t.stats.events,
+                t.stats.energy_added,
+                t.origin,
+            )
+        }
+    };
+    vec![
+        ("thermostat_kind", vec![kind]),
+        ("thermostat_a", f([a])),
+        ("thermostat_b", f([b])),
+        ("thermostat_rng", vec![(rng >> 64) as u64, rng as u64]),
+        ("thermostat_events", vec![events]),
+        ("thermostat_energy_added", f([added])),
+        ("thermostat_origin", f([origin])),
+    ]
 }
 
 /// A checkpoint after 300 collisions of a binary mixture, walled in x, with one
@@ -437,9 +474,16 @@ fn sample_checkpoint() -> LogCheckpoint {
         ..EngineParams::default()
     };
     let mut e = Engine::new(spec.build().unwrap(), params).unwrap();
+    // An Andersen thermostat, so that its fields are not all zero.
+    let andersen = carom_events::Thermostat::Andersen {
+        kt: 1.5,
+        rate: 0.25,
+    };
+    e.set_thermostat(Some(andersen), 9).unwrap();
     e.run_collisions(300).unwrap();
     e.schedule(e.now() + 1.0, 42).unwrap();
     let mut engine = e.checkpoint();
+    assert!(engine.thermostat.unwrap().stats.events > 0);
     // Images all distinct and of both signs (300 collisions cross few edges).
     for (k, m) in engine.images.iter_mut().enumerate() {
         *m = [-1 - k as i32, 1000 + k as i32];
@@ -498,18 +542,25 @@ fn a_checkpoint_with_unequal_paired_arrays_is_refused() {
     }
 }
 
-/// A checkpoint of format 2 is format 4 without the images and gravity at the end:
-/// it reads with no images (the engine then counts them from 0) and g = 0.
+/// A checkpoint of format 2 is format 4 without the images, gravity and the
+/// thermostat at the end: it reads with no images (the engine then counts them
+/// from 0), g = 0 and no thermostat.
 #[test]
 fn a_format_2_checkpoint_reads_without_images() {
     let c = sample_checkpoint();
     let v2: String = CHECKPOINT_MSG
         .lines()
-        .filter(|l| !l.starts_with("int32[] image_") && !l.starts_with("float64 gravity"))
+        .filter(|l| {
+            !l.starts_with("int32[] image_")
+                && !l.starts_with("float64 gravity")
+                && !l.contains(" thermostat_")
+        })
         .map(|l| format!("{l}\n"))
         .collect();
     let mut fields = checkpoint_fields(&c);
-    fields.retain(|(n, _)| !n.starts_with("image_") && n != "gravity");
+    fields.retain(|(n, _)| {
+        !n.starts_with("image_") && *n != "gravity" && !n.starts_with("thermostat_")
+    });
     fields
         .iter_mut()
         .find(|(n, _)| n == "format_version")
@@ -519,6 +570,7 @@ fn a_format_2_checkpoint_reads_without_images() {
     assert!(read.engine.images.is_empty());
     let mut want = c;
     want.engine.images.clear();
+    want.engine.thermostat = None;
     assert_eq!(read, want);
     fields
         .iter_mut()
