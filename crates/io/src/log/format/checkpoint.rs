@@ -201,6 +201,24 @@ impl LogCheckpoint {
         w.seq_iter(c.images.iter().map(|m| m[0]));
         w.seq_iter(c.images.iter().map(|m| m[1]));
         w.put(c.params.gravity);
+        let t = c.thermostat.unwrap_or(ThermostatState {
+            thermostat: Thermostat::Andersen { kt: 0.0, rate: 0.0 },
+            rng: 0,
+            stats: ThermostatStats::default(),
+            origin: 0.0,
+        });
+        let (kind, a, b) = match (c.thermostat.is_some(), t.thermostat) {
+            (false, _) => (0u8, 0.0, 0.0),
+            (true, Thermostat::Andersen { kt, rate }) => (1, kt, rate),
+            (true, Thermostat::Driven { xi2, interval }) => (2, xi2, interval),
+        };
+        w.put(kind);
+        w.put(a);
+        w.put(b);
+        w.array(&[(t.rng >> 64) as u64, t.rng as u64]);
+        w.put(t.stats.events);
+        w.put(t.stats.energy_added);
+        w.put(t.origin);
     }
 
     /// Decode from CDR. Checks the layout and the lengths of paired arrays; the
@@ -210,7 +228,6 @@ impl LogCheckpoint {
         let version: u32 = r.get("format_version")?;
         // Version 3 is version 4 without gravity and the thermostat, version 2 also
         // without the images.
-        // Version 2 is version 3 without the images; 3 is 4 without the thermostat.
         if !(2..=CHECKPOINT_FORMAT_VERSION).contains(&version) {
             return Err(CdrError::Invalid {
                 field: "format_version",

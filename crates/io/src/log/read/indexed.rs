@@ -24,8 +24,6 @@ use std::path::Path;
 /// found only by a later full read. `Ok(None)` when the file has no usable index (a
 /// run cut short; then use [`scan`](crate::scan)).
 pub fn scan_indexed(path: &Path) -> Result<Option<LogInfo>, ReadError> {
-    use mcap::sans_io::indexed_reader::ReadOrder;
-    use mcap::sans_io::indexed_reader::{IndexedReadEvent, IndexedReader, IndexedReaderOptions};
     use mcap::sans_io::summary_reader::{SummaryReadEvent, SummaryReader, SummaryReaderOptions};
 
     let label = path.display().to_string();
@@ -102,8 +100,26 @@ pub fn scan_indexed(path: &Path) -> Result<Option<LogInfo>, ReadError> {
     // The chunks (in file order) that hold each channel's first and last message.
     let mut chunks = summary.chunk_indexes.clone();
     chunks.sort_by_key(|c| c.chunk_start_offset);
-    if chunks.iter().any(|c| c.message_index_offsets.is_empty()) {
-        return Ok(None);
+    // A chunk without message indexes holds no messages (only schemas and channels,
+    // as when they outgrow the chunk size) or comes from a writer that wrote no
+    // indexes; reading it tells which, and only the first kind is left out.
+    let mut unindexed = Vec::new();
+    chunks.retain(|c| {
+        let empty = c.message_index_offsets.is_empty();
+        if empty {
+            unindexed.push(c.clone());
+        }
+        !empty
+    });
+    for c in &unindexed {
+        let mut any = false;
+        if !each_message(&mut file, c, file_bytes, &io, |_, _| {
+            any = true;
+            false
+        })? || any
+        {
+            return Ok(None);
+        }
     }
     let ours = &ours;
     let holding = |k: usize| {
@@ -124,52 +140,20 @@ pub fn scan_indexed(path: &Path) -> Result<Option<LogInfo>, ReadError> {
         let mut pick = |chunk: &mcap::records::ChunkIndex,
                         want_last: bool|
          -> Result<Option<RawOwned>, ReadError> {
-            // The reader needs only the chunk's index: it looks at the summary's
-            // channels only to filter by topic, which is not asked for here.
-            let one = mcap::Summary {
-                chunk_indexes: vec![chunk.clone()],
-                ..Default::default()
-            };
-            let Ok(mut reader) = IndexedReader::new_with_options(
-                &one,
-                IndexedReaderOptions::new()
-                    .with_order(ReadOrder::File)
-                    .with_record_length_limit(record_length_limit(file_bytes)),
-            ) else {
-                return Ok(None);
-            };
             let mut found: Option<RawOwned> = None;
-            let mut buf = Vec::new();
-            while let Some(event) = reader.next_event() {
-                let Ok(event) = event else { return Ok(None) };
-                match event {
-                    IndexedReadEvent::ReadChunkRequest { offset, length } => {
-                        if offset.saturating_add(length as u64) > file_bytes {
-                            return Ok(None);
-                        }
-                        file.seek(SeekFrom::Start(offset)).map_err(io)?;
-                        buf.resize(length, 0);
-                        file.read_exact(&mut buf).map_err(io)?;
-                        if reader.insert_chunk_record_data(offset, &buf).is_err() {
-                            return Ok(None);
-                        }
-                    }
-                    IndexedReadEvent::Message { header, data } => {
-                        if ours.get(&header.channel_id) == Some(&k) {
-                            found = Some(RawOwned {
-                                channel: k,
-                                log_time: header.log_time,
-                                publish_time: header.publish_time,
-                                data: data.to_vec(),
-                            });
-                            if !want_last {
-                                break;
-                            }
-                        }
-                    }
+            let read = each_message(&mut file, chunk, file_bytes, &io, |header, data| {
+                if ours.get(&header.channel_id) == Some(&k) {
+                    found = Some(RawOwned {
+                        channel: k,
+                        log_time: header.log_time,
+                        publish_time: header.publish_time,
+                        data: data.to_vec(),
+                    });
+                    return want_last;
                 }
-            }
-            Ok(found)
+                true
+            })?;
+            Ok(if read { found } else { None })
         };
         let (Some(a), Some(b)) = (pick(first, false)?, pick(last, true)?) else {
             return Ok(None);
@@ -233,4 +217,55 @@ impl RawOwned {
             data: &self.data,
         }
     }
+}
+
+/// Read the messages of one chunk in file order, handing each to `visit` until it
+/// returns false; `Ok(false)` when the chunk cannot be read as its index says.
+fn each_message(
+    file: &mut File,
+    chunk: &mcap::records::ChunkIndex,
+    file_bytes: u64,
+    io: &impl Fn(std::io::Error) -> ReadError,
+    mut visit: impl FnMut(&mcap::records::MessageHeader, &[u8]) -> bool,
+) -> Result<bool, ReadError> {
+    use mcap::sans_io::indexed_reader::{
+        IndexedReadEvent, IndexedReader, IndexedReaderOptions, ReadOrder,
+    };
+    // The reader needs only the chunk's index: it looks at the summary's channels
+    // only to filter by topic, which is not asked for here.
+    let one = mcap::Summary {
+        chunk_indexes: vec![chunk.clone()],
+        ..Default::default()
+    };
+    let Ok(mut reader) = IndexedReader::new_with_options(
+        &one,
+        IndexedReaderOptions::new()
+            .with_order(ReadOrder::File)
+            .with_record_length_limit(record_length_limit(file_bytes)),
+    ) else {
+        return Ok(false);
+    };
+    let mut buf = Vec::new();
+    while let Some(event) = reader.next_event() {
+        let Ok(event) = event else { return Ok(false) };
+        match event {
+            IndexedReadEvent::ReadChunkRequest { offset, length } => {
+                if offset.saturating_add(length as u64) > file_bytes {
+                    return Ok(false);
+                }
+                file.seek(SeekFrom::Start(offset)).map_err(io)?;
+                buf.resize(length, 0);
+                file.read_exact(&mut buf).map_err(io)?;
+                if reader.insert_chunk_record_data(offset, &buf).is_err() {
+                    return Ok(false);
+                }
+            }
+            IndexedReadEvent::Message { header, data } => {
+                if !visit(&header, data) {
+                    break;
+                }
+            }
+        }
+    }
+    Ok(true)
 }
