@@ -5,13 +5,12 @@
 
 mod analysis_common;
 
-use analysis_common::{feed, fluid};
+use analysis_common::{analyse_state_with, fluid};
 use carom::analysis::{
-    driven_a2, driven_steady_temperature, enskog_rate_coefficient, AnalysisOptions, Analyzer,
-    Report, RunDescription,
+    driven_a2, driven_steady_temperature, enskog_rate_coefficient, AnalysisOptions, Report,
 };
 use carom::core::{Restitution, Species};
-use carom::events::{Engine, EngineParams, SystemSpec, Thermostat, ThermostatStats, Velocities};
+use carom::events::{EngineParams, SystemSpec, Thermostat, ThermostatStats, Velocities};
 
 /// Run `spec` with `params` and `thermostat` (seeded with the spec's seed) to
 /// `t_end`, a snapshot every `dt`, and analyse it from `equilibrate` on.
@@ -21,30 +20,21 @@ fn run(
     thermostat: Thermostat,
     (t_end, dt, equilibrate): (f64, f64, f64),
 ) -> (Report, ThermostatStats) {
-    let state = spec.build().unwrap();
-    let run = RunDescription {
-        species: state.species.clone(),
-        sim_box: state.sim_box,
-        restitution: params.restitution,
-        collision_stride: 1,
-        totals_from_thermo: false,
-        t_start: 0.0,
-        t_end,
-        pair_rate: None,
-        snapshot_interval: Some(dt),
-        snapshot_schedule: None,
-        gravity: 0.0,
-    };
     let opts = AnalysisOptions {
         equilibrate: Some(equilibrate),
         every: Some(dt),
         ..Default::default()
     };
-    let mut a = Analyzer::new(run, opts).unwrap();
-    let mut engine = Engine::new(state, params).unwrap();
-    engine.set_thermostat(Some(thermostat), spec.seed).unwrap();
-    feed(&mut engine, &mut a, 0.0, dt, (t_end / dt).round() as u64);
-    (a.finish().unwrap(), engine.thermostat_stats())
+    let seed = spec.seed;
+    let (report, engine) = analyse_state_with(
+        spec.build().unwrap(),
+        params,
+        (t_end, dt),
+        opts,
+        None,
+        |e| e.set_thermostat(Some(thermostat), seed).unwrap(),
+    );
+    (report, engine.thermostat_stats())
 }
 
 /// 1024 discs at η = 0.3, equal speeds at kT = 1, Andersen at kT = 2 and ν = 0.5

@@ -28,6 +28,19 @@ pub fn analyse_state(
     opts: AnalysisOptions,
     pair_rate: Option<f64>,
 ) -> Report {
+    analyse_state_with(state, params, (t_end, dt), opts, pair_rate, |_| {}).0
+}
+
+/// [`analyse_state`] with `setup` applied to the engine before the run (a
+/// thermostat, say); also returns the engine as the run left it.
+pub fn analyse_state_with(
+    state: State,
+    params: EngineParams,
+    (t_end, dt): (f64, f64),
+    opts: AnalysisOptions,
+    pair_rate: Option<f64>,
+    setup: impl FnOnce(&mut Engine),
+) -> (Report, Engine) {
     assert_eq!(state.time, 0.0);
     let run = RunDescription {
         species: state.species.clone(),
@@ -44,8 +57,9 @@ pub fn analyse_state(
     };
     let mut a = Analyzer::new(run, opts).unwrap();
     let mut engine = Engine::new(state, params).unwrap();
+    setup(&mut engine);
     feed(&mut engine, &mut a, 0.0, dt, (t_end / dt).round() as u64);
-    a.finish().unwrap()
+    (a.finish().unwrap(), engine)
 }
 
 /// Run `engine` from `t0` to `t0 + steps·dt`, feeding every event to `a`, with a
