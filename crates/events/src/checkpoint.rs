@@ -4,7 +4,7 @@
 //! the caller's scheduled events. Plain data: the io crate decides how to store it;
 //! the engine copies itself out and back in `engine/checkpoint.rs`.
 
-use crate::engine::{EngineParams, Stats};
+use crate::engine::{EngineParams, GrowthState, Stats};
 use carom_core::{DVec2, SimBox, Species};
 
 /// Everything an [`Engine`](crate::Engine) holds, as plain arrays (one entry per disc unless noted).
@@ -87,4 +87,7 @@ pub struct Checkpoint {
     /// per-disc arrays. Empty in checkpoints written before carom counted them: the
     /// count then restarts at 0.
     pub images: Vec<[i32; 2]>,
+    /// The growth of the radii (physics.md §16; [`GrowthState::NONE`] without
+    /// growth, and in checkpoints written before carom had it).
+    pub growth: GrowthState,
 }

@@ -87,6 +87,10 @@ pub enum EngineError {
          box.boundary {{\"x\": …, \"y\": \"walls\"}} or \"walls\")"
     )]
     BadGravity(String),
+    /// Growing discs (compression) with parameters out of range or with dynamics
+    /// they do not support.
+    #[error("compression: {0}")]
+    BadGrowth(String),
 }
 
 /// What a runaway of [`EngineError::Stalled`] is and what cures it, for a run whose

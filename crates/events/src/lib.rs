@@ -42,7 +42,7 @@ mod queue;
 mod state;
 
 pub use checkpoint::Checkpoint;
-pub use engine::{Engine, EngineParams, Stats};
+pub use engine::{Engine, EngineParams, Growth, GrowthEnd, GrowthState, Stats};
 pub use error::{EngineError, InitError};
 pub use event::{Event, PairCollision, WallCollision};
 pub use init::{

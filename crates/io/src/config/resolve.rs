@@ -90,6 +90,7 @@ impl Config {
             tc: c.collision.tc,
             max_events_without_time_advance: c.collision.max_events_without_time_advance,
             gravity: c.gravity,
+            growth: Default::default(),
         };
         let mut log = c.log.options();
         if c.gravity > 0.0 && c.log.collision_detail.is_none() {

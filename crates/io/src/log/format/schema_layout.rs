@@ -409,6 +409,18 @@ fn checkpoint_fields(c: &LogCheckpoint) -> Values {
         ("image_x", i(e.images.iter().map(|m| m[0]))),
         ("image_y", i(e.images.iter().map(|m| m[1]))),
         ("gravity", f([e.params.gravity])),
+        ("growth_rate", f([e.params.growth.rate])),
+        ("growth_target_scale", f([e.params.growth.target_scale])),
+        ("growth_kt", f([e.params.growth.kt])),
+        ("growth_rescale_interval", f([e.params.growth.rescale_interval])),
+        ("growth_max_reduced_pressure", f([e.params.growth.max_reduced_pressure])),
+        ("growth_scale0", f([e.growth.scale0])),
+        ("growth_rate_now", f([e.growth.rate])),
+        ("growth_end", f([e.growth.end])),
+        ("growth_next_rescale", f([e.growth.next_rescale])),
+        ("growth_virial_mark", f([e.growth.virial_mark])),
+        ("growth_ended", vec![e.growth.ended as u64]),
+        ("growth_last_z", f([e.growth.last_z])),
     ])
 }
 
