@@ -62,7 +62,8 @@ struct Scanner<'a> {
 /// earlier than the best so far; `image` is the image through which j's cell is seen.
 ///
 /// Disc i itself needs no test of its own: its relative velocity is exactly zero,
-/// so b = 0 and it never meets (whichever image is seen).
+/// so b = 0 and it never meets (whichever image is seen); growing, it is skipped
+/// by its zero separation.
 ///
 /// With `GROW` the radii are the reference radii of growing discs, scaled by
 /// `grow` = (s, γ): the contact distance is σ s and grows at σ γ (physics.md §16).
@@ -82,7 +83,14 @@ fn test_pair<const GROW: bool>(
     let dr = bj.at(now) - me.ri;
     let sigma = me.radius + species[bj.species as usize].radius;
     let dt = if GROW {
-        contact_time_growing(dr, bj.v - bi.v, sigma * grow.0, sigma * grow.1)
+        // Growing, disc i would meet itself (B = −σg < 0 at C = −σ² ≤ 0): it is
+        // the one disc at zero separation.
+        let t = contact_time_growing(dr, bj.v - bi.v, sigma * grow.0, sigma * grow.1);
+        if dr == DVec2::ZERO {
+            f64::INFINITY
+        } else {
+            t
+        }
     } else {
         contact_time_or_inf(dr, bj.v - bi.v, sigma)
     };
