@@ -47,6 +47,7 @@ pub use error::{EngineError, InitError};
 pub use event::{Event, PairCollision, WallCollision};
 pub use init::{
     box_size_for, largest_radius, Placement, PlacementProgress, SystemSpec, Velocities,
+    COMPRESSED_MAX_REDUCED_PRESSURE,
 };
 pub use invariants::{InvariantChecker, Violation};
 pub use state::State;
