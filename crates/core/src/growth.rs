@@ -134,15 +134,24 @@ mod tests {
         let t = contact_time_growing(dr, DVec2::new(3.0, 0.0), 1.0, 1.0);
         assert_eq!(t, f64::INFINITY);
         // u = 2 < g = 3: B = −1 < 0 at C = 0.
-        assert_eq!(contact_time_growing(dr, DVec2::new(2.0, 0.0), 1.0, 3.0), 0.0);
+        assert_eq!(
+            contact_time_growing(dr, DVec2::new(2.0, 0.0), 1.0, 3.0),
+            0.0
+        );
         // u = 1/2 < g = 1 with a sideways 2.
-        assert_eq!(contact_time_growing(dr, DVec2::new(0.5, 2.0), 1.0, 1.0), 0.0);
+        assert_eq!(
+            contact_time_growing(dr, DVec2::new(0.5, 2.0), 1.0, 1.0),
+            0.0
+        );
         // u = 4 > g = 3 with a sideways 3: A = 16 > 0, B = 1 > 0.
         let t = contact_time_growing(dr, DVec2::new(4.0, 3.0), 1.0, 3.0);
         assert_eq!(t, f64::INFINITY);
         // A hair inside contact (C < 0, rounding), u = 6 < g = 7: now.
         let inside = DVec2::new(1.0 - 1e-15, 0.0);
-        assert_eq!(contact_time_growing(inside, DVec2::new(6.0, 0.0), 1.0, 7.0), 0.0);
+        assert_eq!(
+            contact_time_growing(inside, DVec2::new(6.0, 0.0), 1.0, 7.0),
+            0.0
+        );
         // The same hair inside, parting at u = 6 > g = 5 with A = 36 − 25 > 0: never.
         let t = contact_time_growing(inside, DVec2::new(6.0, 0.0), 1.0, 5.0);
         assert_eq!(t, f64::INFINITY);
@@ -158,7 +167,10 @@ mod tests {
     fn faster_growth_than_relative_speed_always_meets() {
         let t = contact_time_growing(DVec2::new(3.0, 0.0), DVec2::new(0.0, 1.0), 1.0, 2.0);
         let exact = (-2.0 + 28f64.sqrt()) / 3.0;
-        assert!((t - exact).abs() < 4.0 * f64::EPSILON * exact, "{t} {exact}");
+        assert!(
+            (t - exact).abs() < 4.0 * f64::EPSILON * exact,
+            "{t} {exact}"
+        );
         let t = contact_time_growing(DVec2::new(3.0, 0.0), DVec2::new(1.0, 0.0), 1.0, 2.0);
         assert_eq!(t, 2.0);
     }

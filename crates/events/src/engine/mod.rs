@@ -461,7 +461,9 @@ impl Engine {
     /// flying straight: a compile-time choice threaded through resolution and
     /// prediction.
     #[inline(always)]
-    fn next_event_in<const FALL: bool, const GROW: bool>(&mut self) -> Result<Option<Event>, EngineError> {
+    fn next_event_in<const FALL: bool, const GROW: bool>(
+        &mut self,
+    ) -> Result<Option<Event>, EngineError> {
         loop {
             self.tuner.left -= 1;
             if self.tuner.left == 0 {
@@ -534,11 +536,17 @@ impl Engine {
                         continue;
                     }
                     self.advance_clock(t)?;
-                    return Ok(Some(Event::Pair(self.collide::<FALL, GROW>(i, j, aux.image()))));
+                    return Ok(Some(Event::Pair(self.collide::<FALL, GROW>(
+                        i,
+                        j,
+                        aux.image(),
+                    ))));
                 }
                 Pending::Wall => {
                     self.advance_clock(t)?;
-                    return Ok(Some(Event::Wall(self.hit_wall::<FALL, GROW>(i, aux.face()))));
+                    return Ok(Some(Event::Wall(
+                        self.hit_wall::<FALL, GROW>(i, aux.face()),
+                    )));
                 }
                 Pending::Cell => {
                     self.move_clock(t);

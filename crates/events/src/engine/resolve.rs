@@ -207,7 +207,11 @@ impl Engine {
 
     /// Resolve disc `i`'s collision with the wall `face` at the current time (the
     /// wall's restitution, or elastic under the TC model) and predict its next event.
-    pub(super) fn hit_wall<const FALL: bool, const GROW: bool>(&mut self, i: usize, face: Face) -> WallCollision {
+    pub(super) fn hit_wall<const FALL: bool, const GROW: bool>(
+        &mut self,
+        i: usize,
+        face: Face,
+    ) -> WallCollision {
         let k = face.axis();
         let side = if face.high() {
             WallSide::High

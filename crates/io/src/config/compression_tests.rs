@@ -67,10 +67,21 @@ fn compression_reaches_the_engine_with_full_collision_records() {
     );
     let g = s.params.growth;
     assert_eq!(g.rate, 0.05);
-    assert!((g.target_scale - 1.6f64.sqrt()).abs() < 1e-12, "{}", g.target_scale);
-    assert_eq!((g.kt, g.rescale_interval, g.max_reduced_pressure), (2.0, 1.0, 1e3));
+    assert!(
+        (g.target_scale - 1.6f64.sqrt()).abs() < 1e-12,
+        "{}",
+        g.target_scale
+    );
+    assert_eq!(
+        (g.kt, g.rescale_interval, g.max_reduced_pressure),
+        (2.0, 1.0, 1e3)
+    );
     assert_eq!(s.log.collision_detail, CollisionDetail::Full);
-    assert!(s.config_json.contains("target_packing_fraction"), "{}", s.config_json);
+    assert!(
+        s.config_json.contains("target_packing_fraction"),
+        "{}",
+        s.config_json
+    );
     let plain = spec("{}");
     assert_eq!(plain.params.growth.rate, 0.0);
     assert!(!plain.config_json.contains("target_packing_fraction"));
@@ -86,7 +97,8 @@ fn compressed_placement_starts_at_the_lower_of_its_start_and_the_box() {
             start: 0.3
         }
     );
-    let s = spec(r#"{"box": {"packing_fraction": 0.2}, "placement": {"compressed": {"rate": 0.5}}}"#);
+    let s =
+        spec(r#"{"box": {"packing_fraction": 0.2}, "placement": {"compressed": {"rate": 0.5}}}"#);
     let Placement::Compressed { rate, start } = s.system.placement else {
         panic!("not compressed");
     };

@@ -27,9 +27,8 @@ pub use front::{apply_set, load_config};
 pub use model::{
     AxisBoundary, BoundaryConfig, BoxConfig, CollisionConfig, CollisionDetailConfig,
     CollisionModel, CompressedPlacementConfig, CompressionConfig, Config, GrowthConfig, LogConfig,
-    PlacementConfig, SnapshotScheduleConfig,
-    SpeciesConfig, StopConfig, VelocitiesConfig, DEFAULT_COUNT, DEFAULT_DURATION,
-    DEFAULT_PACKING_FRACTION,
+    PlacementConfig, SnapshotScheduleConfig, SpeciesConfig, StopConfig, VelocitiesConfig,
+    DEFAULT_COUNT, DEFAULT_DURATION, DEFAULT_PACKING_FRACTION,
 };
 
 #[cfg(test)]

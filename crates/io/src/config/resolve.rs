@@ -9,8 +9,8 @@ use super::{
 };
 use crate::options::{CollisionDetail, Compression, LogOptions, RunSpec, Stop};
 use crate::schedule::SchedulePoints;
-use carom_core::{Boundary, DVec2, Restitution, SimBox, Species};
 use carom_core::observables::packing_fraction;
+use carom_core::{Boundary, DVec2, Restitution, SimBox, Species};
 use carom_events::{
     box_size_for, largest_radius, EngineParams, Growth, Placement, SystemSpec, Velocities,
 };
@@ -77,12 +77,10 @@ impl Config {
                 PlacementConfig::Random => Placement::Random,
                 PlacementConfig::Relaxed => Placement::Relaxed,
                 PlacementConfig::Explicit(p) => Placement::Explicit(to_vecs(p)),
-                PlacementConfig::Compressed(p) => {
-                    Placement::Compressed {
-                        rate: p.rate,
-                        start: p.start_packing_fraction.unwrap_or(eta.min(0.3)),
-                    }
-                }
+                PlacementConfig::Compressed(p) => Placement::Compressed {
+                    rate: p.rate,
+                    start: p.start_packing_fraction.unwrap_or(eta.min(0.3)),
+                },
             },
             velocities: match &c.velocities {
                 VelocitiesConfig::MaxwellBoltzmann => Velocities::MaxwellBoltzmann,

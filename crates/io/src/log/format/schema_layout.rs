@@ -412,8 +412,14 @@ fn checkpoint_fields(c: &LogCheckpoint) -> Values {
         ("growth_rate", f([e.params.growth.rate])),
         ("growth_target_scale", f([e.params.growth.target_scale])),
         ("growth_kt", f([e.params.growth.kt])),
-        ("growth_rescale_interval", f([e.params.growth.rescale_interval])),
-        ("growth_max_reduced_pressure", f([e.params.growth.max_reduced_pressure])),
+        (
+            "growth_rescale_interval",
+            f([e.params.growth.rescale_interval]),
+        ),
+        (
+            "growth_max_reduced_pressure",
+            f([e.params.growth.max_reduced_pressure]),
+        ),
         ("growth_scale0", f([e.growth.scale0])),
         ("growth_rate_now", f([e.growth.rate])),
         ("growth_end", f([e.growth.end])),
