@@ -16,6 +16,7 @@
 use super::body::{Face, Pending};
 use super::Engine;
 use crate::error::EngineError;
+use crate::event::Event;
 use carom_core::growth::{growing_wall_impulse, wall_time_growing};
 use carom_core::observables::{degrees_of_freedom, temperature, virial_z};
 use carom_core::{Boundary, DVec2, Restitution, SimBox, Species};
@@ -285,6 +286,23 @@ impl Engine {
         for i in 0..n {
             self.predict::<false, true>(i);
         }
+    }
+
+    /// [`Engine::run_until`] `t_end` for an engine with growth configured, through
+    /// the growing copy of the event loop only (for compressed placement): a call
+    /// of [`Engine::next_event`] from the placement changed how the whole-program
+    /// optimiser inlines the plain loop, +3 % instructions for the plain engine
+    /// (docs/performance.md, "growth off").
+    pub(crate) fn run_growing_until(&mut self, t_end: f64) -> Result<(), EngineError> {
+        const STOP_TAG: u64 = u64::MAX;
+        debug_assert!(self.params.growth.rate != 0.0);
+        self.schedule(t_end, STOP_TAG)?;
+        while let Some(ev) = self.next_event_growing()? {
+            if let Event::Scheduled { tag: STOP_TAG, .. } = ev {
+                break;
+            }
+        }
+        Ok(())
     }
 
     /// Stop growing now, keeping the size (and say why).

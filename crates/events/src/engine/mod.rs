@@ -15,7 +15,8 @@
 //! (`resolve`), the clock and renumbering (`clock`), fetching ahead (`lookahead`),
 //! the checkpoint (`checkpoint`) and uniform gravity (`gravity`: the same paths,
 //! with the fall added where a disc's own height matters; the event loop is
-//! compiled twice, with and without it). See docs/performance.md, "engine".
+//! compiled twice, with and without it). Growing discs (`growth`, physics.md §16)
+//! run in a third copy of the loop. See docs/performance.md, "engine".
 
 mod body;
 mod checkpoint;
@@ -264,7 +265,9 @@ impl Engine {
         &self.sim_box
     }
 
-    /// The species.
+    /// The species. With growing discs (physics.md §16) their radii are the
+    /// reference radii a⁰: the radii now are a⁰ times [`Engine::radius_scale`], as
+    /// [`Engine::state`] gives them.
     pub fn species(&self) -> &[Species] {
         &self.species
     }

@@ -95,7 +95,8 @@ pub(super) fn compressed(
     let mut engine = Engine::new(state, params).map_err(fail)?;
     let step = params.growth.rescale_interval;
     while engine.growth().ended == GrowthEnd::Growing {
-        engine.run_until(engine.now() + step).map_err(fail)?;
+        let until = engine.now() + step;
+        engine.run_growing_until(until).map_err(fail)?;
     }
     if engine.growth().ended == GrowthEnd::Jammed {
         let s = engine.radius_scale() / scale;
