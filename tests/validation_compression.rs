@@ -16,15 +16,15 @@
 //!    Kolafa–Rottner 6.4553 ± 0.0034. Pass: within 3 combined standard errors
 //!    + 0.5 % (finite N).
 
-mod validation_common;
-
 use carom::analysis::{global_psi6, local_psi6};
 use carom::core::observables::{degrees_of_freedom, packing_fraction, temperature, virial_z};
 use carom::core::{Boundary, SimBox, Species};
 use carom::events::{
     box_size_for, Engine, EngineParams, Growth, GrowthEnd, Placement, State, SystemSpec, Velocities,
 };
-use validation_common::kolafa_rottner;
+
+/// Kolafa–Rottner Z(0.60) and the spread of other fits (physics.md §7).
+const KOLAFA_ROTTNER_060: (f64, f64) = (6.4553, 0.0034);
 
 /// `species` placed at random at packing fraction `eta` (box aspect `aspect`,
 /// periodic), Maxwell–Boltzmann at kT = 1.
@@ -152,7 +152,7 @@ fn a_compressed_fluid_has_the_pressure_of_the_equation_of_state() {
     let m = zs.iter().sum::<f64>() / zs.len() as f64;
     let var = zs.iter().map(|z| (z - m) * (z - m)).sum::<f64>() / (zs.len() - 1) as f64;
     let se = (var / zs.len() as f64).sqrt();
-    let (kr, spread) = kolafa_rottner(0.60).unwrap();
+    let (kr, spread) = KOLAFA_ROTTNER_060;
     eprintln!(
         "EOS: η = {:.5}, kT = {kt:.6}, Z = {m:.4} ± {se:.4} against Kolafa–Rottner {kr} ± {spread}",
         eta_of(&e)

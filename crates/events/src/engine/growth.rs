@@ -6,9 +6,9 @@
 //! wall times become those of `carom_core::growth`; at contact a pair leaves at
 //! u' = −u + 2g and a wall returns v' = −v ± 2ȧ (16.4, 16.6), so collisions add
 //! kinetic energy, and every `rescale_interval` the velocities are scaled back to
-//! the target kT (an exact, scheduled instant, 16.7). Growth stops when s reaches
+//! the target kT (an exact, scheduled instant; §16 "Temperature"). Growth stops when s reaches
 //! the target scale, or at a rescale whose virial pressure Z over the interval past
-//! exceeds the jamming bound (16.8); the discs then keep their size. All discs
+//! exceeds the jamming bound (16.7); the discs then keep their size. All discs
 //! share one cell grid sized for the target (cells wider than the largest final
 //! diameter), so it stays valid throughout. Entered by one test of γ ≠ 0 per
 //! event, like gravity: the engine without growth does exactly what it did before.
@@ -247,7 +247,7 @@ impl Engine {
 
     /// Handle the growth's instant now (the clock is at [`Engine::growth_due`]):
     /// rescale the velocities to the target kT, and end the growth at the target
-    /// scale or when Z over the interval past exceeds the jamming bound (16.8);
+    /// scale or when Z over the interval past exceeds the jamming bound (16.7);
     /// then predict every disc again (all paths changed, or the radii stopped).
     #[cold]
     #[inline(never)]
