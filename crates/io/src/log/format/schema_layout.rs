@@ -348,7 +348,7 @@ fn checkpoint_fields(c: &LogCheckpoint) -> Values {
     };
     let b = &e.sim_box.boundary;
     named(vec![
-        ("format_version", vec![4]),
+        ("format_version", vec![5]),
         ("run_start_time", f([d.run_start_time])),
         ("logged_collisions", vec![d.logged_collisions]),
         ("next_sequence", u(d.next_sequence)),
