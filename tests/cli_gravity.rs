@@ -34,11 +34,17 @@ fn a_run_in_a_field_shows_its_atmosphere_in_json_text_and_figure() {
         assert!(f.metadata().unwrap().len() > 1000, "{}", f.display());
     }
     let text = ok(&carom(&dir, &["analyze", "g.mcap", "--quiet"]));
-    assert!(text.contains("barometric law  species 0: fitted m g/kT"), "{text}");
+    assert!(
+        text.contains("barometric law  species 0: fitted m g/kT"),
+        "{text}"
+    );
     assert!(text.contains("potential energy U"), "{text}");
 
     let refused = carom(&dir, &["run", "--quiet", "--dry-run", "--set", "gravity=1"]);
     assert_eq!(refused.status.code(), Some(2));
     let err = String::from_utf8_lossy(&refused.stderr);
-    assert!(err.contains("gravity") && err.contains("periodic y"), "{err}");
+    assert!(
+        err.contains("gravity") && err.contains("periodic y"),
+        "{err}"
+    );
 }

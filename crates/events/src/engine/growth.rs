@@ -156,7 +156,7 @@ pub(crate) fn check_growth(
             return bad(format!("{name} = {v} (allowed: finite, > 0)"));
         }
     }
-    if !(g.max_reduced_pressure > 1.0) {
+    if g.max_reduced_pressure.is_nan() || g.max_reduced_pressure <= 1.0 {
         return bad(format!(
             "max reduced pressure = {} (allowed: > 1, or +∞ for no jamming stop)",
             g.max_reduced_pressure

@@ -203,7 +203,7 @@ impl Config {
                     ));
                 }
             }
-            if !(g.max_reduced_pressure > 1.0) {
+            if g.max_reduced_pressure.is_nan() || g.max_reduced_pressure <= 1.0 {
                 return Err(ConfigError::invalid(
                     "compression.max_reduced_pressure",
                     format!("value {}", g.max_reduced_pressure),
