@@ -191,6 +191,7 @@ pub fn checkpoint(cp: &LogCheckpoint) -> Value {
         counts,
         epoch,
         event_times,
+        growth,
         images,
         labels,
         last_collision,
@@ -216,6 +217,7 @@ pub fn checkpoint(cp: &LogCheckpoint) -> Value {
         tc,
         max_events_without_time_advance,
         gravity,
+        growth: gp,
     } = params;
     let carom::events::Stats {
         pair_collisions,
@@ -271,6 +273,13 @@ pub fn checkpoint(cp: &LogCheckpoint) -> Value {
         "next_seq": next_seq, "labels": u(labels), "next_reorder": next_reorder,
         "image_x": ints(images.iter().map(|m| m[0])), "image_y": ints(images.iter().map(|m| m[1])),
         "gravity": f(*gravity),
+        "growth_rate": f(gp.rate), "growth_target_scale": f(gp.target_scale),
+        "growth_kt": f(gp.kt), "growth_rescale_interval": f(gp.rescale_interval),
+        "growth_max_reduced_pressure": f(gp.max_reduced_pressure),
+        "growth_scale0": f(growth.scale0), "growth_rate_now": f(growth.rate),
+        "growth_end": f(growth.end), "growth_next_rescale": f(growth.next_rescale),
+        "growth_virial_mark": f(growth.virial_mark), "growth_ended": growth.ended as u8,
+        "growth_last_z": f(growth.last_z),
     });
     let (kind, a, b, rng, events, added, origin) = match thermostat {
         None => (0, 0.0, 0.0, 0u128, 0, 0.0, 0.0),

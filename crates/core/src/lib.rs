@@ -8,6 +8,8 @@
 //!   (physics.md §3–4, seed 000 Eq. 8–13 and 22–27, seed 004);
 //! * [`gravity`] — free fall in a uniform field: heights, wall and cell-edge times
 //!   (physics.md §15);
+//! * [`growth`] — growing discs (compression): contact and wall times, the
+//!   contact rule (physics.md §17);
 //! * [`boundary`] — rectangular boxes, periodic or walled per axis, and wall collisions;
 //! * [`species`] — what a disc is made of (radius, mass);
 //! * [`observables`] — degrees of freedom, kT, packing fraction, the area centres
@@ -21,6 +23,7 @@
 pub mod boundary;
 pub mod collision;
 pub mod gravity;
+pub mod growth;
 pub mod kinematics;
 pub mod observables;
 pub mod rates;

@@ -4,7 +4,7 @@
 //! the caller's scheduled events. Plain data: the io crate decides how to store it;
 //! the engine copies itself out and back in `engine/checkpoint.rs`.
 
-use crate::engine::{EngineParams, Stats};
+use crate::engine::{EngineParams, GrowthState, Stats};
 use crate::thermostat::ThermostatState;
 use carom_core::{DVec2, SimBox, Species};
 
@@ -91,4 +91,7 @@ pub struct Checkpoint {
     /// The thermostat with its generator and totals, if one is set; its next event
     /// is the entry of `scheduled` with tag [`THERMOSTAT_TAG`](crate::THERMOSTAT_TAG).
     pub thermostat: Option<ThermostatState>,
+    /// The growth of the radii (physics.md §17; [`GrowthState::NONE`] without
+    /// growth, and in checkpoints written before carom had it).
+    pub growth: GrowthState,
 }

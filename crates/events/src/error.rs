@@ -90,6 +90,10 @@ pub enum EngineError {
     /// A thermostat with a bad parameter, or a caller's use of its reserved tag.
     #[error("{0}")]
     BadThermostat(String),
+    /// Growing discs (compression) with parameters out of range or with dynamics
+    /// they do not support.
+    #[error("compression: {0}")]
+    BadGrowth(String),
 }
 
 /// What a runaway of [`EngineError::Stalled`] is and what cures it, for a run whose

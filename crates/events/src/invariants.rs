@@ -175,7 +175,9 @@ fn momentum(engine: &Engine) -> (DVec2, f64) {
 pub fn max_overlap(engine: &Engine) -> Option<(usize, usize, f64)> {
     let sim_box = engine.sim_box();
     let n = engine.len();
-    let radius = |i: usize| engine.species()[engine.species_of()[i] as usize].radius;
+    // The radii now: the species' scaled by the growth (physics.md §17; 1 without).
+    let scale = engine.radius_scale();
+    let radius = |i: usize| engine.species()[engine.species_of()[i] as usize].radius * scale;
     // Cells as wide as the largest contact distance among the discs present.
     let a_max = (0..n).map(radius).fold(0.0, f64::max);
     let mut grid = crate::cells::CellGrid::new(sim_box, 2.0 * a_max, n);

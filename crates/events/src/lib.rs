@@ -43,11 +43,12 @@ mod state;
 mod thermostat;
 
 pub use checkpoint::Checkpoint;
-pub use engine::{Engine, EngineParams, Stats};
+pub use engine::{Engine, EngineParams, Growth, GrowthEnd, GrowthState, Stats};
 pub use error::{EngineError, InitError};
 pub use event::{Event, PairCollision, WallCollision};
 pub use init::{
     box_size_for, largest_radius, Placement, PlacementProgress, SystemSpec, Velocities,
+    COMPRESSED_MAX_REDUCED_PRESSURE,
 };
 pub use invariants::{InvariantChecker, Violation};
 pub use state::State;

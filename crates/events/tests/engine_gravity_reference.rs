@@ -173,6 +173,7 @@ fn systems() -> Vec<(SystemSpec, EngineParams)> {
             tc,
             gravity: g,
             max_events_without_time_advance: 1000,
+            ..EngineParams::default()
         };
         out.push((spec, params));
     }

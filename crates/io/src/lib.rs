@@ -22,9 +22,10 @@ pub use schedule::{SchedulePoints, SnapshotSchedule, MAX_SCHEDULE_POINTS, MIN_FI
 
 pub use config::{
     apply_set, load_config, AxisBoundary, BoundaryConfig, BoxConfig, CollisionConfig,
-    CollisionDetailConfig, CollisionModel, CompressionConfig, Config, ConfigError, LogConfig,
-    PlacementConfig, SnapshotScheduleConfig, SpeciesConfig, StopConfig, ThermostatConfig,
-    VelocitiesConfig, DEFAULT_COUNT, DEFAULT_DURATION, DEFAULT_PACKING_FRACTION,
+    CollisionDetailConfig, CollisionModel, CompressedPlacementConfig, CompressionConfig, Config,
+    ConfigError, GrowthConfig, LogConfig, PlacementConfig, SnapshotScheduleConfig, SpeciesConfig,
+    StopConfig, ThermostatConfig, VelocitiesConfig, DEFAULT_COUNT, DEFAULT_DURATION,
+    DEFAULT_PACKING_FRACTION,
 };
 
 pub use log::format::{encode_scene, CH_SCENE, N_CHANNELS, SCENE_UPDATE_MSG, SPECIES_COLORS};

@@ -86,6 +86,7 @@ impl Engine {
                 .map(|&d| self.images[d as usize])
                 .collect(),
             thermostat: self.thermostat.as_ref().map(|r| r.state()),
+            growth: self.growth,
         }
     }
 
@@ -130,6 +131,16 @@ impl Engine {
         }
         super::gravity::check_gravity(cp.params.gravity, &cp.sim_box)
             .map_err(|e| bad(e.to_string()))?;
+        let p = &cp.params;
+        super::growth::check_growth(&p.growth, p.restitution, p.tc, p.gravity, &cp.sim_box)
+            .map_err(|e| bad(e.to_string()))?;
+        let st = &cp.growth;
+        if !(st.scale0.is_finite() && st.scale0 > 0.0 && st.rate.is_finite())
+            || st.end.is_nan()
+            || st.next_rescale.is_nan()
+        {
+            return Err(bad(format!("growth state {st:?} is not a valid one")));
+        }
         for (name, t) in [("now", cp.now), ("epoch", cp.epoch), ("clock", cp.clock)] {
             if !t.is_finite() {
                 return Err(bad(format!("{name} is {t}, not a finite time")));
@@ -204,9 +215,14 @@ impl Engine {
         // crossings move the clock, so a resumed run must have the grids it was
         // written with to continue bit for bit): one per size class, or one for
         // all in a checkpoint written before carom had size classes.
-        let grids = restore_grids(&cp, &bodies, true)
-            .or_else(|e| restore_grids(&cp, &bodies, false).map_err(|_| e))
-            .map_err(bad)?;
+        let grids = if cp.params.growth.rate != 0.0 {
+            // Growing discs: one grid for their final size (engine::growth).
+            restore_grids(&cp, &bodies, false)
+        } else {
+            restore_grids(&cp, &bodies, true)
+                .or_else(|e| restore_grids(&cp, &bodies, false).map_err(|_| e))
+        }
+        .map_err(bad)?;
         for (i, (&t, p)) in cp.event_times.iter().zip(&cp.pending).enumerate() {
             if t.is_nan() {
                 return Err(bad(format!("event time of disc {i} is NaN")));
@@ -276,6 +292,7 @@ impl Engine {
             tuner: lookahead::Tuner::new(n),
             origin_limit: limit,
             thermostat,
+            growth: cp.growth,
         })
     }
 }
@@ -283,7 +300,8 @@ impl Engine {
 /// The cell grids of checkpoint `cp` (one per size class if `split`, else one for
 /// all), with the stored cell lists threaded through `bodies`, or what is wrong.
 fn restore_grids(cp: &Checkpoint, bodies: &[Body], split: bool) -> Result<Grids, String> {
-    let mut grids = Grids::new(&cp.sim_box, &cp.species, &cp.species_of, split);
+    let grid_species = super::growth::grid_species(&cp.species, &cp.params.growth);
+    let mut grids = Grids::new(&cp.sim_box, &grid_species, &cp.species_of, split);
     let cells: usize = grids.iter().map(|g| g.head.len()).sum();
     if cp.cell_head.len() != cells {
         return Err(format!(

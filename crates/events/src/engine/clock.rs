@@ -175,6 +175,7 @@ impl Engine {
         for t in self.last_collision.iter_mut() {
             *t -= shift;
         }
+        self.growth.rebase(shift);
         self.epoch += shift;
         self.clock = 0.0;
     }

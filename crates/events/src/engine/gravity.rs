@@ -123,9 +123,11 @@ impl Engine {
     /// as the engine's parameters say (for callers outside the event loop).
     pub(super) fn predict_any(&mut self, i: usize) {
         if self.params.gravity != 0.0 {
-            self.predict::<true>(i);
+            self.predict::<true, false>(i);
+        } else if self.params.growth.rate != 0.0 {
+            self.predict::<false, true>(i);
         } else {
-            self.predict::<false>(i);
+            self.predict::<false, false>(i);
         }
     }
 

@@ -15,12 +15,14 @@
 //! (`resolve`), the clock and renumbering (`clock`), fetching ahead (`lookahead`),
 //! the checkpoint (`checkpoint`) and uniform gravity (`gravity`: the same paths,
 //! with the fall added where a disc's own height matters; the event loop is
-//! compiled twice, with and without it). See docs/performance.md, "engine".
+//! compiled twice, with and without it). Growing discs (`growth`, physics.md §17)
+//! run in a third copy of the loop. See docs/performance.md, "engine".
 
 mod body;
 mod checkpoint;
 mod clock;
 mod gravity;
+mod growth;
 mod lookahead;
 mod predict;
 mod resolve;
@@ -37,6 +39,7 @@ use crate::NO_DISC;
 use body::{Aux, Body, Pending};
 use carom_core::{DVec2, Restitution, SimBox, Species};
 use clock::{origin_limit, reorder_interval};
+pub use growth::{Growth, GrowthEnd, GrowthState};
 use ordered_float::NotNan;
 use std::cmp::Reverse;
 use std::collections::BinaryHeap;
@@ -57,6 +60,9 @@ pub struct EngineParams {
     /// r(t) = r + v t − ŷ g t²/2. Requires hard walls along y. 0 (the default)
     /// turns it off; allowed: finite, ≥ 0.
     pub gravity: f64,
+    /// Growing discs, Lubachevsky–Stillinger compression (physics.md §17); off
+    /// (rate 0) by default.
+    pub growth: Growth,
 }
 
 impl Default for EngineParams {
@@ -66,6 +72,7 @@ impl Default for EngineParams {
             tc: 0.0,
             max_events_without_time_advance: 100_000,
             gravity: 0.0,
+            growth: Growth::default(),
         }
     }
 }
@@ -136,6 +143,8 @@ pub struct Engine {
     origin_limit: f64,
     /// The thermostat, if one is set (`engine::thermostat`).
     thermostat: Option<Box<thermostat::Running>>,
+    /// The growth of the radii (engine::growth; [`GrowthState::NONE`] without).
+    growth: GrowthState,
 }
 
 #[inline]
@@ -171,8 +180,13 @@ impl Engine {
     /// classes; for tests of old checkpoints).
     fn with_grids(state: State, params: EngineParams, split: bool) -> Result<Engine, EngineError> {
         gravity::check_gravity(params.gravity, &state.sim_box)?;
+        let p = &params;
+        growth::check_growth(&p.growth, p.restitution, p.tc, p.gravity, &state.sim_box)?;
         let n = state.len();
-        let mut grids = Grids::new(&state.sim_box, &state.species, &state.species_of, split);
+        // Growing discs share one grid, for their final size (engine::growth).
+        let split = split && params.growth.rate == 0.0;
+        let grid_species = growth::grid_species(&state.species, &params.growth);
+        let mut grids = Grids::new(&state.sim_box, &grid_species, &state.species_of, split);
         let images = (0..n)
             .map(|i| {
                 let given = state.images.get(i).copied().unwrap_or([0; 2]);
@@ -225,6 +239,7 @@ impl Engine {
             same_time_collisions: 0,
             stats: Stats::default(),
             thermostat: None,
+            growth: GrowthState::start(&params.growth),
         };
         engine.reorder();
         for i in 0..n {
@@ -254,7 +269,9 @@ impl Engine {
         &self.sim_box
     }
 
-    /// The species.
+    /// The species. With growing discs (physics.md §17) their radii are the
+    /// reference radii a⁰: the radii now are a⁰ times [`Engine::radius_scale`], as
+    /// [`Engine::state`] gives them.
     pub fn species(&self) -> &[Species] {
         &self.species
     }
@@ -368,6 +385,13 @@ impl Engine {
         let n = self.len();
         out.sim_box = self.sim_box;
         out.species.clone_from(&self.species);
+        if self.params.growth.rate != 0.0 {
+            // The radii now (engine::growth).
+            let s = self.radius_scale();
+            for sp in &mut out.species {
+                sp.radius *= s;
+            }
+        }
         out.species_of.clone_from(&self.species_of);
         out.positions.resize(n, DVec2::ZERO);
         out.velocities.resize(n, DVec2::ZERO);
@@ -420,8 +444,10 @@ impl Engine {
     pub fn next_event(&mut self) -> Result<Option<Event>, EngineError> {
         if self.params.gravity != 0.0 {
             self.next_event_falling()
+        } else if self.params.growth.rate != 0.0 {
+            self.next_event_growing()
         } else {
-            self.next_event_in::<false>()
+            self.next_event_in::<false, false>()
         }
     }
 
@@ -430,14 +456,24 @@ impl Engine {
     #[cold]
     #[inline(never)]
     fn next_event_falling(&mut self) -> Result<Option<Event>, EngineError> {
-        self.next_event_in::<true>()
+        self.next_event_in::<true, false>()
+    }
+
+    /// [`Engine::next_event`] with growing discs (engine::growth), a copy of the
+    /// loop of its own like [`Engine::next_event_falling`].
+    #[cold]
+    #[inline(never)]
+    fn next_event_growing(&mut self) -> Result<Option<Event>, EngineError> {
+        self.next_event_in::<false, true>()
     }
 
     /// [`Engine::next_event`] with the discs falling in the field (`FALL`) or
     /// flying straight: a compile-time choice threaded through resolution and
     /// prediction.
     #[inline(always)]
-    fn next_event_in<const FALL: bool>(&mut self) -> Result<Option<Event>, EngineError> {
+    fn next_event_in<const FALL: bool, const GROW: bool>(
+        &mut self,
+    ) -> Result<Option<Event>, EngineError> {
         loop {
             self.tuner.left -= 1;
             if self.tuner.left == 0 {
@@ -464,6 +500,18 @@ impl Engine {
             }
             if self.look_ahead && self.queue.moved_on() {
                 self.look_ahead();
+            }
+            if GROW {
+                let due = self.growth_due();
+                let scheduled_first = self
+                    .scheduled
+                    .peek()
+                    .is_some_and(|r| (r.0 .0.into_inner() - self.epoch).max(self.clock) <= due);
+                if due <= t.into_inner() && !scheduled_first {
+                    self.move_clock(due);
+                    self.growth_event();
+                    continue;
+                }
             }
             if let Some(&Reverse((ts, _, tag))) = self.scheduled.peek() {
                 // Scheduled times are the caller's; on the internal clock, never
@@ -498,19 +546,25 @@ impl Engine {
                     if self.bodies[j].count != b.partner_count {
                         self.move_clock(t);
                         self.stats.stale_events += 1;
-                        self.predict::<FALL>(i);
+                        self.predict::<FALL, GROW>(i);
                         continue;
                     }
                     self.advance_clock(t)?;
-                    return Ok(Some(Event::Pair(self.collide::<FALL>(i, j, aux.image()))));
+                    return Ok(Some(Event::Pair(self.collide::<FALL, GROW>(
+                        i,
+                        j,
+                        aux.image(),
+                    ))));
                 }
                 Pending::Wall => {
                     self.advance_clock(t)?;
-                    return Ok(Some(Event::Wall(self.hit_wall::<FALL>(i, aux.face()))));
+                    return Ok(Some(Event::Wall(
+                        self.hit_wall::<FALL, GROW>(i, aux.face()),
+                    )));
                 }
                 Pending::Cell => {
                     self.move_clock(t);
-                    self.cross::<FALL>(i, aux.face());
+                    self.cross::<FALL, GROW>(i, aux.face());
                 }
                 Pending::None => unreachable!("a disc with no event has time +∞"),
             }

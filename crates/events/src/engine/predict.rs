@@ -17,6 +17,7 @@ use super::{time_key, Engine};
 use crate::classes::cells_along;
 use crate::NO_DISC;
 use carom_core::boundary::wall_time;
+use carom_core::growth::contact_time_growing;
 use carom_core::kinematics::contact_time_or_inf;
 use carom_core::{Boundary, DVec2, Species, WallSide};
 
@@ -61,21 +62,38 @@ struct Scanner<'a> {
 /// earlier than the best so far; `image` is the image through which j's cell is seen.
 ///
 /// Disc i itself needs no test of its own: its relative velocity is exactly zero,
-/// so b = 0 and it never meets (whichever image is seen).
+/// so b = 0 and it never meets (whichever image is seen); growing, it is skipped
+/// by its zero separation.
+///
+/// With `GROW` the radii are the reference radii of growing discs, scaled by
+/// `grow` = (s, γ): the contact distance is σ s and grows at σ γ (physics.md §17).
 #[inline(always)]
-fn test_pair(
+#[allow(clippy::too_many_arguments)]
+fn test_pair<const GROW: bool>(
     me: &Scanner,
     species: &[Species],
     j: u32,
     bj: &Body,
     now: f64,
+    grow: (f64, f64),
     image: Image,
     found: &mut Found,
 ) {
     let bi = me.bi;
     let dr = bj.at(now) - me.ri;
     let sigma = me.radius + species[bj.species as usize].radius;
-    let dt = contact_time_or_inf(dr, bj.v - bi.v, sigma);
+    let dt = if GROW {
+        // Growing, disc i would meet itself (B = −σg < 0 at C = −σ² ≤ 0): it is
+        // the one disc at zero separation.
+        let t = contact_time_growing(dr, bj.v - bi.v, sigma * grow.0, sigma * grow.1);
+        if dr == DVec2::ZERO {
+            f64::INFINITY
+        } else {
+            t
+        }
+    } else {
+        contact_time_or_inf(dr, bj.v - bi.v, sigma)
+    };
     // Kept without a branch: whether a neighbour beats the best so far is a coin
     // toss for the branch predictor.
     let hit = dt < found.best;
@@ -91,6 +109,8 @@ struct Block<'a> {
     bodies: &'a [Body],
     species: &'a [Species],
     now: f64,
+    /// Scale and relative growth rate of the radii (s, γ) when they grow.
+    grow: (f64, f64),
 }
 
 impl Block<'_> {
@@ -98,11 +118,17 @@ impl Block<'_> {
     /// discs of the cell whose list starts at `first`, seen through the image with
     /// `image`.
     #[inline(always)]
-    fn scan_cell(&self, me: &Scanner, first: u32, image: Image, found: &mut Found) {
+    fn scan_cell<const GROW: bool>(
+        &self,
+        me: &Scanner,
+        first: u32,
+        image: Image,
+        found: &mut Found,
+    ) {
         let mut j = first;
         while j != NO_DISC {
             let bj = &self.bodies[j as usize];
-            test_pair(me, self.species, j, bj, self.now, image, found);
+            test_pair::<GROW>(me, self.species, j, bj, self.now, self.grow, image, found);
             j = bj.link.next;
         }
     }
@@ -112,16 +138,16 @@ impl Engine {
     /// Find disc `i`'s earliest event from the current time and queue it: its next
     /// cell crossing or wall collision, or its earliest pair collision with a disc
     /// of its 3 × 3 block of cells (which becomes its pair candidate).
-    pub(super) fn predict<const FALL: bool>(&mut self, i: usize) {
+    pub(super) fn predict<const FALL: bool, const GROW: bool>(&mut self, i: usize) {
         let now = self.clock;
         let bi = self.bodies[i];
         let ri = bi.at(now);
         let mut found = Found::NOTHING;
-        self.scan(i, ri, [-1, 1], [-1, 1], &mut found);
+        self.scan::<GROW>(i, ri, [-1, 1], [-1, 1], &mut found);
         if !self.grids.single() {
             self.scan_other_classes(i, ri, &mut found);
         }
-        let boundary = self.boundary_event::<FALL>(i, ri, bi.v);
+        let boundary = self.boundary_event::<FALL, GROW>(i, ri, bi.v);
         self.file_event(i, &found, boundary);
     }
 
@@ -161,7 +187,7 @@ impl Engine {
     /// computed again, from the two paths as they are now; when the partner has, the
     /// candidate no longer says when the discs of the six cells seen before can
     /// meet, and the whole block is scanned again instead.
-    pub(super) fn predict_after_crossing<const FALL: bool>(
+    pub(super) fn predict_after_crossing<const FALL: bool, const GROW: bool>(
         &mut self,
         i: usize,
         k: usize,
@@ -174,7 +200,7 @@ impl Engine {
         if bi.partner != NO_DISC {
             let bp = &self.bodies[bi.partner as usize];
             if bp.count != bi.partner_count {
-                self.predict::<FALL>(i);
+                self.predict::<FALL, GROW>(i);
                 return;
             }
             // Seeing the partner's image at r_j + s L is seeing i at r_i − s L.
@@ -184,12 +210,17 @@ impl Engine {
                 radius: self.species[bi.species as usize].radius,
                 ri: ri - image.shift(self.sim_box.size),
             };
-            test_pair(
+            test_pair::<GROW>(
                 &me,
                 &self.species,
                 bi.partner,
                 bp,
                 now,
+                if GROW {
+                    self.growth.now(now)
+                } else {
+                    (1.0, 0.0)
+                },
                 image,
                 &mut candidate,
             );
@@ -201,11 +232,11 @@ impl Engine {
             ([-1, 1], [o, o])
         };
         // The strip's discs replace the candidate only when one meets earlier.
-        self.scan(i, ri, xs, ys, &mut candidate);
+        self.scan::<GROW>(i, ri, xs, ys, &mut candidate);
         if !self.grids.single() {
             self.scan_other_classes(i, ri, &mut candidate);
         }
-        let boundary = self.boundary_event::<FALL>(i, ri, bi.v);
+        let boundary = self.boundary_event::<FALL, GROW>(i, ri, bi.v);
         self.file_event(i, &candidate, boundary);
     }
 
@@ -218,9 +249,16 @@ impl Engine {
     /// Each cell is walked behind a branch on its emptiness (see
     /// docs/performance.md, "neighbour scan").
     #[inline(always)]
-    fn scan(&self, i: usize, ri: DVec2, xs: [i32; 2], ys: [i32; 2], found: &mut Found) {
+    fn scan<const GROW: bool>(
+        &self,
+        i: usize,
+        ri: DVec2,
+        xs: [i32; 2],
+        ys: [i32; 2],
+        found: &mut Found,
+    ) {
         let grid = self.grids.get(self.grids.class(self.bodies[i].species));
-        let block = self.block();
+        let block = self.block::<GROW>();
         let bi = &self.bodies[i];
         let radius = self.species[bi.species as usize].radius;
         let c = bi.link.coords();
@@ -245,14 +283,14 @@ impl Engine {
                     head[first + 2 * nx + 2],
                 ];
                 for h in heads {
-                    block.scan_cell(&me, h, Image::SAME, found);
+                    block.scan_cell::<GROW>(&me, h, Image::SAME, found);
                 }
             } else {
                 // A strip: a column (x crossing) or a row (y crossing) of three.
                 let stride = if xs[0] == xs[1] { nx } else { 1 };
                 let heads = [head[first], head[first + stride], head[first + 2 * stride]];
                 for h in heads {
-                    block.scan_cell(&me, h, Image::SAME, found);
+                    block.scan_cell::<GROW>(&me, h, Image::SAME, found);
                 }
             }
         } else {
@@ -279,7 +317,7 @@ impl Engine {
                         radius,
                         ri: DVec2::new(ri.x - shift_x, ri.y - shift_y),
                     };
-                    block.scan_cell(&me, head[row + cx], Image::new(sx, sy), found);
+                    block.scan_cell::<GROW>(&me, head[row + cx], Image::new(sx, sy), found);
                 }
             }
         }
@@ -287,11 +325,16 @@ impl Engine {
 
     /// The neighbour search's view of the engine now (see [`Block`]).
     #[inline(always)]
-    fn block(&self) -> Block<'_> {
+    fn block<const GROW: bool>(&self) -> Block<'_> {
         Block {
             bodies: &self.bodies,
             species: &self.species,
             now: self.clock,
+            grow: if GROW {
+                self.growth.now(self.clock)
+            } else {
+                (1.0, 0.0)
+            },
         }
     }
 
@@ -299,8 +342,10 @@ impl Engine {
     /// now) with the discs of the other size classes: in each other class's grid,
     /// every cell meeting disc i's own cell widened by its reach into that class
     /// (see [`crate::classes`]). `ri` is its position now.
+    ///
+    /// Never with growing discs, which share one grid (engine::growth).
     fn scan_other_classes(&self, i: usize, ri: DVec2, found: &mut Found) {
-        let block = self.block();
+        let block = self.block::<false>();
         let bi = &self.bodies[i];
         let radius = self.species[bi.species as usize].radius;
         let own_class = self.grids.class(bi.species);
@@ -328,7 +373,7 @@ impl Engine {
                         ri: DVec2::new(ri.x - sx as f64 * size.x, ri.y - sy as f64 * size.y),
                     };
                     let first = grid.head[cy as usize * nx + cx as usize];
-                    block.scan_cell(&me, first, Image::new(sx, sy), found);
+                    block.scan_cell::<false>(&me, first, Image::new(sx, sy), found);
                 }
             }
         }
@@ -338,7 +383,7 @@ impl Engine {
     /// kind, face), in the grid of its size class. `ri` is its position
     /// now, `v` its velocity.
     #[inline(always)]
-    fn boundary_event<const FALL: bool>(
+    fn boundary_event<const FALL: bool, const GROW: bool>(
         &self,
         i: usize,
         ri: DVec2,
@@ -346,6 +391,9 @@ impl Engine {
     ) -> (f64, Pending, Face) {
         if FALL {
             return self.boundary_event_falling(i, ri, v);
+        }
+        if GROW {
+            return self.boundary_event_growing(i, ri, v);
         }
         let mut best = f64::INFINITY;
         let (mut kind, mut face) = (Pending::None, Face::new(0, false));

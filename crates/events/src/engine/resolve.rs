@@ -18,6 +18,7 @@ use super::Engine;
 use crate::event::{PairCollision, WallCollision};
 use carom_core::boundary::wall_impulse;
 use carom_core::collision::{apply_impulse, apply_wall_impulse, reduced_mass, resolve};
+use carom_core::growth::growth_impulse;
 use carom_core::{Axis, Boundary, DVec2, Restitution, WallSide};
 
 /// Whether discs i and j, whose paths (origin, velocity) were `paths` before a
@@ -115,7 +116,7 @@ impl Engine {
     /// Resolve the pair collision of discs i and j (j seen through the image with
     /// `image`) at the current time with the configured rule, or
     /// elastically under the TC model, and predict both discs' next events.
-    pub(super) fn collide<const FALL: bool>(
+    pub(super) fn collide<const FALL: bool, const GROW: bool>(
         &mut self,
         i: usize,
         j: usize,
@@ -135,6 +136,16 @@ impl Engine {
             self.params.restitution
         };
         let mut res = resolve(vi, vj, mi, mj, dr, rule);
+        if GROW && self.growth.rate != 0.0 {
+            // Growing discs leave at u' = −u + 2g (physics.md (17.4)).
+            let sigma0 = self.species[self.bodies[i].species as usize].radius
+                + self.species[self.bodies[j].species as usize].radius;
+            let g = sigma0 * self.growth.rate;
+            res.impulse_i += growth_impulse(dr, reduced_mass(mi, mj), g);
+            (res.vi, res.vj) = apply_impulse(vi, vj, mi, mj, res.impulse_i);
+            let k = |m: f64, v: DVec2| 0.5 * m * v.length_squared();
+            res.energy_lost = k(mi, vi) + k(mj, vj) - k(mi, res.vi) - k(mj, res.vj);
+        }
         // A rule leaves the pair separating at −e u (physics.md §4), but when that
         // is below what the velocities' rounding resolves (e = 0, R = 0, or an
         // elastic collision of a pair that met at such a speed, as under the TC
@@ -173,8 +184,8 @@ impl Engine {
         self.stats.pair_collisions += 1;
         self.stats.virial_sum += virial;
         self.stats.energy_lost += res.energy_lost;
-        self.predict::<FALL>(i);
-        self.predict::<FALL>(j);
+        self.predict::<FALL, GROW>(i);
+        self.predict::<FALL, GROW>(j);
         let mut ev = PairCollision {
             time: self.reported,
             i: self.label[i],
@@ -196,7 +207,11 @@ impl Engine {
 
     /// Resolve disc `i`'s collision with the wall `face` at the current time (the
     /// wall's restitution, or elastic under the TC model) and predict its next event.
-    pub(super) fn hit_wall<const FALL: bool>(&mut self, i: usize, face: Face) -> WallCollision {
+    pub(super) fn hit_wall<const FALL: bool, const GROW: bool>(
+        &mut self,
+        i: usize,
+        face: Face,
+    ) -> WallCollision {
         let k = face.axis();
         let side = if face.high() {
             WallSide::High
@@ -225,7 +240,11 @@ impl Engine {
         let lift = if k == 1 { g * now } else { 0.0 };
         let vk = path_v[k] - lift;
         // Applied as v_k + Δp/m, the arithmetic a reader of the log repeats.
-        let dp = wall_impulse(vk, m, e);
+        let dp = if GROW {
+            self.growing_wall_impulse(i, vk, m, face.high())
+        } else {
+            wall_impulse(vk, m, e)
+        };
         path_after[k] = apply_wall_impulse(vk, m, dp);
         if lift != 0.0 {
             path_after[k] += lift;
@@ -235,7 +254,12 @@ impl Engine {
         self.keep_fall_short();
         self.bodies[i].count = self.bodies[i].count.wrapping_add(1);
         let impulse = dp.abs();
-        let energy_lost = 0.5 * m * (1.0 - e * e) * vk * vk;
+        let energy_lost = if GROW {
+            // Growing: the wall gives energy (physics.md (17.6)).
+            0.5 * m * (vk * vk - path_after[k] * path_after[k])
+        } else {
+            0.5 * m * (1.0 - e * e) * vk * vk
+        };
         let (mut before, mut after) = (path_v, path_after);
         if g != 0.0 {
             before.y -= g * now;
@@ -244,7 +268,7 @@ impl Engine {
         self.stats.wall_collisions += 1;
         self.stats.wall_impulse[k][face.high() as usize] += impulse;
         self.stats.energy_lost += energy_lost;
-        self.predict::<FALL>(i);
+        self.predict::<FALL, GROW>(i);
         WallCollision {
             time: self.reported,
             i: self.label[i],
@@ -259,7 +283,7 @@ impl Engine {
 
     /// Move disc `i` across its cell's `face` into the next cell (through the
     /// periodic edge if there is no next cell) and predict its next event.
-    pub(super) fn cross<const FALL: bool>(&mut self, i: usize, face: Face) {
+    pub(super) fn cross<const FALL: bool, const GROW: bool>(&mut self, i: usize, face: Face) {
         let k = face.axis();
         let up = face.high();
         let mut c = self.bodies[i].link.coords();
@@ -290,9 +314,9 @@ impl Engine {
             self.keep_origin_near([i]);
             // The position moved by one box length: partners' image shifts change.
             self.bodies[i].count = self.bodies[i].count.wrapping_add(1);
-            self.predict::<FALL>(i);
+            self.predict::<FALL, GROW>(i);
         } else {
-            self.predict_after_crossing::<FALL>(i, k, up);
+            self.predict_after_crossing::<FALL, GROW>(i, k, up);
         }
     }
 }

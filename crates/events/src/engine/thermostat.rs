@@ -83,6 +83,13 @@ impl Engine {
     ) -> Result<(), EngineError> {
         if let Some(t) = &thermostat {
             t.validate().map_err(EngineError::BadThermostat)?;
+            if self.growth.rate != 0.0 {
+                return Err(EngineError::BadThermostat(
+                    "a thermostat while the discs grow: the compression rescales the \
+                     velocities itself; set the thermostat once growth has ended"
+                        .into(),
+                ));
+            }
         }
         let old = std::mem::take(&mut self.scheduled);
         self.scheduled = old

@@ -7,12 +7,15 @@
 //! closest pair is farthest apart; random placement (`random`) inserts discs one by
 //! one, largest first, for low densities; relaxed placement (`relaxed`, with the
 //! minimizer in `relax`) removes the overlaps of random positions by minimizing a
-//! soft overlap energy, up to just below jamming. Velocities (`velocities`) are
+//! soft overlap energy, up to just below jamming; compressed placement
+//! (`compressed`) grows the discs of a dilute random start in the engine
+//! (physics.md §17). Velocities (`velocities`) are
 //! Maxwell–Boltzmann at kT or of one speed per species, shifted to zero momentum
 //! and scaled so that 2K/f = kT exactly (physics.md §5–§6).
 //!
 //! [`State`]: crate::State
 
+mod compressed;
 mod lattice;
 mod random;
 mod relax;
@@ -20,6 +23,7 @@ mod relaxed;
 mod spec;
 mod velocities;
 
+pub use compressed::COMPRESSED_MAX_REDUCED_PRESSURE;
 pub use spec::{
     box_size_for, largest_radius, Placement, PlacementProgress, SystemSpec, Velocities,
 };

@@ -9,6 +9,7 @@
 //! `Pcg64` stream seeded with the seed, so the same request gives the same state
 //! bit for bit.
 
+use super::compressed::compressed;
 use super::lattice::lattice;
 use super::random::{check_explicit, random};
 use super::relaxed::relaxed;
@@ -50,6 +51,15 @@ pub enum Placement {
     Relaxed,
     /// At the given centre positions, one per disc (length).
     Explicit(Vec<DVec2>),
+    /// Random at packing fraction `start`, then compressed to the requested radii by
+    /// growing the discs at the relative rate `rate` (1/time) in the engine
+    /// (physics.md §17; see `init::compressed`).
+    Compressed {
+        /// Relative growth rate γ (1/time).
+        rate: f64,
+        /// Packing fraction of the random start.
+        start: f64,
+    },
 }
 
 /// How initial velocities are drawn.
@@ -212,6 +222,9 @@ impl SystemSpec {
                 Some(p) => p,
                 None => return Ok(None),
             },
+            Placement::Compressed { rate, start } => {
+                compressed(self, &species_of, &mut rng, *rate, *start)?
+            }
             Placement::Explicit(p) => {
                 check_explicit(self, &species_of, p)?;
                 p.iter().map(|&r| self.sim_box.wrap(r)).collect()

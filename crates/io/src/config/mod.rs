@@ -26,11 +26,13 @@ pub use error::ConfigError;
 pub use front::{apply_set, load_config};
 pub use model::{
     AxisBoundary, BoundaryConfig, BoxConfig, CollisionConfig, CollisionDetailConfig,
-    CollisionModel, CompressionConfig, Config, LogConfig, PlacementConfig, SnapshotScheduleConfig,
-    SpeciesConfig, StopConfig, ThermostatConfig, VelocitiesConfig, DEFAULT_COUNT, DEFAULT_DURATION,
-    DEFAULT_PACKING_FRACTION,
+    CollisionModel, CompressedPlacementConfig, CompressionConfig, Config, GrowthConfig, LogConfig,
+    PlacementConfig, SnapshotScheduleConfig, SpeciesConfig, StopConfig, ThermostatConfig,
+    VelocitiesConfig, DEFAULT_COUNT, DEFAULT_DURATION, DEFAULT_PACKING_FRACTION,
 };
 
+#[cfg(test)]
+mod compression_tests;
 #[cfg(test)]
 mod gravity_tests;
 #[cfg(test)]

@@ -60,6 +60,53 @@ pub struct Config {
     /// (physics.md §16). Default: none (constant energy, or cooling when inelastic).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub thermostat: Option<ThermostatConfig>,
+    /// Compression as a run mode (physics.md §17): the discs grow during the run
+    /// until a target packing fraction or jamming, then keep their size. Default:
+    /// none. Only with elastic collisions and walls, no TC model and no gravity.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub compression: Option<GrowthConfig>,
+}
+
+/// Compression during a run (`compression`; physics.md §17).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct GrowthConfig {
+    /// Relative growth rate γ (1/time): every radius a(t) = a⁰ (1 + γ t). Allowed:
+    /// finite, > 0. Slow (near equilibrium) when γ·(largest diameter) ≪ √(kT/m).
+    pub rate: f64,
+    /// Packing fraction at which growth stops. Allowed: above the start's, below
+    /// 0.9069 (hexagonal close packing).
+    pub target_packing_fraction: f64,
+    /// Time between two rescales of the velocities to `temperature` (time).
+    /// Default 1; allowed: finite, > 0.
+    #[serde(default = "one")]
+    pub rescale_interval: f64,
+    /// Jamming bound: growth stops at a rescale where the virial Z = βPA/N over the
+    /// interval just ended exceeds it (physics.md (17.7)). Default 1000; allowed: > 1.
+    #[serde(default = "default_max_reduced_pressure")]
+    pub max_reduced_pressure: f64,
+}
+
+fn default_max_reduced_pressure() -> f64 {
+    1e3
+}
+
+/// Compressed placement (`{"compressed": {...}}`; physics.md §17).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct CompressedPlacementConfig {
+    /// Relative growth rate γ (1/time). Default 0.01; allowed: finite, > 0.
+    #[serde(default = "default_growth_rate")]
+    pub rate: f64,
+    /// Packing fraction of the random start. Default 0.3 (or the box's own, if
+    /// lower); allowed: 0 < start ≤ the box's packing fraction, and low enough for
+    /// random placement (about 0.4).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub start_packing_fraction: Option<f64>,
+}
+
+fn default_growth_rate() -> f64 {
+    0.01
 }
 
 /// A thermostat, by its `kind`.
@@ -254,6 +301,11 @@ pub enum PlacementConfig {
     /// `{"explicit": [[x, y], ...]}`: one centre position per disc (length), in the
     /// order of the species; inside the box and not overlapping.
     Explicit(Vec<[f64; 2]>),
+    /// `{"compressed": {"rate": γ, "start_packing_fraction": η₀}}`: random at η₀,
+    /// then compressed to the box's packing fraction by growing the discs in the
+    /// engine (Lubachevsky–Stillinger, physics.md §17): a crystal when slow, a
+    /// disordered packing when fast, up to just below jamming.
+    Compressed(CompressedPlacementConfig),
 }
 
 /// How the initial velocities are chosen.
@@ -517,6 +569,7 @@ impl Default for Config {
             log: LogConfig::default(),
             gravity: 0.0,
             thermostat: None,
+            compression: None,
         }
     }
 }

@@ -9,8 +9,11 @@ use super::{
 };
 use crate::options::{CollisionDetail, Compression, LogOptions, RunSpec, Stop};
 use crate::schedule::SchedulePoints;
+use carom_core::observables::packing_fraction;
 use carom_core::{Boundary, DVec2, Restitution, SimBox, Species};
-use carom_events::{box_size_for, largest_radius, EngineParams, Placement, SystemSpec, Velocities};
+use carom_events::{
+    box_size_for, largest_radius, EngineParams, Growth, Placement, SystemSpec, Velocities,
+};
 
 impl Config {
     /// The configuration with every default made explicit: the box's packing
@@ -63,6 +66,7 @@ impl Config {
             AxisBoundary::Walls => Boundary::Walls { restitution },
         });
         let to_vecs = |l: &[[f64; 2]]| l.iter().map(|&[x, y]| DVec2::new(x, y)).collect();
+        let eta = packing_fraction(&species, &SimBox { size, boundary });
         let system = SystemSpec {
             species,
             sim_box: SimBox { size, boundary },
@@ -73,6 +77,10 @@ impl Config {
                 PlacementConfig::Random => Placement::Random,
                 PlacementConfig::Relaxed => Placement::Relaxed,
                 PlacementConfig::Explicit(p) => Placement::Explicit(to_vecs(p)),
+                PlacementConfig::Compressed(p) => Placement::Compressed {
+                    rate: p.rate,
+                    start: p.start_packing_fraction.unwrap_or(eta.min(0.3)),
+                },
             },
             velocities: match &c.velocities {
                 VelocitiesConfig::MaxwellBoltzmann => Velocities::MaxwellBoltzmann,
@@ -90,9 +98,23 @@ impl Config {
             tc: c.collision.tc,
             max_events_without_time_advance: c.collision.max_events_without_time_advance,
             gravity: c.gravity,
+            growth: match c.compression {
+                None => Growth::default(),
+                Some(g) => Growth {
+                    rate: g.rate,
+                    target_scale: (g.target_packing_fraction
+                        / packing_fraction(&system.species, &system.sim_box))
+                    .sqrt(),
+                    kt: c.temperature,
+                    rescale_interval: g.rescale_interval,
+                    max_reduced_pressure: g.max_reduced_pressure,
+                },
+            },
         };
         let mut log = c.log.options();
-        if (c.gravity > 0.0 && c.log.collision_detail.is_none()) || c.thermostat.is_some() {
+        if ((c.gravity > 0.0 || c.compression.is_some()) && c.log.collision_detail.is_none())
+            || c.thermostat.is_some()
+        {
             // Compact records cannot replay velocities that change between
             // collisions (see Config::gravity) or that the thermostat changed.
             log.collision_detail = CollisionDetail::Full;

@@ -90,6 +90,12 @@ fn maximal_values() -> Vec<Value> {
             max_time_without_collision: Some(1.0),
         },
         gravity: 1.0,
+        compression: Some(GrowthConfig {
+            rate: 1.0,
+            target_packing_fraction: 0.5,
+            rescale_interval: 1.0,
+            max_reduced_pressure: 1e3,
+        }),
         ..Config::default()
     };
     c.collision.coefficient = Some(1.0);
@@ -110,9 +116,15 @@ fn maximal_values() -> Vec<Value> {
         x: AxisBoundary::Periodic,
         y: AxisBoundary::Walls,
     };
+    let mut e = d.clone();
+    e.placement = PlacementConfig::Compressed(CompressedPlacementConfig {
+        rate: 1.0,
+        start_packing_fraction: Some(0.3),
+    });
     vec![
         serde_json::to_value(c).unwrap(),
         serde_json::to_value(d).unwrap(),
+        serde_json::to_value(e).unwrap(),
     ]
 }
 

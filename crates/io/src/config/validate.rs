@@ -25,6 +25,7 @@ impl Config {
         self.check_collision()?;
         self.check_stop()?;
         self.check_gravity()?;
+        self.check_compression()?;
         if self.log.collision_detail == Some(CollisionDetailConfig::Compact)
             && self.log.collision_every > 1
         {
@@ -173,6 +174,94 @@ impl Config {
                 "log.collision_detail",
                 format!("\"compact\" with gravity {g}: compact records replay velocities that only collisions change, and a field changes them in between"),
                 "\"full\" (or no log.collision_detail, which is full with a field)",
+            ));
+        }
+        Ok(())
+    }
+
+    /// Compression, as a run mode or a placement (physics.md §17): rates finite
+    /// and > 0, a target between the start and close packing, and elastic dynamics
+    /// without gravity, the TC model or (as a run mode) a thermostat.
+    fn check_compression(&self) -> Result<(), ConfigError> {
+        let positive = |field: &str, x: f64| {
+            if x.is_finite() && x > 0.0 {
+                Ok(())
+            } else {
+                Err(ConfigError::invalid(
+                    field,
+                    format!("value {x}"),
+                    "finite, > 0",
+                ))
+            }
+        };
+        let run = self.compression.is_some();
+        let placed = matches!(self.placement, PlacementConfig::Compressed(_));
+        if let PlacementConfig::Compressed(p) = &self.placement {
+            positive("placement.compressed.rate", p.rate)?;
+            if let Some(start) = p.start_packing_fraction {
+                positive("placement.compressed.start_packing_fraction", start)?;
+            }
+        }
+        if let Some(g) = &self.compression {
+            positive("compression.rate", g.rate)?;
+            positive("compression.rescale_interval", g.rescale_interval)?;
+            let t = g.target_packing_fraction;
+            if !(t.is_finite() && t > 0.0 && t < ETA_CLOSE_PACKED) {
+                return Err(ConfigError::invalid(
+                    "compression.target_packing_fraction",
+                    format!("value {t}"),
+                    "0 < η < 0.9069 (hexagonal close packing), above the start's",
+                ));
+            }
+            if let Some(eta) = self.sim_box.packing_fraction {
+                if t < eta {
+                    return Err(ConfigError::invalid(
+                        "compression.target_packing_fraction",
+                        format!("{t} is below the start's box.packing_fraction {eta}"),
+                        "a target at or above the packing fraction of the start",
+                    ));
+                }
+            }
+            if g.max_reduced_pressure.is_nan() || g.max_reduced_pressure <= 1.0 {
+                return Err(ConfigError::invalid(
+                    "compression.max_reduced_pressure",
+                    format!("value {}", g.max_reduced_pressure),
+                    "> 1 (the jamming bound on Z = βPA/N), or a very large number for none",
+                ));
+            }
+        }
+        if !(run || placed) {
+            return Ok(());
+        }
+        let field = if run {
+            "compression"
+        } else {
+            "placement.compressed"
+        };
+        let inelastic = self.collision.model != CollisionModel::Elastic
+            || self.collision.tc != 0.0
+            || self.sim_box.wall_restitution.is_some_and(|e| e != 1.0);
+        if run && inelastic {
+            return Err(ConfigError::invalid(
+                field,
+                "given with inelastic collisions, inelastic walls or the TC model",
+                "growing discs with elastic collisions and walls (collision.model \"elastic\", \
+                 no collision.tc, box.wall_restitution 1)",
+            ));
+        }
+        if run && self.gravity != 0.0 {
+            return Err(ConfigError::invalid(
+                field,
+                format!("given with gravity {}", self.gravity),
+                "compression without gravity (gravity 0); compressed placement then a field",
+            ));
+        }
+        if run && self.thermostat.is_some() {
+            return Err(ConfigError::invalid(
+                field,
+                "given with a thermostat",
+                "compression without a thermostat (it rescales the velocities to `temperature` \
+                 itself); compressed placement then a thermostat",
             ));
         }
         Ok(())

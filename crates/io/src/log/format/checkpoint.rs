@@ -14,13 +14,16 @@
 use super::cdr::{CdrError, CdrReader, CdrWriter};
 use super::snapshot::boundary_code;
 use carom_core::{Boundary, DVec2, Restitution, SimBox, Species};
-use carom_events::{Checkpoint, EngineParams, Stats, Thermostat, ThermostatState, ThermostatStats};
+use carom_events::{
+    Checkpoint, EngineParams, GrowthEnd, GrowthState, Stats, Thermostat, ThermostatState,
+    ThermostatStats,
+};
 
 /// `ros2msg` text of the schema `carom_msgs/msg/Checkpoint`.
 pub const CHECKPOINT_MSG: &str = "\
 # The complete state of a carom run, from which it resumes bit-identically.
 # Per-disc arrays have one entry per disc; units are the run's.
-uint32 format_version             # 4 (3: without gravity and the thermostat at the end; 2: nor the images)
+uint32 format_version             # 5 (4: without growth at the end; 3: nor gravity and the thermostat; 2: nor the images)
 # --- run driver ---
 float64 run_start_time            # simulated time at which the run started (time)
 uint64 logged_collisions          # collisions written to /collisions so far
@@ -94,10 +97,23 @@ uint64[2] thermostat_rng          # the Pcg64Mcg generator's 128-bit state: high
 uint64 thermostat_events          # thermostat events so far
 float64 thermostat_energy_added   # kinetic energy the thermostat added so far (energy)
 float64 thermostat_origin         # time the thermostat was set: driving kick k comes at origin + k * interval (time)
+# --- growing discs, compression (format_version 5 on; physics.md section 16) ---
+float64 growth_rate               # configured relative growth rate (1/time; 0: none); radii are a0 * scale, a0 the species radii
+float64 growth_target_scale       # scale at which growth stops
+float64 growth_kt                 # kT the velocities are rescaled to (energy)
+float64 growth_rescale_interval   # time between rescales (time)
+float64 growth_max_reduced_pressure # jamming bound on Z
+float64 growth_scale0             # engine-internal: scale at clock 0
+float64 growth_rate_now           # engine-internal: rate now (0 once ended)
+float64 growth_end                # engine-internal: clock time of the target scale (+inf once ended)
+float64 growth_next_rescale       # engine-internal: clock time of the next rescale (+inf once ended)
+float64 growth_virial_mark        # engine-internal: virial sum at the last rescale
+uint8 growth_ended                # 0 growing (or none), 1 target reached, 2 jammed
+float64 growth_last_z             # Z over the last interval between rescales
 ";
 
 /// Format version written in `format_version`.
-pub const CHECKPOINT_FORMAT_VERSION: u32 = 4;
+pub const CHECKPOINT_FORMAT_VERSION: u32 = 5;
 
 /// The run driver's state at a checkpoint (what it needs, beyond the engine, to
 /// continue the log exactly as the uninterrupted run would have).
@@ -219,6 +235,23 @@ impl LogCheckpoint {
         w.put(t.stats.events);
         w.put(t.stats.energy_added);
         w.put(t.origin);
+        let (g, st) = (&c.params.growth, &c.growth);
+        for x in [
+            g.rate,
+            g.target_scale,
+            g.kt,
+            g.rescale_interval,
+            g.max_reduced_pressure,
+            st.scale0,
+            st.rate,
+            st.end,
+            st.next_rescale,
+            st.virial_mark,
+        ] {
+            w.put(x);
+        }
+        w.put(st.ended as u8);
+        w.put(st.last_z);
     }
 
     /// Decode from CDR. Checks the layout and the lengths of paired arrays; the
@@ -226,8 +259,8 @@ impl LogCheckpoint {
     pub fn decode(data: &[u8]) -> Result<Self, CdrError> {
         let mut r = CdrReader::new(data)?;
         let version: u32 = r.get("format_version")?;
-        // Version 3 is version 4 without gravity and the thermostat, version 2 also
-        // without the images.
+        // Version 4 is version 5 without growth, 3 also without gravity and the
+        // thermostat, 2 also without the images.
         if !(2..=CHECKPOINT_FORMAT_VERSION).contains(&version) {
             return Err(CdrError::Invalid {
                 field: "format_version",
@@ -395,6 +428,33 @@ impl LogCheckpoint {
         } else {
             None
         };
+        let mut growth = GrowthState::NONE;
+        if version >= 5 {
+            let g = &mut params.growth;
+            g.rate = r.get("growth_rate")?;
+            g.target_scale = r.get("growth_target_scale")?;
+            g.kt = r.get("growth_kt")?;
+            g.rescale_interval = r.get("growth_rescale_interval")?;
+            g.max_reduced_pressure = r.get("growth_max_reduced_pressure")?;
+            growth.scale0 = r.get("growth_scale0")?;
+            growth.rate = r.get("growth_rate_now")?;
+            growth.end = r.get("growth_end")?;
+            growth.next_rescale = r.get("growth_next_rescale")?;
+            growth.virial_mark = r.get("growth_virial_mark")?;
+            let ended: u8 = r.get("growth_ended")?;
+            growth.ended = match ended {
+                0 => GrowthEnd::Growing,
+                1 => GrowthEnd::Target,
+                2 => GrowthEnd::Jammed,
+                _ => {
+                    return Err(CdrError::Invalid {
+                        field: "growth_ended",
+                        problem: format!("{ended} is not 0, 1 or 2"),
+                    })
+                }
+            };
+            growth.last_z = r.get("growth_last_z")?;
+        }
         Ok(LogCheckpoint {
             driver,
             engine: Checkpoint {
@@ -425,6 +485,7 @@ impl LogCheckpoint {
                 next_reorder,
                 images,
                 thermostat,
+                growth,
             },
         })
     }

@@ -349,7 +349,7 @@ fn checkpoint_fields(c: &LogCheckpoint) -> Values {
     let b = &e.sim_box.boundary;
     named(
         vec![
-            ("format_version", vec![4]),
+            ("format_version", vec![5]),
             ("run_start_time", f([d.run_start_time])),
             ("logged_collisions", vec![d.logged_collisions]),
             ("next_sequence", u(d.next_sequence)),
@@ -413,6 +413,7 @@ fn checkpoint_fields(c: &LogCheckpoint) -> Values {
         ]
         .into_iter()
         .chain(thermostat_fields(e.thermostat))
+        .chain(growth_fields(&e.params.growth, &e.growth))
         .collect::<Vec<_>>(),
     )
 }
@@ -446,6 +447,27 @@ fn thermostat_fields(t: Option<carom_events::ThermostatState>) -> Vec<(&'static 
         ("thermostat_events", vec![events]),
         ("thermostat_energy_added", f([added])),
         ("thermostat_origin", f([origin])),
+    ]
+}
+
+/// The growth's fields by schema name (format 5 on).
+fn growth_fields(
+    g: &carom_events::Growth,
+    st: &carom_events::GrowthState,
+) -> Vec<(&'static str, Vec<u64>)> {
+    vec![
+        ("growth_rate", f([g.rate])),
+        ("growth_target_scale", f([g.target_scale])),
+        ("growth_kt", f([g.kt])),
+        ("growth_rescale_interval", f([g.rescale_interval])),
+        ("growth_max_reduced_pressure", f([g.max_reduced_pressure])),
+        ("growth_scale0", f([st.scale0])),
+        ("growth_rate_now", f([st.rate])),
+        ("growth_end", f([st.end])),
+        ("growth_next_rescale", f([st.next_rescale])),
+        ("growth_virial_mark", f([st.virial_mark])),
+        ("growth_ended", vec![st.ended as u64]),
+        ("growth_last_z", f([st.last_z])),
     ]
 }
 
