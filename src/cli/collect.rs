@@ -24,7 +24,7 @@ pub struct CollectArgs {
     #[arg(long, conflicts_with = "csv")]
     pub json: bool,
     /// Print CSV: the varied paths, the number of replicas, and for each quantity
-    /// its mean, standard error and spread.
+    /// its mean, standard error, spread and the runs' own errors combined.
     #[arg(long)]
     pub csv: bool,
     /// Write figures (PNG and SVG) into this directory: Z against the packing
@@ -110,7 +110,8 @@ fn value_text(v: &serde_json::Value) -> String {
     }
 }
 
-/// CSV: axes, replicas, then value, std_error, spread per quantity.
+/// CSV: axes, replicas, then value, std_error, spread and the runs' own
+/// combined error per quantity.
 fn csv(c: &Collected) -> String {
     let qs = present(c);
     let mut head: Vec<String> = c.axes.clone();
@@ -129,8 +130,13 @@ fn csv(c: &Collected) -> String {
         row.push(p.runs.len().to_string());
         for q in &qs {
             match p.results.get(*q) {
-                Some(r) => row.extend([r.value.to_string(), opt(r.std_error), opt(r.spread)]),
-                None => row.extend([String::new(), String::new(), String::new()]),
+                Some(r) => row.extend([
+                    r.value.to_string(),
+                    opt(r.std_error),
+                    opt(r.spread),
+                    opt(r.run_std_error),
+                ]),
+                None => row.extend(std::iter::repeat_n(String::new(), 4)),
             }
         }
         s += &(row.join(",") + "\n");

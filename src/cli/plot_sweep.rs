@@ -9,11 +9,15 @@ use carom::sweep::Collected;
 use plotters::coord::Shift;
 use plotters::prelude::*;
 
-use super::{axes, legend, range, DrawResult};
+use super::{axes, range, DrawResult};
 
-/// (label, [(η, Z, SE)]) per series, from the collected grid points with Z.
-pub(super) fn eos_series(c: &Collected, eta_axis: &str) -> Vec<(String, Vec<(f64, f64, f64)>)> {
-    let mut series: Vec<(String, Vec<(f64, f64, f64)>)> = Vec::new();
+/// One series of the figure: its label and its points (η, Z, one standard error).
+pub(super) type Series = (String, Vec<(f64, f64, f64)>);
+
+/// One series per combination of the other varied values, from the collected
+/// grid points with Z.
+pub(super) fn eos_series(c: &Collected, eta_axis: &str) -> Vec<Series> {
+    let mut series: Vec<Series> = Vec::new();
     for p in &c.points {
         let (Some(eta), Some(z)) = (p.values[eta_axis].as_f64(), p.results.get("Z")) else {
             continue;
@@ -43,7 +47,7 @@ pub(super) fn eos_series(c: &Collected, eta_axis: &str) -> Vec<(String, Vec<(f64
 
 pub(super) fn draw_eos<DB: DrawingBackend>(
     root: &DrawingArea<DB, Shift>,
-    series: &[(String, Vec<(f64, f64, f64)>)],
+    series: &[Series],
 ) -> DrawResult<DB> {
     let all = || series.iter().flat_map(|s| s.1.iter());
     let (x0, x1) = range(all().map(|p| p.0));
@@ -109,5 +113,11 @@ pub(super) fn draw_eos<DB: DrawingBackend>(
             .label(label.clone())
             .legend(move |(x, y)| Circle::new((x + 7, y), 4, colour.filled()));
     }
-    legend(&mut chart)
+    // Upper left: the curve rises to the right.
+    chart
+        .configure_series_labels()
+        .position(SeriesLabelPosition::UpperLeft)
+        .background_style(WHITE.mix(0.8))
+        .border_style(BLACK)
+        .draw()
 }

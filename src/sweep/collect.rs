@@ -104,6 +104,9 @@ pub struct Collected {
     pub missing: Vec<(String, String)>,
 }
 
+/// One run's quantities: name → (value, its standard error).
+type Values = BTreeMap<String, (f64, Option<f64>)>;
+
 struct Quiet;
 impl ReadObserver for Quiet {
     fn pass(&mut self, _: &'static str) {}
@@ -125,13 +128,13 @@ pub fn collect(
             dir: sweep.dir.clone(),
             problem: format!("cannot start the analysis threads: {e}"),
         })?;
-    let analysed: Vec<Result<BTreeMap<String, (f64, Option<f64>)>, String>> = pool.install(|| {
+    let analysed: Vec<Result<Values, String>> = pool.install(|| {
         (0..points.len())
             .into_par_iter()
             .map(|i| {
                 let r = match point_state(sweep, i) {
                     PointState::Done { .. } => {
-                        analyze_log(&sweep.log_path(i), opts.analysis.clone(), &mut Quiet)
+                        analyze_log(&sweep.log_path(i), opts.analysis, &mut Quiet)
                             .map(|(report, _)| {
                                 pick(&serde_json::to_value(report).expect("a Report serialises"))
                             })
@@ -192,7 +195,7 @@ pub fn collect(
 }
 
 /// The quantities of one report (those it has, finite).
-fn pick(report: &Value) -> BTreeMap<String, (f64, Option<f64>)> {
+fn pick(report: &Value) -> Values {
     let mut m = BTreeMap::new();
     for (q, value, se) in QUANTITIES {
         if value.is_empty() {

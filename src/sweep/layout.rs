@@ -117,7 +117,11 @@ impl SweepDir {
 
 /// The plan as stored: base inlined, ranges expanded, axes in their order.
 fn plan_text(plan: &Plan) -> String {
-    let mut s = String::from("{\n  \"base\": ");
+    let mut s = String::from("{\n");
+    if let Some(d) = &plan.description {
+        s += &format!("  \"description\": {},\n", Value::from(d.clone()));
+    }
+    s += "  \"base\": ";
     let base = serde_json::to_string_pretty(&plan.base).expect("JSON");
     s += &base.replace('\n', "\n  ");
     s += ",\n  \"vary\": {";

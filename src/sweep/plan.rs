@@ -19,6 +19,12 @@ use super::SweepError;
 #[derive(Debug, Clone, Deserialize)]
 #[serde(deny_unknown_fields)]
 struct PlanFile {
+    /// The schema, for editors (ignored).
+    #[serde(default, rename = "$schema")]
+    _schema: Option<String>,
+    /// Words for people (ignored).
+    #[serde(default)]
+    description: Option<String>,
     /// The base configuration: a file (relative to the plan) or the object itself.
     base: Value,
     /// Dotted path → values, in the order written.
@@ -72,6 +78,8 @@ pub struct Axis {
 /// A checked, expanded plan.
 #[derive(Debug, Clone)]
 pub struct Plan {
+    /// The plan's own description, if it has one.
+    pub description: Option<String>,
     /// The base configuration (the file's contents if `base` named a file).
     pub base: Value,
     /// The varied paths, in the order written.
@@ -157,6 +165,7 @@ impl Plan {
         };
         let points = expand(&base, &axes, file.replicas, first_seed, origin)?;
         Ok(Plan {
+            description: file.description,
             base,
             axes,
             replicas: file.replicas,
@@ -167,9 +176,11 @@ impl Plan {
 }
 
 fn read_base(path: &PathBuf, origin: &str) -> Result<Value, SweepError> {
-    let text = std::fs::read_to_string(path).map_err(|source| SweepError::Io {
-        path: path.clone(),
-        source,
+    let text = std::fs::read_to_string(path).map_err(|e| SweepError::Plan {
+        plan: origin.to_owned(),
+        field: "base".into(),
+        problem: format!("cannot read {}: {e}", path.display()),
+        allowed: "a configuration file (relative to the plan) or a configuration object".into(),
     })?;
     let text = text.strip_prefix('\u{feff}').unwrap_or(&text);
     serde_json::from_str(text).map_err(|e| SweepError::Plan {
@@ -207,7 +218,7 @@ fn axis_values(spec: &Value) -> Result<Vec<Value>, (String, &'static str)> {
                 Some(Some("log")) => true,
                 Some(_) => return Err(("scale is not \"linear\" or \"log\"".into(), ALLOWED)),
             };
-            if count < 2 || count > 100_000 {
+            if !(2..=100_000).contains(&count) {
                 return Err((format!("count {count}"), ALLOWED));
             }
             if log && !(from > 0.0 && to > 0.0) {

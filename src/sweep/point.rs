@@ -69,7 +69,8 @@ pub fn point_command(sweep: &SweepDir, i: usize) -> Option<Vec<String>> {
 
 /// A point being run.
 pub(super) struct Running {
-    pub child: Child,
+    /// The child, until a waiter takes it.
+    pub child: Option<Child>,
     reader: std::thread::JoinHandle<Vec<String>>,
 }
 
@@ -120,7 +121,10 @@ pub(super) fn start_point(
         }
         tail
     });
-    Ok(Ok(Running { child, reader }))
+    Ok(Ok(Running {
+        child: Some(child),
+        reader,
+    }))
 }
 
 impl Running {
@@ -160,7 +164,8 @@ pub fn run_point(exe: &Path, sweep: &SweepDir, i: usize) -> Result<PointOutcome,
     match start_point(exe, sweep, i, |_| {})? {
         Err(state) => Ok(PointOutcome::Skipped(state)),
         Ok(mut r) => {
-            let status = r.child.wait().map_err(io(exe))?;
+            let mut child = r.child.take().expect("a started point has its child");
+            let status = child.wait().map_err(io(exe))?;
             Ok(r.finish(sweep, i, status))
         }
     }

@@ -5,8 +5,9 @@
 //! which the next sweep resumes).
 
 use std::path::Path;
+use std::process::ExitStatus;
 use std::sync::atomic::{AtomicBool, Ordering};
-use std::sync::{Arc, Mutex};
+use std::sync::{mpsc, Arc, Mutex};
 use std::time::{Duration, Instant};
 
 use super::error::io;
@@ -46,7 +47,10 @@ pub fn run_pool(
     let jobs = jobs.max(1);
     let fractions = Arc::new(Mutex::new(vec![0.0f64; n]));
     let mut outcomes: Vec<Option<PointOutcome>> = vec![None; n];
-    let mut running: Vec<(usize, Running)> = Vec::new();
+    // Running points: index, PID, and the rest of the child; a waiter thread per
+    // child reports its exit on `ended`, so the next point starts at once.
+    let mut running: Vec<(usize, u32, Running)> = Vec::new();
+    let (ended_tx, ended) = mpsc::channel::<(usize, std::io::Result<ExitStatus>)>();
     let mut next = 0;
     let mut signalled = false;
     let mut last_tick = Instant::now();
@@ -59,9 +63,15 @@ pub fn run_pool(
             match start_point(exe, sweep, i, move |x| {
                 f.lock().expect("not poisoned")[i] = x
             })? {
-                Ok(r) => {
+                Ok(mut r) => {
+                    let mut child = r.child.take().expect("a started point has its child");
+                    let pid = child.id();
+                    let tx = ended_tx.clone();
+                    std::thread::spawn(move || {
+                        let _ = tx.send((i, child.wait()));
+                    });
                     on_event(PoolEvent::Started(i));
-                    running.push((i, r));
+                    running.push((i, pid, r));
                 }
                 Err(state) => {
                     let o = PointOutcome::Skipped(state);
@@ -71,10 +81,10 @@ pub fn run_pool(
             }
         }
         if stopping && !signalled {
-            for (_, r) in &running {
+            for (_, pid, _) in &running {
                 // The run finishes its log on SIGTERM as on Ctrl-C.
                 let _ = std::process::Command::new("kill")
-                    .args(["-TERM", &r.child.id().to_string()])
+                    .args(["-TERM", &pid.to_string()])
                     .status();
             }
             signalled = true;
@@ -82,29 +92,29 @@ pub fn run_pool(
         if running.is_empty() && (next >= n || stopping) {
             break;
         }
-        let mut k = 0;
-        while k < running.len() {
-            let (i, r) = &mut running[k];
-            match r.child.try_wait().map_err(io(exe))? {
-                Some(status) => {
-                    let i = *i;
-                    let (_, r) = running.swap_remove(k);
-                    let o = r.finish(sweep, i, status);
-                    fractions.lock().expect("not poisoned")[i] = 1.0;
-                    on_event(PoolEvent::Ended(i, o.clone()));
-                    outcomes[i] = Some(o);
-                }
-                None => k += 1,
+        match ended.recv_timeout(Duration::from_millis(200)) {
+            Ok((i, status)) => {
+                let k = running
+                    .iter()
+                    .position(|r| r.0 == i)
+                    .expect("a running point ended");
+                let (_, _, r) = running.swap_remove(k);
+                let status = status.map_err(io(exe))?;
+                let o = r.finish(sweep, i, status);
+                fractions.lock().expect("not poisoned")[i] = 1.0;
+                on_event(PoolEvent::Ended(i, o.clone()));
+                outcomes[i] = Some(o);
             }
+            Err(mpsc::RecvTimeoutError::Timeout) => {}
+            Err(mpsc::RecvTimeoutError::Disconnected) => unreachable!("the pool holds a sender"),
         }
         if last_tick.elapsed() >= Duration::from_secs(1) {
             let f = fractions.lock().expect("not poisoned");
             on_event(PoolEvent::Tick(
-                running.iter().map(|(i, _)| (*i, f[*i])).collect(),
+                running.iter().map(|(i, _, _)| (*i, f[*i])).collect(),
             ));
             last_tick = Instant::now();
         }
-        std::thread::sleep(Duration::from_millis(50));
     }
     Ok(PoolReport {
         outcomes,

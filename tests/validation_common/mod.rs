@@ -270,6 +270,3 @@ fn assemble(dir: &Path) {
         write_atomic(&path, &new);
     }
 }
-
-/// Kolafa–Rottner Z(η) and its spread (physics.md §7), from the library.
-pub use carom::analysis::kolafa_rottner;
