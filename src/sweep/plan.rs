@@ -447,4 +447,36 @@ mod tests {
             .to_string();
         assert!(e.contains("temperature=1"), "{e}");
     }
+
+    /// The schema names exactly the fields the plan reader accepts, and the
+    /// shipped example expands into its eight packing fractions × two replicas.
+    #[test]
+    fn the_schema_and_the_example_match_the_reader() {
+        let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+        let schema: Value = serde_json::from_str(
+            &std::fs::read_to_string(root.join("data/sweep.schema.json")).unwrap(),
+        )
+        .unwrap();
+        let mut keys: Vec<&str> = schema["properties"]
+            .as_object()
+            .unwrap()
+            .keys()
+            .map(String::as_str)
+            .collect();
+        keys.sort_unstable();
+        assert_eq!(
+            keys,
+            ["$schema", "base", "description", "replicas", "seed", "vary"]
+        );
+        let eos = Plan::load(&root.join("data/sweeps/eos.json")).unwrap();
+        assert_eq!(eos.points.len(), 16);
+        let etas: Vec<f64> = eos
+            .points
+            .iter()
+            .step_by(2)
+            .map(|p| p.config["box"]["packing_fraction"].as_f64().unwrap())
+            .collect();
+        assert_eq!(etas, [0.1, 0.2, 0.3, 0.4, 0.5, 0.55, 0.6, 0.68]);
+        assert_eq!(eos.points[1].name, "packing_fraction=0.1,seed=2");
+    }
 }
