@@ -8,13 +8,15 @@
 //! * [`io`] (`carom-io`) — configuration, MCAP logging and reading.
 //!
 //! Its own modules: `run` (runs and resumes), `analysis` (reports from logs),
-//! `frames` (choosing snapshots), `render` (pictures) and `export` (GSD, XYZ).
+//! `frames` (choosing snapshots), `render` (pictures), `export` (GSD, XYZ) and
+//! `sweep` (many runs from one plan, locally or on Slurm).
 
 pub mod analysis;
 pub mod export;
 pub mod frames;
 pub mod render;
 pub mod run;
+pub mod sweep;
 
 pub use carom_core as core;
 pub use carom_events as events;

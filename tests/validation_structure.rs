@@ -24,10 +24,11 @@ mod validation_common;
 
 use std::time::Instant;
 
+use carom::analysis::kolafa_rottner;
 use carom::analysis::{AnalysisOptions, Analyzer, Report, RunDescription};
 use carom::core::{Boundary, SimBox, Species};
 use carom::events::{box_size_for, Engine, EngineParams, SystemSpec};
-use validation_common::{fmt_se, kolafa_rottner, Check, Fragment, Row};
+use validation_common::{fmt_se, Check, Fragment, Row};
 
 /// A run's analysis and what it cost.
 struct Measured {

@@ -24,6 +24,7 @@ mod contact;
 mod description;
 mod dynamics;
 mod dynamics_report;
+mod eos_reference;
 mod from_log;
 mod helfand;
 mod increment_correlator;
@@ -64,6 +65,7 @@ pub use contact::{
 pub use description::RunDescription;
 pub use dynamics::SEGMENTS as DYNAMICS_SEGMENTS;
 pub use dynamics_report::{DiffusionFit, DynamicsReport, SpeciesDynamics};
+pub use eos_reference::{henderson_z, kolafa_rottner, li_2022, KOLAFA_ROTTNER};
 pub use from_log::{analyze_log, AnalysisError, ReadObserver};
 pub use msd::D_WINDOW_COLLISIONS;
 pub use neighbours::GHOST_SPACINGS;

@@ -1,11 +1,12 @@
 //! The `carom` command line: `run`, `resume`, `analyze`, `info`, `repair`,
-//! `render` and `export`.
+//! `render`, `export`, `sweep` and `collect`.
 //!
 //! Exit status: 0 on success; 1 when a run or a read fails; 2 for a bad command
 //! line or configuration (the message names the field); 130 when a run was
 //! interrupted with Ctrl-C, SIGTERM or SIGHUP (its log is finished and readable).
 
 mod analyze;
+mod collect;
 mod export;
 mod info;
 mod plot;
@@ -13,6 +14,7 @@ mod reading;
 mod render;
 mod repair;
 mod run;
+mod sweep;
 
 use std::path::PathBuf;
 use std::process::ExitCode;
@@ -57,6 +59,13 @@ enum Command {
     /// Export a log's snapshots to HOOMD's GSD or extended XYZ (OVITO, freud,
     /// HOOMD-blue), one frame per snapshot.
     Export(export::ExportArgs),
+    /// Run many points from one plan (a base configuration, the paths to vary,
+    /// replicas): locally, one per core, or as a Slurm job array; `carom sweep
+    /// status DIR` shows where each point stands.
+    Sweep(sweep::SweepArgs),
+    /// Analyse every finished log of a sweep and write one table (replicas
+    /// combined), and for a sweep over packing fraction a figure of Z(η).
+    Collect(collect::CollectArgs),
 }
 
 /// Arguments of `carom run`.
@@ -238,6 +247,9 @@ pub enum CliError {
     /// Pictures or exported frames could not be made (no snapshots, a write).
     #[error("{0}")]
     Frames(String),
+    /// A sweep could not be laid out, run or collected.
+    #[error("sweep: {0}")]
+    Sweep(#[from] carom::sweep::SweepError),
 }
 
 impl From<carom::frames::FrameError> for CliError {
@@ -266,6 +278,9 @@ impl CliError {
     fn exit_code(&self) -> u8 {
         match self {
             CliError::Config(_) | CliError::Usage(_) => 2,
+            CliError::Sweep(
+                carom::sweep::SweepError::Plan { .. } | carom::sweep::SweepError::Point { .. },
+            ) => 2,
             // Interrupted before the log existed: the shell's code for SIGINT, as
             // for a run interrupted later (with its log finished).
             CliError::Run(carom::run::RunError::InterruptedPlacing { .. }) => 130,
@@ -342,6 +357,8 @@ pub fn main() -> ExitCode {
         Command::Repair(a) => repair::repair(a),
         Command::Render(a) => render::render(a),
         Command::Export(a) => export::export(a),
+        Command::Sweep(a) => sweep::sweep(a),
+        Command::Collect(a) => collect::collect(a),
     };
     match result {
         Ok(code) => code,

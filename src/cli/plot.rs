@@ -32,6 +32,9 @@ mod transport;
 #[path = "plot_dynamics.rs"]
 mod dynamics;
 
+#[path = "plot_sweep.rs"]
+mod sweep;
+
 const SIZE: (u32, u32) = (900, 600);
 
 pub(super) type DrawResult<DB> =
@@ -165,6 +168,27 @@ pub fn write_all(report: &Report, dir: &Path) -> Result<usize, CliError> {
         }
     }
     Ok(n)
+}
+
+/// Write the figures of a collected sweep into `dir`: `equation_of_state` when
+/// the sweep varies a packing fraction and has pressures. Returns their number.
+pub fn write_sweep(c: &carom::sweep::Collected, dir: &Path) -> Result<usize, CliError> {
+    let Some(eta) = c.axes.iter().find(|a| a.ends_with("packing_fraction")) else {
+        return Ok(0);
+    };
+    let series = sweep::eos_series(c, eta);
+    if series.is_empty() {
+        return Ok(0);
+    }
+    std::fs::create_dir_all(dir).map_err(|source| CliError::Io {
+        context: format!("cannot create {}", dir.display()),
+        source,
+    })?;
+    carom::render::register_font();
+    both!(dir, "equation_of_state", |root| sweep::draw_eos(
+        root, &series
+    ));
+    Ok(1)
 }
 
 pub(super) fn range(values: impl Iterator<Item = f64>) -> (f64, f64) {

@@ -270,22 +270,3 @@ fn assemble(dir: &Path) {
         write_atomic(&path, &new);
     }
 }
-
-/// Kolafa–Rottner Z(η) with the spread of other fits (physics.md §7).
-const KOLAFA_ROTTNER: [(f64, f64, f64); 7] = [
-    (0.10, 1.2361, 0.0001),
-    (0.20, 1.5704, 0.0006),
-    (0.30, 2.0633, 0.0020),
-    (0.40, 2.8293, 0.0024),
-    (0.50, 4.1064, 0.0030),
-    (0.55, 5.0874, 0.0030),
-    (0.60, 6.4553, 0.0034),
-];
-
-/// Kolafa–Rottner Z(η) and its spread, for the η of the table.
-pub fn kolafa_rottner(eta: f64) -> Option<(f64, f64)> {
-    KOLAFA_ROTTNER
-        .iter()
-        .find(|r| (r.0 - eta).abs() < 1e-9)
-        .map(|r| (r.1, r.2))
-}
