@@ -227,7 +227,10 @@ mod tests {
                 }
             };
             if want.is_finite() {
-                assert!((got - want).abs() < 1e-12, "{y} {u} {g} {phase}: {got} vs {want}");
+                assert!(
+                    (got - want).abs() < 1e-12,
+                    "{y} {u} {g} {phase}: {got} vs {want}"
+                );
             } else {
                 assert_eq!(got, f64::INFINITY, "{y} {u} {g} {phase}");
             }
