@@ -600,4 +600,51 @@ mod tests {
             assert!(LogCheckpoint::decode(&w.bytes()[..cut]).is_err());
         }
     }
+
+    /// A shaken bed's checkpoint (gravity, vibrating floor) round-trips with the
+    /// floor, its phase origin and its work, and resumes into the same engine.
+    #[test]
+    fn a_checkpoint_with_a_vibrating_floor_round_trips() {
+        let species = vec![Species::reference(60)];
+        let spec = SystemSpec {
+            species,
+            sim_box: SimBox {
+                size: DVec2::new(12.0, 30.0),
+                boundary: [Boundary::Periodic, Boundary::Walls { restitution: 0.9 }],
+            },
+            temperature: 1.0,
+            seed: 4,
+            placement: Placement::Random,
+            velocities: Velocities::MaxwellBoltzmann,
+        };
+        let params = EngineParams {
+            restitution: Restitution::Normal(0.9),
+            tc: 1e-4,
+            gravity: 1.0,
+            floor: Some(Floor {
+                amplitude: 0.4,
+                omega: 3.0,
+            }),
+            ..EngineParams::default()
+        };
+        let mut e = Engine::new(spec.build().unwrap(), params).unwrap();
+        e.run_collisions(3_000).unwrap();
+        assert!(e.stats().floor_work != 0.0);
+        let lc = LogCheckpoint {
+            driver: DriverState {
+                run_start_time: 0.0,
+                logged_collisions: 3_000,
+                next_sequence: [1, 2, 3, 4],
+            },
+            engine: e.checkpoint(),
+        };
+        let mut w = CdrWriter::new();
+        lc.encode(&mut w);
+        let back = LogCheckpoint::decode(w.bytes()).unwrap();
+        assert_eq!(back, lc);
+        let mut b = Engine::from_checkpoint(back.engine).unwrap();
+        for _ in 0..2_000 {
+            assert_eq!(e.next_event().unwrap(), b.next_event().unwrap());
+        }
+    }
 }
