@@ -107,7 +107,7 @@ impl Floor {
                 2.0 * f / (root - fp)
             };
             let next = t + step;
-            if !(next > t) {
+            if next <= t || next.is_nan() {
                 // The step is below the clock's resolution: touching to rounding.
                 return if t >= horizon {
                     FloorContact::Beyond

@@ -68,7 +68,12 @@ fn a_dropped_disc_hits_the_floor_when_bisection_says_and_bounces_in_its_frame() 
     for (g, u0, e_wall) in [(1.0, 0.0, 1.0), (1.0, 0.5, 0.8), (0.0, -1.0, 0.9)] {
         let (a, f) = (0.3, 0.7);
         let w = TAU * f;
-        let state = one([5.0, 10.0], e_wall, DVec2::new(2.5, 4.0), DVec2::new(0.0, u0));
+        let state = one(
+            [5.0, 10.0],
+            e_wall,
+            DVec2::new(2.5, 4.0),
+            DVec2::new(0.0, u0),
+        );
         let params = EngineParams {
             gravity: g,
             floor: floor(a, f),
@@ -85,7 +90,11 @@ fn a_dropped_disc_hits_the_floor_when_bisection_says_and_bounces_in_its_frame() 
             hit.time
         );
         let v = u0 - g * want;
-        assert!((hit.v_before.y - v).abs() < 1e-10, "{} vs {v}", hit.v_before.y);
+        assert!(
+            (hit.v_before.y - v).abs() < 1e-10,
+            "{} vs {v}",
+            hit.v_before.y
+        );
         let uw = a * w * (w * hit.time).sin();
         let after = uw - e_wall * (hit.v_before.y - uw);
         assert!((hit.v_after.y - after).abs() < 1e-12, "{hit:?}");
@@ -103,10 +112,7 @@ fn bed(seed: u64) -> Engine {
     let spec = SystemSpec {
         sim_box: SimBox {
             size: DVec2::new(20.0, 60.0),
-            boundary: [
-                Boundary::Periodic,
-                Boundary::Walls { restitution: 0.95 },
-            ],
+            boundary: [Boundary::Periodic, Boundary::Walls { restitution: 0.95 }],
         },
         species,
         temperature: 1.0,

@@ -83,12 +83,12 @@ mod tests {
                 "value 0",
             ),
             (
-                vec!["box.boundary=periodic"],
+                vec!["box.boundary=periodic", "gravity=0"],
                 "vibrating_floor",
                 "periodic y",
             ),
             (
-                vec!["log.collision_detail=compact"],
+                vec!["log.collision_detail=compact", "gravity=0"],
                 "log.collision_detail",
                 "floor",
             ),
