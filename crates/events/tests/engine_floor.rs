@@ -205,3 +205,42 @@ fn bad_floors_are_refused() {
     };
     assert!(Engine::new(s(), growing).is_err());
 }
+
+/// Validation (physics.md §18, docs/validation.md): the bed of [`bed`] reaches a
+/// steady state in which the floor's mean power equals the dissipation rate. Over
+/// t ∈ [200, 1200], in 10 blocks, the floor's power P_in = ΔW_floor/Δt and the loss
+/// rate P_out = ΔE_lost/Δt are measured independently; their block means agree
+/// within 3 standard errors of the difference (and K + U ends where it started
+/// within that error times the span).
+#[test]
+#[ignore = "long validation: cargo test --release -p carom-events --test engine_floor -- --ignored"]
+fn a_shaken_bed_reaches_a_steady_state_where_floor_power_equals_dissipation() {
+    let mut e = bed(21);
+    e.run_until(200.0).unwrap();
+    let mut diffs = Vec::new();
+    let (mut sum_in, mut sum_out) = (0.0, 0.0);
+    for k in 0..10 {
+        let (w0, l0, t0) = (e.stats().floor_work, e.stats().energy_lost, e.now());
+        e.run_until(300.0 + 100.0 * k as f64).unwrap();
+        let dt = e.now() - t0;
+        let (p_in, p_out) = (
+            (e.stats().floor_work - w0) / dt,
+            (e.stats().energy_lost - l0) / dt,
+        );
+        println!("block {k}: P_in = {p_in:.5}, P_out = {p_out:.5}");
+        sum_in += p_in;
+        sum_out += p_out;
+        diffs.push(p_in - p_out);
+    }
+    let n = diffs.len() as f64;
+    let mean = diffs.iter().sum::<f64>() / n;
+    let var = diffs.iter().map(|d| (d - mean).powi(2)).sum::<f64>() / (n - 1.0);
+    let se = (var / n).sqrt();
+    println!(
+        "P_in = {:.5}, P_out = {:.5}, difference {mean:.5} ± {se:.5}",
+        sum_in / n,
+        sum_out / n
+    );
+    assert!(sum_in > 0.0 && sum_out > 0.0);
+    assert!(mean.abs() < 3.0 * se + 1e-3 * sum_in / n, "{mean} ± {se}");
+}
