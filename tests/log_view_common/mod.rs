@@ -191,6 +191,7 @@ pub fn checkpoint(cp: &LogCheckpoint) -> Value {
         counts,
         epoch,
         event_times,
+        floor_origin,
         growth,
         images,
         labels,
@@ -218,6 +219,7 @@ pub fn checkpoint(cp: &LogCheckpoint) -> Value {
         max_events_without_time_advance,
         gravity,
         growth: gp,
+        floor,
     } = params;
     let carom::events::Stats {
         pair_collisions,
@@ -227,6 +229,7 @@ pub fn checkpoint(cp: &LogCheckpoint) -> Value {
         virial_sum,
         wall_impulse: [[wxl, wxh], [wyl, wyh]],
         energy_lost,
+        floor_work,
     } = stats;
     let (restitution_kind, coefficient) = match *restitution {
         Restitution::Elastic => (0, 1.0),
@@ -304,6 +307,9 @@ pub fn checkpoint(cp: &LogCheckpoint) -> Value {
         "thermostat_rng": ints([(rng >> 64) as u64, rng as u64]),
         "thermostat_events": events, "thermostat_energy_added": f(added),
         "thermostat_origin": f(origin),
+        "floor_amplitude": f(floor.map_or(0.0, |fl| fl.amplitude)),
+        "floor_omega": f(floor.map_or(0.0, |fl| fl.omega)),
+        "floor_origin": f(*floor_origin), "floor_work": f(*floor_work),
     });
     let mut all = state;
     all.as_object_mut()

@@ -28,6 +28,7 @@ pub mod kinematics;
 pub mod observables;
 pub mod rates;
 pub mod species;
+pub mod vibrating_wall;
 
 pub use boundary::{Axis, Boundary, SimBox, WallSide};
 pub use collision::{Resolution, Restitution};

@@ -94,4 +94,8 @@ pub struct Checkpoint {
     /// The growth of the radii (physics.md §17; [`GrowthState::NONE`] without
     /// growth, and in checkpoints written before carom had it).
     pub growth: GrowthState,
+    /// Time (as reported) at which the vibrating floor was set, its phase origin
+    /// (physics.md §18; 0 without a floor, and in checkpoints written before carom
+    /// had it).
+    pub floor_origin: f64,
 }

@@ -94,6 +94,10 @@ pub enum EngineError {
     /// they do not support.
     #[error("compression: {0}")]
     BadGrowth(String),
+    /// A vibrating floor with parameters out of range or with dynamics it does not
+    /// support (physics.md §18).
+    #[error("vibrating_floor: {0}")]
+    BadFloor(String),
 }
 
 /// What a runaway of [`EngineError::Stalled`] is and what cures it, for a run whose

@@ -39,6 +39,16 @@ pub enum Violation {
         /// Time (time).
         time: f64,
     },
+    /// A disc is below the vibrating floor (physics.md §18).
+    #[error("disc {i} is {depth:e} below the vibrating floor at t = {time}")]
+    BelowFloor {
+        /// The disc.
+        i: usize,
+        /// How far its edge is below the floor (length).
+        depth: f64,
+        /// Time (time).
+        time: f64,
+    },
     /// The clock went backwards.
     #[error("time went backwards from {before} to {after}")]
     Time {
@@ -97,7 +107,9 @@ impl InvariantChecker {
             });
         }
         self.last_time = t;
+        // A vibrating floor gives and takes energy: no elastic check then.
         let elastic = engine.params().restitution.is_elastic()
+            && engine.params().floor.is_none()
             && engine.sim_box().boundary.iter().all(|b| match b {
                 carom_core::Boundary::Periodic => true,
                 carom_core::Boundary::Walls { restitution } => *restitution == 1.0,
@@ -151,9 +163,31 @@ impl InvariantChecker {
         Ok(())
     }
 
+    /// With a vibrating floor, check that no disc's edge is below it by more than
+    /// the overlap tolerance times its diameter.
+    pub fn check_floor(&mut self, engine: &Engine) -> Result<(), Violation> {
+        if engine.params().floor.is_none() {
+            return Ok(());
+        }
+        let h = engine.floor_height();
+        for i in 0..engine.len() {
+            let a = engine.species()[engine.species_of()[i] as usize].radius;
+            let depth = h - (engine.position(i).y - a);
+            if depth > self.overlap_tolerance * 2.0 * a {
+                return Err(Violation::BelowFloor {
+                    i,
+                    depth,
+                    time: engine.now(),
+                });
+            }
+        }
+        Ok(())
+    }
+
     /// All checks.
     pub fn check(&mut self, engine: &Engine) -> Result<(), Violation> {
         self.check_conservation(engine)?;
+        self.check_floor(engine)?;
         self.check_overlaps(engine)
     }
 }

@@ -23,8 +23,8 @@ pub use schedule::{SchedulePoints, SnapshotSchedule, MAX_SCHEDULE_POINTS, MIN_FI
 pub use config::{
     apply_set, load_config, AxisBoundary, BoundaryConfig, BoxConfig, CollisionConfig,
     CollisionDetailConfig, CollisionModel, CompressedPlacementConfig, CompressionConfig, Config,
-    ConfigError, GrowthConfig, LogConfig, PlacementConfig, SnapshotScheduleConfig, SpeciesConfig,
-    StopConfig, ThermostatConfig, VelocitiesConfig, DEFAULT_COUNT, DEFAULT_DURATION,
+    ConfigError, FloorConfig, GrowthConfig, LogConfig, PlacementConfig, SnapshotScheduleConfig,
+    SpeciesConfig, StopConfig, ThermostatConfig, VelocitiesConfig, DEFAULT_COUNT, DEFAULT_DURATION,
     DEFAULT_PACKING_FRACTION,
 };
 

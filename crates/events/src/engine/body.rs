@@ -125,14 +125,23 @@ pub(super) enum Pending {
     Wall = 2,
     /// A cell crossing.
     Cell = 3,
+    /// Search again for a floor contact (engine::floor): the search stopped at its
+    /// step limit without finding one.
+    Recheck = 4,
 }
 
 impl Pending {
     /// The kind with checkpoint code `code`, if it is one carom writes.
     pub(super) fn from_code(code: u32) -> Option<Pending> {
-        [Pending::None, Pending::Pair, Pending::Wall, Pending::Cell]
-            .into_iter()
-            .find(|&p| p as u32 == code)
+        [
+            Pending::None,
+            Pending::Pair,
+            Pending::Wall,
+            Pending::Cell,
+            Pending::Recheck,
+        ]
+        .into_iter()
+        .find(|&p| p as u32 == code)
     }
 }
 

@@ -87,6 +87,7 @@ impl Engine {
                 .collect(),
             thermostat: self.thermostat.as_ref().map(|r| r.state()),
             growth: self.growth,
+            floor_origin: self.floor_origin,
         }
     }
 
@@ -134,6 +135,11 @@ impl Engine {
         let p = &cp.params;
         super::growth::check_growth(&p.growth, p.restitution, p.tc, p.gravity, &cp.sim_box)
             .map_err(|e| bad(e.to_string()))?;
+        super::floor::check_floor(&cp.params, &cp.sim_box, &cp.species)
+            .map_err(|e| bad(e.to_string()))?;
+        if !cp.floor_origin.is_finite() {
+            return Err(bad(format!("floor_origin = {}", cp.floor_origin)));
+        }
         let st = &cp.growth;
         if !(st.scale0.is_finite() && st.scale0 > 0.0 && st.rate.is_finite())
             || st.end.is_nan()
@@ -293,6 +299,7 @@ impl Engine {
             origin_limit: limit,
             thermostat,
             growth: cp.growth,
+            floor_origin: cp.floor_origin,
         })
     }
 }

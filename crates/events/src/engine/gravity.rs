@@ -81,6 +81,9 @@ impl Engine {
         p: DVec2,
         v: DVec2,
     ) -> (f64, Pending, Face) {
+        if self.params.floor.is_some() {
+            return self.boundary_event_floor(i, p, v);
+        }
         let (g, now) = (self.params.gravity, self.clock);
         let b = &self.bodies[i];
         let c = b.link.coords();
@@ -122,7 +125,7 @@ impl Engine {
     /// Disc `i`'s earliest event from now, predicted in the field or without one,
     /// as the engine's parameters say (for callers outside the event loop).
     pub(super) fn predict_any(&mut self, i: usize) {
-        if self.params.gravity != 0.0 {
+        if self.params.gravity != 0.0 || self.params.floor.is_some() {
             self.predict::<true, false>(i);
         } else if self.params.growth.rate != 0.0 {
             self.predict::<false, true>(i);

@@ -21,6 +21,7 @@
 mod body;
 mod checkpoint;
 mod clock;
+mod floor;
 mod gravity;
 mod growth;
 mod lookahead;
@@ -37,6 +38,7 @@ use crate::queue::{EventQueue, Time};
 use crate::state::State;
 use crate::NO_DISC;
 use body::{Aux, Body, Pending};
+use carom_core::vibrating_wall::Floor;
 use carom_core::{DVec2, Restitution, SimBox, Species};
 use clock::{origin_limit, reorder_interval};
 pub use growth::{Growth, GrowthEnd, GrowthState};
@@ -63,6 +65,9 @@ pub struct EngineParams {
     /// Growing discs, Lubachevsky–Stillinger compression (physics.md §17); off
     /// (rate 0) by default.
     pub growth: Growth,
+    /// A bottom wall that oscillates, h(t) = A (1 − cos ω t) (physics.md §18); none
+    /// by default. Requires hard walls along y; not with growing discs.
+    pub floor: Option<Floor>,
 }
 
 impl Default for EngineParams {
@@ -73,6 +78,7 @@ impl Default for EngineParams {
             max_events_without_time_advance: 100_000,
             gravity: 0.0,
             growth: Growth::default(),
+            floor: None,
         }
     }
 }
@@ -94,6 +100,10 @@ pub struct Stats {
     pub wall_impulse: [[f64; 2]; 2],
     /// Kinetic energy dissipated in pair and wall collisions (energy).
     pub energy_lost: f64,
+    /// Kinetic energy the vibrating floor gave the discs, Σ m (v'² − v²)/2 over
+    /// floor hits (energy; physics.md (18.5)); its hits' dissipation is in it, not
+    /// in `energy_lost`.
+    pub floor_work: f64,
 }
 
 /// The exact event-driven engine for hard discs.
@@ -145,6 +155,8 @@ pub struct Engine {
     thermostat: Option<Box<thermostat::Running>>,
     /// The growth of the radii (engine::growth; [`GrowthState::NONE`] without).
     growth: GrowthState,
+    /// Time (as reported) at which the vibrating floor was set, its phase origin.
+    floor_origin: f64,
 }
 
 #[inline]
@@ -182,6 +194,7 @@ impl Engine {
         gravity::check_gravity(params.gravity, &state.sim_box)?;
         let p = &params;
         growth::check_growth(&p.growth, p.restitution, p.tc, p.gravity, &state.sim_box)?;
+        floor::check_floor(&params, &state.sim_box, &state.species)?;
         let n = state.len();
         // Growing discs share one grid, for their final size (engine::growth).
         let split = split && params.growth.rate == 0.0;
@@ -240,6 +253,7 @@ impl Engine {
             stats: Stats::default(),
             thermostat: None,
             growth: GrowthState::start(&params.growth),
+            floor_origin: state.time,
         };
         engine.reorder();
         for i in 0..n {
@@ -442,7 +456,7 @@ impl Engine {
     /// next scheduled event: schedule a stop ([`Engine::schedule`], or use
     /// [`Engine::run_until`]) rather than waiting for collisions that never come.
     pub fn next_event(&mut self) -> Result<Option<Event>, EngineError> {
-        if self.params.gravity != 0.0 {
+        if self.params.gravity != 0.0 || self.params.floor.is_some() {
             self.next_event_falling()
         } else if self.params.growth.rate != 0.0 {
             self.next_event_growing()
@@ -565,6 +579,11 @@ impl Engine {
                 Pending::Cell => {
                     self.move_clock(t);
                     self.cross::<FALL, GROW>(i, aux.face());
+                }
+                Pending::Recheck => {
+                    // The floor search stopped short (engine::floor): search on.
+                    self.move_clock(t);
+                    self.predict::<FALL, GROW>(i);
                 }
                 Pending::None => unreachable!("a disc with no event has time +∞"),
             }

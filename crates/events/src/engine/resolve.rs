@@ -84,7 +84,7 @@ impl Engine {
     /// (internal time), so that its next collision is elastic under the TC model
     /// (physics.md §4); always false with the model off.
     #[inline]
-    fn within_tc(&self, i: usize, now: f64) -> bool {
+    pub(super) fn within_tc(&self, i: usize, now: f64) -> bool {
         let tc = self.params.tc;
         tc > 0.0 && now - self.last_collision[i] < tc
     }
@@ -213,6 +213,9 @@ impl Engine {
         face: Face,
     ) -> WallCollision {
         let k = face.axis();
+        if FALL && k == 1 && !face.high() && self.params.floor.is_some() {
+            return self.hit_floor(i);
+        }
         let side = if face.high() {
             WallSide::High
         } else {

@@ -17,6 +17,7 @@
 //! structs of `model` and in `data/config.schema.json`.
 
 mod error;
+mod floor;
 mod front;
 mod model;
 mod resolve;
@@ -26,9 +27,9 @@ pub use error::ConfigError;
 pub use front::{apply_set, load_config};
 pub use model::{
     AxisBoundary, BoundaryConfig, BoxConfig, CollisionConfig, CollisionDetailConfig,
-    CollisionModel, CompressedPlacementConfig, CompressionConfig, Config, GrowthConfig, LogConfig,
-    PlacementConfig, SnapshotScheduleConfig, SpeciesConfig, StopConfig, ThermostatConfig,
-    VelocitiesConfig, DEFAULT_COUNT, DEFAULT_DURATION, DEFAULT_PACKING_FRACTION,
+    CollisionModel, CompressedPlacementConfig, CompressionConfig, Config, FloorConfig,
+    GrowthConfig, LogConfig, PlacementConfig, SnapshotScheduleConfig, SpeciesConfig, StopConfig,
+    ThermostatConfig, VelocitiesConfig, DEFAULT_COUNT, DEFAULT_DURATION, DEFAULT_PACKING_FRACTION,
 };
 
 #[cfg(test)]

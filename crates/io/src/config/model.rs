@@ -65,6 +65,22 @@ pub struct Config {
     /// none. Only with elastic collisions and walls, no TC model and no gravity.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub compression: Option<GrowthConfig>,
+    /// A bottom wall that oscillates, h(t) = A (1 − cos 2π f t) (physics.md §18):
+    /// it drives a granular bed. Default: none. Only with hard walls along y, not
+    /// with compression; collisions are then logged in full.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub vibrating_floor: Option<FloorConfig>,
+}
+
+/// The vibrating floor (`vibrating_floor`; physics.md §18).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct FloorConfig {
+    /// Amplitude A (length): the floor moves between 0 and 2A. Allowed: finite,
+    /// > 0, with 2A plus the largest diameter at most half the box height.
+    pub amplitude: f64,
+    /// Frequency f (1/time): ω = 2π f. Allowed: finite, > 0.
+    pub frequency: f64,
 }
 
 /// Compression during a run (`compression`; physics.md §17).
@@ -570,6 +586,7 @@ impl Default for Config {
             gravity: 0.0,
             thermostat: None,
             compression: None,
+            vibrating_floor: None,
         }
     }
 }

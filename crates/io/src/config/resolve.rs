@@ -10,6 +10,7 @@ use super::{
 use crate::options::{CollisionDetail, Compression, LogOptions, RunSpec, Stop};
 use crate::schedule::SchedulePoints;
 use carom_core::observables::packing_fraction;
+use carom_core::vibrating_wall::Floor;
 use carom_core::{Boundary, DVec2, Restitution, SimBox, Species};
 use carom_events::{
     box_size_for, largest_radius, EngineParams, Growth, Placement, SystemSpec, Velocities,
@@ -110,9 +111,14 @@ impl Config {
                     max_reduced_pressure: g.max_reduced_pressure,
                 },
             },
+            floor: c.vibrating_floor.map(|fl| Floor {
+                amplitude: fl.amplitude,
+                omega: std::f64::consts::TAU * fl.frequency,
+            }),
         };
         let mut log = c.log.options();
-        if ((c.gravity > 0.0 || c.compression.is_some()) && c.log.collision_detail.is_none())
+        if ((c.gravity > 0.0 || c.compression.is_some() || c.vibrating_floor.is_some())
+            && c.log.collision_detail.is_none())
             || c.thermostat.is_some()
         {
             // Compact records cannot replay velocities that change between

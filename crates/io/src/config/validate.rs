@@ -26,6 +26,7 @@ impl Config {
         self.check_stop()?;
         self.check_gravity()?;
         self.check_compression()?;
+        self.check_floor()?;
         if self.log.collision_detail == Some(CollisionDetailConfig::Compact)
             && self.log.collision_every > 1
         {

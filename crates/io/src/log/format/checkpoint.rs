@@ -13,6 +13,7 @@
 
 use super::cdr::{CdrError, CdrReader, CdrWriter};
 use super::snapshot::boundary_code;
+use carom_core::vibrating_wall::Floor;
 use carom_core::{Boundary, DVec2, Restitution, SimBox, Species};
 use carom_events::{
     Checkpoint, EngineParams, GrowthEnd, GrowthState, Stats, Thermostat, ThermostatState,
@@ -110,6 +111,11 @@ float64 growth_next_rescale       # engine-internal: clock time of the next resc
 float64 growth_virial_mark        # engine-internal: virial sum at the last rescale
 uint8 growth_ended                # 0 growing (or none), 1 target reached, 2 jammed
 float64 growth_last_z             # Z over the last interval between rescales
+# --- vibrating floor (format_version 5 on; physics.md section 18) ---
+float64 floor_amplitude           # A (length; 0: no floor): the floor is at A (1 - cos(omega t')), t' = time - floor_origin
+float64 floor_omega               # angular frequency omega = 2 pi f (1/time; 0: no floor)
+float64 floor_origin              # time the floor was set, its phase origin (time)
+float64 floor_work                # kinetic energy the floor gave the discs so far (energy)
 ";
 
 /// Format version written in `format_version`.
@@ -252,6 +258,14 @@ impl LogCheckpoint {
         }
         w.put(st.ended as u8);
         w.put(st.last_z);
+        let fl = c.params.floor.unwrap_or(Floor {
+            amplitude: 0.0,
+            omega: 0.0,
+        });
+        w.put(fl.amplitude);
+        w.put(fl.omega);
+        w.put(c.floor_origin);
+        w.put(s.floor_work);
     }
 
     /// Decode from CDR. Checks the layout and the lengths of paired arrays; the
@@ -348,6 +362,7 @@ impl LogCheckpoint {
             virial_sum,
             wall_impulse: [[wi[0], wi[1]], [wi[2], wi[3]]],
             energy_lost,
+            floor_work: 0.0,
         };
         let pair = |a: Vec<f64>, b: Vec<f64>, field: &'static str| {
             if a.len() != b.len() {
@@ -428,6 +443,8 @@ impl LogCheckpoint {
         } else {
             None
         };
+        let mut stats = stats;
+        let mut floor_origin = 0.0;
         let mut growth = GrowthState::NONE;
         if version >= 5 {
             let g = &mut params.growth;
@@ -454,6 +471,13 @@ impl LogCheckpoint {
                 }
             };
             growth.last_z = r.get("growth_last_z")?;
+            let amplitude: f64 = r.get("floor_amplitude")?;
+            let omega: f64 = r.get("floor_omega")?;
+            if amplitude != 0.0 || omega != 0.0 {
+                params.floor = Some(Floor { amplitude, omega });
+            }
+            floor_origin = r.get("floor_origin")?;
+            stats.floor_work = r.get("floor_work")?;
         }
         Ok(LogCheckpoint {
             driver,
@@ -486,6 +510,7 @@ impl LogCheckpoint {
                 images,
                 thermostat,
                 growth,
+                floor_origin,
             },
         })
     }
@@ -573,6 +598,53 @@ mod tests {
         // Truncations are clean errors.
         for cut in [0, 3, 4, 10, 100, w.bytes().len() - 1] {
             assert!(LogCheckpoint::decode(&w.bytes()[..cut]).is_err());
+        }
+    }
+
+    /// A shaken bed's checkpoint (gravity, vibrating floor) round-trips with the
+    /// floor, its phase origin and its work, and resumes into the same engine.
+    #[test]
+    fn a_checkpoint_with_a_vibrating_floor_round_trips() {
+        let species = vec![Species::reference(60)];
+        let spec = SystemSpec {
+            species,
+            sim_box: SimBox {
+                size: DVec2::new(12.0, 30.0),
+                boundary: [Boundary::Periodic, Boundary::Walls { restitution: 0.9 }],
+            },
+            temperature: 1.0,
+            seed: 4,
+            placement: Placement::Random,
+            velocities: Velocities::MaxwellBoltzmann,
+        };
+        let params = EngineParams {
+            restitution: Restitution::Normal(0.9),
+            tc: 1e-4,
+            gravity: 1.0,
+            floor: Some(Floor {
+                amplitude: 0.4,
+                omega: 3.0,
+            }),
+            ..EngineParams::default()
+        };
+        let mut e = Engine::new(spec.build().unwrap(), params).unwrap();
+        e.run_collisions(3_000).unwrap();
+        assert!(e.stats().floor_work != 0.0);
+        let lc = LogCheckpoint {
+            driver: DriverState {
+                run_start_time: 0.0,
+                logged_collisions: 3_000,
+                next_sequence: [1, 2, 3, 4],
+            },
+            engine: e.checkpoint(),
+        };
+        let mut w = CdrWriter::new();
+        lc.encode(&mut w);
+        let back = LogCheckpoint::decode(w.bytes()).unwrap();
+        assert_eq!(back, lc);
+        let mut b = Engine::from_checkpoint(back.engine).unwrap();
+        for _ in 0..2_000 {
+            assert_eq!(e.next_event().unwrap(), b.next_event().unwrap());
         }
     }
 }

@@ -414,6 +414,7 @@ fn checkpoint_fields(c: &LogCheckpoint) -> Values {
         .into_iter()
         .chain(thermostat_fields(e.thermostat))
         .chain(growth_fields(&e.params.growth, &e.growth))
+        .chain(floor_fields(e))
         .collect::<Vec<_>>(),
     )
 }
@@ -468,6 +469,20 @@ fn growth_fields(
         ("growth_virial_mark", f([st.virial_mark])),
         ("growth_ended", vec![st.ended as u64]),
         ("growth_last_z", f([st.last_z])),
+    ]
+}
+
+/// The vibrating floor's fields by schema name (format 5 on).
+fn floor_fields(e: &carom_events::Checkpoint) -> Vec<(&'static str, Vec<u64>)> {
+    let (a, w) = e
+        .params
+        .floor
+        .map_or((0.0, 0.0), |fl| (fl.amplitude, fl.omega));
+    vec![
+        ("floor_amplitude", f([a])),
+        ("floor_omega", f([w])),
+        ("floor_origin", f([e.floor_origin])),
+        ("floor_work", f([e.stats.floor_work])),
     ]
 }
 
