@@ -170,6 +170,7 @@ fn free_flight_log(name: &str, gap: f64) -> std::path::PathBuf {
             pressure: None,
             z: None,
             collision_rate: None,
+            ..Default::default()
         })
         .unwrap();
         w.write_snapshot(&State {

@@ -73,6 +73,9 @@ pub struct Report {
     /// The thermostat's target against the measured temperature (physics.md
     /// §16); `null` without a thermostat.
     pub thermostat: Option<super::thermostat::ThermostatReport>,
+    /// How the discs grew: start and final η, how growth ended, the last Z and
+    /// the rescales (physics.md §17); `null` unless the run compressed.
+    pub compression: Option<super::compression::CompressionReport>,
 }
 
 /// One species of the run.

@@ -299,6 +299,7 @@ impl Recorder {
             pressure: (t > 0.0).then_some(1.0 / 3.0 + t),
             z: (t > 0.0).then_some(1.25),
             collision_rate: (t > 0.0).then_some(pair as f64 / t),
+            ..Default::default()
         };
         self.w.write_thermo(&th).unwrap();
         self.message(CH_THERMO, t, Item::Thermo(th));
