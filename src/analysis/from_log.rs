@@ -452,6 +452,7 @@ mod tests {
             virial_sum: 0.0,
             wall_seconds: 1.0,
             collisions_per_second: 1.0,
+            potential_energy: None,
         };
         w.finish(&summary.to_map()).unwrap();
         TmpLog(path)

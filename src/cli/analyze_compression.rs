@@ -18,8 +18,7 @@ pub(super) fn compression_text(c: &CompressionReport, s: &mut String) {
             Num(c.target_packing_fraction)
         ),
         "jammed" => format!(
-            "jammed: Z = {:.4} over the last interval > bound {} (target η = {:.4} not reached)",
-            Num(c.last_z),
+            "jammed: Z over the last interval above the bound {} (target η = {:.4} not reached)",
             c.max_reduced_pressure,
             Num(c.target_packing_fraction)
         ),

@@ -445,6 +445,8 @@ impl<'a> Driver<'a> {
             _ => 0.0,
         };
         let kinetic_energy = self.engine.kinetic_energy();
+        let potential_energy =
+            (self.engine.gravity() != 0.0).then(|| self.engine.potential_energy());
         let logged = self.writer.stats().logged_collisions;
         let sm = SummaryMetadata {
             end_time: now_rfc3339(),
@@ -462,6 +464,7 @@ impl<'a> Driver<'a> {
             virial_sum: s.virial_sum,
             wall_seconds: wall,
             collisions_per_second: cps,
+            potential_energy,
         };
         let file_bytes = self.writer.finish(&sm.to_map())?;
         if let Some(source) = failure {
@@ -482,6 +485,7 @@ impl<'a> Driver<'a> {
             wall_seconds: wall,
             collisions_per_second: cps,
             kinetic_energy,
+            potential_energy,
             energy_lost: s.energy_lost,
             file_bytes,
             detail: self.quiet_detail.take(),

@@ -429,6 +429,7 @@ pub fn summary_record(s: &SummaryMetadata) -> BTreeMap<String, String> {
         virial_sum,
         wall_seconds,
         collisions_per_second,
+        potential_energy,
     } = s;
     let mut r = BTreeMap::new();
     let mut put = |k: &str, v: String| r.insert(k.to_string(), v);
@@ -436,6 +437,9 @@ pub fn summary_record(s: &SummaryMetadata) -> BTreeMap<String, String> {
     put("stop_reason", stop_reason.as_str().to_string());
     if let Some(e) = error {
         put("error", e.clone());
+    }
+    if let Some(u) = potential_energy {
+        put("potential_energy", json!(u).to_string());
     }
     for (k, x) in [
         ("sim_time", sim_time),

@@ -489,6 +489,7 @@ pub fn write_log(name: &str, plan: Plan) -> Written {
         virial_sum: 0.125,
         wall_seconds: 0.5,
         collisions_per_second: 1234.5,
+        potential_energy: None,
     };
     let summary_map = summary.to_map();
     let stats = rec.w.stats();
