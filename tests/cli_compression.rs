@@ -208,7 +208,7 @@ fn resume_while_the_discs_grow_continues_the_uninterrupted_run() {
             .collect()
     };
     let (a, b) = (after(raw(&dir.join("more.mcap"))), after(expected));
-    assert!(a.len() > 1000);
+    assert!(a.len() > 100, "{} messages after 25", a.len());
     assert_eq!(a.len(), b.len());
     for (k, (x, y)) in a.iter().zip(&b).enumerate() {
         assert!(x == y, "message {k} after t = 25 differs");
