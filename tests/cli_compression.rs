@@ -90,7 +90,11 @@ fn a_compression_log_marks_each_rescale_and_is_analysed_at_its_final_size() {
         let due = (k + 1) as f64;
         assert_eq!(t.growth_event, Some(GrowthEvent::Rescale));
         assert_eq!(t.growth, Some(GrowthPhase::Growing));
-        assert!(t.time >= due && t.time < due + 0.05, "rescale {due} at {}", t.time);
+        assert!(
+            t.time >= due && t.time < due + 0.05,
+            "rescale {due} at {}",
+            t.time
+        );
         // Just after the rescale kT is the target but for the event's own change.
         assert!((t.temperature - 1.0).abs() < 0.05, "kT {}", t.temperature);
         assert!(t.growth_z.unwrap() > 1.0);
@@ -104,7 +108,11 @@ fn a_compression_log_marks_each_rescale_and_is_analysed_at_its_final_size() {
     // Every record of the run carries the growth; none the field's energies.
     for t in &th {
         let s = t.radius_scale.unwrap();
-        let want = if t.time < end { 1.0 + 0.01 * t.time } else { 2f64.sqrt() };
+        let want = if t.time < end {
+            1.0 + 0.01 * t.time
+        } else {
+            2f64.sqrt()
+        };
         assert!((s - want).abs() < 1e-12, "s = {s} at {}", t.time);
         assert!(t.potential_energy.is_none() && t.total_energy.is_none());
     }
@@ -139,14 +147,20 @@ fn a_compression_log_marks_each_rescale_and_is_analysed_at_its_final_size() {
     );
     assert!(text.contains("42 velocity rescales logged"), "{text}");
     // A window inside the growth is refused, naming the option and the end.
-    let out = carom(&dir, &["analyze", "grow.mcap", "--quiet", "--equilibrate", "30"]);
+    let out = carom(
+        &dir,
+        &["analyze", "grow.mcap", "--quiet", "--equilibrate", "30"],
+    );
     assert!(!out.status.success());
     let err = String::from_utf8_lossy(&out.stderr);
     assert!(
         err.contains("--equilibrate 30") && err.contains("grow until t = 41.4"),
         "{err}"
     );
-    ok(&carom(&dir, &["analyze", "grow.mcap", "--quiet", "--equilibrate", "50"]));
+    ok(&carom(
+        &dir,
+        &["analyze", "grow.mcap", "--quiet", "--equilibrate", "50"],
+    ));
 }
 
 #[test]
@@ -168,7 +182,10 @@ fn a_jammed_compression_is_reported_with_its_last_z() {
     assert!((eta - 0.3 * s * s).abs() < 1e-12, "{c}");
     assert!(eta > 0.7 && eta < 0.9, "jammed at η = {eta}");
     let text = ok(&carom(&dir, &["analyze", "jam.mcap", "--quiet"]));
-    assert!(text.contains("jammed: Z over the last interval above the bound 100"), "{text}");
+    assert!(
+        text.contains("jammed: Z over the last interval above the bound 100"),
+        "{text}"
+    );
 
     // A log that ends while the discs still grow has no window at fixed size.
     run(&dir, "short", JAM, &["stop.duration=5"]);
@@ -187,7 +204,10 @@ fn resume_while_the_discs_grow_continues_the_uninterrupted_run() {
     // Killed mid-growth: the log cut at a third, its last checkpoint at t < 41.
     let bytes = std::fs::read(dir.join("full.mcap")).unwrap();
     std::fs::write(dir.join("cut.mcap"), &bytes[..bytes.len() / 3]).unwrap();
-    ok(&carom(&dir, &["resume", "cut.mcap", "--out", "resumed.mcap", "--quiet"]));
+    ok(&carom(
+        &dir,
+        &["resume", "cut.mcap", "--out", "resumed.mcap", "--quiet"],
+    ));
     let i = json_of(&carom(&dir, &["info", "resumed.mcap", "--json"]));
     let at = f(&i["run"]["resumed_at"]);
     assert!(at > 0.0 && at < 41.0, "resumed at {at}");
@@ -200,7 +220,14 @@ fn resume_while_the_discs_grow_continues_the_uninterrupted_run() {
     // Stopped mid-growth at t = 25, resumed to 100: every message after 25 but
     // the checkpoints (whose series differs: one more at 25) is the full run's.
     run(&dir, "part", GROW, &["stop.duration=25"]);
-    let until = ["resume", "part.mcap", "--out", "more.mcap", "--until", "100"];
+    let until = [
+        "resume",
+        "part.mcap",
+        "--out",
+        "more.mcap",
+        "--until",
+        "100",
+    ];
     ok(&carom(&dir, &[&until[..], &["--quiet"]].concat()));
     let after = |v: Vec<(usize, u32, u64, Vec<u8>)>| -> Vec<_> {
         v.into_iter()
@@ -251,7 +278,10 @@ fn thermo_records_in_a_field_carry_u_and_k_plus_u() {
     }
     let i = json_of(&carom(&dir, &["info", "g.mcap", "--json"]));
     let last = th.last().unwrap();
-    assert_eq!(f(&i["summary"]["potential_energy"]), last.potential_energy.unwrap());
+    assert_eq!(
+        f(&i["summary"]["potential_energy"]),
+        last.potential_energy.unwrap()
+    );
     let text = ok(&carom(&dir, &["info", "g.mcap"]));
     assert!(text.contains("energy in the field: K = "), "{text}");
 }

@@ -360,7 +360,8 @@ pub struct EnskogReport {
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct InelasticReport {
     /// Energy at the first and last record against the energy dissipated between;
-    /// `null` in a field (the records hold no potential energy; see `gravity`).
+    /// `null` in a field (the budget counts K only; `/thermo` has U since log
+    /// format 2.2, and `gravity` gives K + U from the snapshots).
     pub energy: Option<EnergyBudget>,
     /// Haff's law check (normal restitution only).
     pub haff: Option<HaffReport>,
