@@ -10,6 +10,8 @@
 //! `log.snapshot_schedule`, carom-io's `SnapshotSchedule`);
 //! `/collisions` batches in between; at the end a final `/thermo` record and `/checkpoint`, and
 //! `carom.summary`. A stop at `t_end` comes after every observation due at `t_end`.
+//! While discs grow, an extra `/thermo` record follows the first event after each
+//! velocity rescale and after the end of growth (docs/log-format.md, `/thermo`).
 
 use std::path::Path;
 use std::sync::atomic::Ordering;
