@@ -170,6 +170,7 @@ fn free_flight_log(name: &str, gap: f64) -> std::path::PathBuf {
             pressure: None,
             z: None,
             collision_rate: None,
+            ..Default::default()
         })
         .unwrap();
         w.write_snapshot(&State {
@@ -206,6 +207,7 @@ fn free_flight_log(name: &str, gap: f64) -> std::path::PathBuf {
         virial_sum: 0.0,
         wall_seconds: 1.0,
         collisions_per_second: 1.0,
+        potential_energy: None,
     };
     w.finish(&summary.to_map()).unwrap();
     path

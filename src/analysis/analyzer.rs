@@ -562,6 +562,7 @@ impl Analyzer {
             transport,
             gravity,
             thermostat: None,
+            compression: None,
         })
     }
 

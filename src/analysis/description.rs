@@ -319,6 +319,7 @@ mod tests {
             virial_sum: 0.0,
             wall_seconds: 1.0,
             collisions_per_second: 1.0,
+            potential_energy: None,
         }
     }
 

@@ -5,6 +5,9 @@
 //! read is needed before the analysis can start; the messages read up to it are
 //! kept and fed after it, so the pass stays one.
 //!
+//! A compression run is first read for its growth (`compression.rs`): the
+//! analysis then uses the radii after growth and a window that starts after it.
+//!
 //! Collisions give the virial and wall impulse bin by bin; a log without them, or
 //! with only every k-th, gets them from the differences of consecutive `/thermo`
 //! records' running totals instead.
@@ -18,6 +21,7 @@ use carom_io::{
 use carom_io::{Config, Snapshot, KIND_PAIR};
 use thiserror::Error;
 
+use super::compression::Compression;
 use super::description::describe;
 use super::stats::StatsError;
 use super::{AnalysisOptions, Analyzer, Report, Unwrapper};
@@ -85,7 +89,7 @@ pub fn analyze_log(
         Ok(None)
     };
     let mut warnings = Vec::new();
-    let run = describe(
+    let mut run = describe(
         &path.display().to_string(),
         &info,
         &mut first_snapshot,
@@ -95,6 +99,29 @@ pub fn analyze_log(
         observer.warn(w);
     }
     let t_end = run.t_end;
+    // The configuration as the run resolved it (logs whose configuration cannot
+    // be read have neither a thermostat nor growth here).
+    let spec = Config::from_json_str(&info.run.config).and_then(|c| c.to_run_spec());
+    let mut opts = opts;
+    let compression = match &spec {
+        Ok(spec) if spec.params.growth.rate != 0.0 => {
+            let g = &spec.params.growth;
+            let c = Compression::read(path, g, &run.species, &run.sim_box)?;
+            if let Some(t) = opts.equilibrate {
+                if !(t.is_finite() && t >= 0.0) {
+                    return Err(AnalysisError::Unusable(format!(
+                        "--equilibrate {t}: must be a finite time ≥ 0"
+                    )));
+                }
+            }
+            opts.equilibrate = Some(c.window_start(opts.equilibrate, run.t_start, t_end)?);
+            if let Some(species) = c.final_species(&run.species) {
+                run.species = species;
+            }
+            Some(c)
+        }
+        _ => None,
+    };
     if let Some(t) = opts.equilibrate {
         if !(t.is_finite() && t >= 0.0) {
             return Err(AnalysisError::Unusable(format!(
@@ -141,10 +168,13 @@ pub fn analyze_log(
     let mut report = feed.analyzer.finish()?;
     // The thermostat, from the stored configuration (logs before thermostats,
     // and configurations that cannot be read, have none).
-    if let Ok(spec) = Config::from_json_str(&info.run.config).and_then(|c| c.to_run_spec()) {
+    if let Ok(spec) = &spec {
         if let Some(t) = &spec.thermostat {
             super::thermostat::apply(t, spec.params.restitution, &mut report);
         }
+    }
+    if let Some(c) = compression {
+        super::compression::apply(c, &mut report);
     }
     Ok((report, complete))
 }
@@ -360,6 +390,7 @@ mod tests {
             pressure: None,
             z: None,
             collision_rate: None,
+            ..Default::default()
         };
         let v = carom_core::DVec2::new(plan.kinetic.sqrt() / 2.0, 0.0);
         for k in 0..=20 {
@@ -421,6 +452,7 @@ mod tests {
             virial_sum: 0.0,
             wall_seconds: 1.0,
             collisions_per_second: 1.0,
+            potential_energy: None,
         };
         w.finish(&summary.to_map()).unwrap();
         TmpLog(path)

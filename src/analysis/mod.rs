@@ -20,6 +20,7 @@ mod bond_correlation;
 mod bond_order;
 mod cell_list;
 mod collision_rate;
+mod compression;
 mod contact;
 mod description;
 mod dynamics;
@@ -59,6 +60,7 @@ pub use bond_correlation::{
     BondCorrelationReport, G6_BIN_WIDTH_SIGMA, G6_R_MAX_SIGMA, G6_SNAPSHOTS,
 };
 pub use bond_order::{global_psi6, local_psi6, BondOrderReport};
+pub use compression::CompressionReport;
 pub use contact::{
     ContactTheoremReport, ContactValue, PairCorrelationReport, PairReport, CONTACT_FIT_SIGMA,
 };

@@ -73,6 +73,9 @@ pub struct Report {
     /// The thermostat's target against the measured temperature (physics.md
     /// §16); `null` without a thermostat.
     pub thermostat: Option<super::thermostat::ThermostatReport>,
+    /// How the discs grew: start and final η, how growth ended, the last Z and
+    /// the rescales (physics.md §17); `null` unless the run compressed.
+    pub compression: Option<super::compression::CompressionReport>,
 }
 
 /// One species of the run.
@@ -357,7 +360,8 @@ pub struct EnskogReport {
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct InelasticReport {
     /// Energy at the first and last record against the energy dissipated between;
-    /// `null` in a field (the records hold no potential energy; see `gravity`).
+    /// `null` in a field (the budget counts K only; `/thermo` has U since log
+    /// format 2.2, and `gravity` gives K + U from the snapshots).
     pub energy: Option<EnergyBudget>,
     /// Haff's law check (normal restitution only).
     pub haff: Option<HaffReport>,

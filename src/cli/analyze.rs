@@ -21,6 +21,9 @@ use super::{AnalyzeArgs, CliError, Num};
 #[path = "analyze_transport.rs"]
 mod transport;
 
+#[path = "analyze_compression.rs"]
+mod compression;
+
 impl ReadObserver for ReadDisplay {
     fn pass(&mut self, what: &'static str) {
         ReadDisplay::pass(self, what);
@@ -128,6 +131,9 @@ pub fn text(r: &Report, args: &AnalyzeArgs, complete: bool) -> String {
             None => String::new(),
         }
     );
+    if let Some(c) = &r.compression {
+        compression::compression_text(c, &mut s);
+    }
     let rate = r.collision_rate.per_disc;
     if let Some(c) = w
         .spacing_collisions

@@ -65,6 +65,7 @@ pub fn info_json(path: &str, i: &LogInfo) -> Value {
             "energy_lost": s.energy_lost,
             "wall_seconds": s.wall_seconds,
             "collisions_per_second": s.collisions_per_second,
+            "potential_energy": s.potential_energy,
         })
     });
     json!({
@@ -175,7 +176,12 @@ pub fn info(args: InfoArgs) -> Result<ExitCode, CliError> {
             sm.collisions_per_second,
             Num(sm.kinetic_energy),
             Num(sm.energy_lost)
-        ),
+        ).and_then(|_| match sm.potential_energy {
+            Some(u) => writeln!(s,
+                "  energy in the field: K = {}, U = Σ m g y = {}, K + U = {}",
+                Num(sm.kinetic_energy), Num(u), Num(sm.kinetic_energy + u)),
+            None => Ok(()),
+        }),
         None => writeln!(s, "  summary: none (the run did not finish; `carom resume` continues it)"),
     };
     let _ = writeln!(s, "  configuration:");

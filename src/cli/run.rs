@@ -305,6 +305,14 @@ fn report(summary: &RunSummary) -> ExitCode {
         summary.wall_seconds,
         summary.file_bytes as f64 / 1e6
     );
+    if let Some(u) = summary.potential_energy {
+        eprintln!(
+            "  energy in the field: K = {}, U = Σ m g y = {}, K + U = {}",
+            Num(summary.kinetic_energy),
+            Num(u),
+            Num(summary.kinetic_energy + u)
+        );
+    }
     match summary.stop_reason {
         StopReason::Interrupted => {
             eprintln!(

@@ -10,14 +10,16 @@
 //! `log.snapshot_schedule`, carom-io's `SnapshotSchedule`);
 //! `/collisions` batches in between; at the end a final `/thermo` record and `/checkpoint`, and
 //! `carom.summary`. A stop at `t_end` comes after every observation due at `t_end`.
+//! While discs grow, an extra `/thermo` record follows the first event after each
+//! velocity rescale and after the end of growth (docs/log-format.md, `/thermo`).
 
 use std::path::Path;
 use std::sync::atomic::Ordering;
 use std::time::Instant;
 
-use carom_events::{Engine, EngineError, Event, State};
-use carom_io::LogWriter;
+use carom_events::{Engine, EngineError, Event, GrowthEnd, State};
 use carom_io::{now_rfc3339, StopReason, SummaryMetadata};
+use carom_io::{GrowthEvent, LogWriter};
 use carom_io::{LogOptions, Stop};
 
 use super::disk::{disk_low, free_bytes};
@@ -35,6 +37,19 @@ fn state_now<'s>(engine: &Engine, kept: &'s mut Option<State>) -> &'s State {
         }
         none => none.insert(engine.state()),
     }
+}
+
+/// What tells a growth instant: while discs grow, the index k of the next
+/// rescale, due at t₀ + k·Δ (rounded, so that the ulps by which the engine's
+/// restarted clock moves that time never change it), and the phase; `None`
+/// without growth or once it has ended.
+fn growth_seen(engine: &Engine, t0: f64) -> Option<(i64, GrowthEnd)> {
+    let (g, p) = (engine.growth(), &engine.params().growth);
+    if p.rate == 0.0 || g.rate == 0.0 {
+        return None;
+    }
+    let k = ((engine.next_rescale_time() - t0) / p.rescale_interval).round() as i64;
+    Some((k, g.ended))
 }
 
 /// The state of a run between events.
@@ -66,6 +81,10 @@ pub(super) struct Driver<'a> {
     last_collision: f64,
     /// Why the watchdog stopped the run, when it did.
     quiet_detail: Option<String>,
+    /// While discs grow: the index of the engine's next rescale and its phase as
+    /// last seen, to tell when a rescale or the end of growth has passed (`None`
+    /// otherwise).
+    growth_seen: Option<(i64, GrowthEnd)>,
 }
 
 impl<'a> Driver<'a> {
@@ -98,6 +117,7 @@ impl<'a> Driver<'a> {
             max_quiet: None,
             last_collision: engine_now,
             quiet_detail: None,
+            growth_seen: None,
         }
     }
 
@@ -218,6 +238,24 @@ impl<'a> Driver<'a> {
         Ok(())
     }
 
+    /// While discs grow, after each event: if a rescale or the end of growth has
+    /// passed since the last event, write the extra `/thermo` record that marks it
+    /// (the state now, just after that instant).
+    fn growth_record(&mut self) -> Result<(), RunError> {
+        let now = growth_seen(&self.engine, self.run_start_time);
+        if now == self.growth_seen {
+            return Ok(());
+        }
+        self.growth_seen = now;
+        let mut th = thermo(&self.engine, self.run_start_time);
+        th.growth_event = Some(match self.engine.growth().ended {
+            GrowthEnd::Growing => GrowthEvent::Rescale,
+            _ => GrowthEvent::End,
+        });
+        self.writer.write_thermo(&th)?;
+        Ok(())
+    }
+
     fn write_checkpoint(&mut self) -> Result<(), RunError> {
         let cp = self.engine.checkpoint();
         self.writer.write_checkpoint(cp, self.run_start_time)?;
@@ -307,6 +345,7 @@ impl<'a> Driver<'a> {
         let mut failure = None;
         let mut tick: u32 = 0;
         self.bytes_at_disk_check = self.log_bytes();
+        self.growth_seen = growth_seen(&self.engine, self.run_start_time);
         while reason.is_none() {
             if stop_flag.is_some_and(|f| f.load(Ordering::Relaxed)) {
                 reason = Some(StopReason::Interrupted);
@@ -368,6 +407,9 @@ impl<'a> Driver<'a> {
                     _ => {}
                 },
             }
+            if self.growth_seen.is_some() {
+                self.growth_record()?;
+            }
             if self.collisions >= max_collisions {
                 reason = Some(StopReason::Collisions);
             }
@@ -405,6 +447,8 @@ impl<'a> Driver<'a> {
             _ => 0.0,
         };
         let kinetic_energy = self.engine.kinetic_energy();
+        let potential_energy =
+            (self.engine.gravity() != 0.0).then(|| self.engine.potential_energy());
         let logged = self.writer.stats().logged_collisions;
         let sm = SummaryMetadata {
             end_time: now_rfc3339(),
@@ -422,6 +466,7 @@ impl<'a> Driver<'a> {
             virial_sum: s.virial_sum,
             wall_seconds: wall,
             collisions_per_second: cps,
+            potential_energy,
         };
         let file_bytes = self.writer.finish(&sm.to_map())?;
         if let Some(source) = failure {
@@ -442,6 +487,7 @@ impl<'a> Driver<'a> {
             wall_seconds: wall,
             collisions_per_second: cps,
             kinetic_energy,
+            potential_energy,
             energy_lost: s.energy_lost,
             file_bytes,
             detail: self.quiet_detail.take(),

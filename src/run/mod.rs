@@ -67,6 +67,8 @@ pub struct RunSummary {
     pub collisions_per_second: f64,
     /// Kinetic energy at the end (energy).
     pub kinetic_energy: f64,
+    /// Potential energy U = Σ m g y at the end (energy); `None` without a field.
+    pub potential_energy: Option<f64>,
     /// Energy dissipated over the whole run (energy).
     pub energy_lost: f64,
     /// Size of the log file (bytes).

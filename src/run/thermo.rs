@@ -5,13 +5,17 @@
 //! walls Z from the wall impulse and the area each species' centres reach
 //! (physics.md §5); ω = 2 N_pair/(N t) (physics.md §7). Every formula is
 //! `carom_core::observables`', the same that `carom analyze` uses, so the two agree.
+//! In a field the record adds U = Σ m g y and K + U (physics.md §15); with growing
+//! discs the scale s, η of the radii now, the phase and the last interval's Z
+//! (physics.md §17).
 
+use carom_core::observables::packing_fraction;
 use carom_core::observables::{
     accessible_area, collision_rate, degrees_of_freedom, has_walls, pressure, temperature,
     virial_pressure, virial_z, wall_z,
 };
-use carom_events::Engine;
-use carom_io::Thermo;
+use carom_events::{Engine, GrowthEnd};
+use carom_io::{GrowthPhase, Thermo};
 
 /// The `/thermo` record of `engine` now, with rates and pressures averaged since
 /// `run_start_time` (none at that time, nor without thermal motion).
@@ -37,7 +41,7 @@ pub(super) fn thermo(engine: &Engine, run_start_time: f64) -> Thermo {
             }
         }
     }
-    Thermo {
+    let mut th = Thermo {
         time: engine.now(),
         kinetic_energy: k_energy,
         temperature: kt,
@@ -50,5 +54,36 @@ pub(super) fn thermo(engine: &Engine, run_start_time: f64) -> Thermo {
         pressure: p.filter(|x| x.is_finite()),
         z: z.filter(|x| x.is_finite()),
         collision_rate: rate.filter(|x| x.is_finite()),
+        ..Thermo::default()
+    };
+    if engine.gravity() != 0.0 {
+        let u = engine.potential_energy();
+        th.potential_energy = Some(u);
+        th.total_energy = Some(k_energy + u);
+    }
+    if engine.params().growth.rate != 0.0 {
+        let scale = engine.radius_scale();
+        let grown: Vec<_> = species
+            .iter()
+            .map(|sp| carom_core::Species {
+                radius: sp.radius * scale,
+                ..*sp
+            })
+            .collect();
+        let g = engine.growth();
+        th.radius_scale = Some(scale);
+        th.packing_fraction = Some(packing_fraction(&grown, sim_box));
+        th.growth = Some(phase(g.ended));
+        th.growth_z = Some(g.last_z);
+    }
+    th
+}
+
+/// The log's name for the engine's growth phase.
+pub(super) fn phase(e: GrowthEnd) -> GrowthPhase {
+    match e {
+        GrowthEnd::Growing => GrowthPhase::Growing,
+        GrowthEnd::Target => GrowthPhase::Target,
+        GrowthEnd::Jammed => GrowthPhase::Jammed,
     }
 }

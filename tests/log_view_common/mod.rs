@@ -150,6 +150,13 @@ pub fn thermo(t: &Thermo) -> Value {
         pressure,
         z,
         collision_rate,
+        potential_energy,
+        total_energy,
+        radius_scale,
+        packing_fraction,
+        growth,
+        growth_z,
+        growth_event,
     } = t;
     let mut v = json!({
         "time": f(*time), "kinetic_energy": f(*kinetic_energy),
@@ -162,10 +169,21 @@ pub fn thermo(t: &Thermo) -> Value {
         ("pressure", pressure),
         ("z", z),
         ("collision_rate", collision_rate),
+        ("potential_energy", potential_energy),
+        ("total_energy", total_energy),
+        ("radius_scale", radius_scale),
+        ("packing_fraction", packing_fraction),
+        ("growth_z", growth_z),
     ] {
         if let Some(x) = x {
             v[k] = f(*x);
         }
+    }
+    if let Some(g) = growth {
+        v["growth"] = serde_json::to_value(g).unwrap();
+    }
+    if let Some(e) = growth_event {
+        v["growth_event"] = serde_json::to_value(e).unwrap();
     }
     v
 }
@@ -417,6 +435,7 @@ pub fn summary_record(s: &SummaryMetadata) -> BTreeMap<String, String> {
         virial_sum,
         wall_seconds,
         collisions_per_second,
+        potential_energy,
     } = s;
     let mut r = BTreeMap::new();
     let mut put = |k: &str, v: String| r.insert(k.to_string(), v);
@@ -424,6 +443,9 @@ pub fn summary_record(s: &SummaryMetadata) -> BTreeMap<String, String> {
     put("stop_reason", stop_reason.as_str().to_string());
     if let Some(e) = error {
         put("error", e.clone());
+    }
+    if let Some(u) = potential_energy {
+        put("potential_energy", json!(u).to_string());
     }
     for (k, x) in [
         ("sim_time", sim_time),

@@ -31,10 +31,11 @@ pub use config::{
 pub use log::format::{encode_scene, CH_SCENE, N_CHANNELS, SCENE_UPDATE_MSG, SPECIES_COLORS};
 pub use log::format::{
     log_time_ns, now_rfc3339, CdrError, Channel, CollisionBatch, CollisionRecord, DriverState,
-    LogCheckpoint, MetadataError, RunFacts, RunMetadata, Snapshot, StopReason, SummaryMetadata,
-    Thermo, CHANNELS, CHECKPOINT_FORMAT_VERSION, CHECKPOINT_MSG, CH_CHECKPOINT, CH_COLLISIONS,
-    CH_SNAPSHOT, CH_THERMO, COLLISION_BATCH_MSG, KIND_PAIR, KIND_WALL, LOG_FORMAT_VERSION,
-    METADATA_RUN, METADATA_SUMMARY, NO_DISC, SNAPSHOT_MSG, THERMO_JSON_SCHEMA, TOPICS,
+    GrowthEvent, GrowthPhase, LogCheckpoint, MetadataError, RunFacts, RunMetadata, Snapshot,
+    StopReason, SummaryMetadata, Thermo, CHANNELS, CHECKPOINT_FORMAT_VERSION, CHECKPOINT_MSG,
+    CH_CHECKPOINT, CH_COLLISIONS, CH_SNAPSHOT, CH_THERMO, COLLISION_BATCH_MSG, KIND_PAIR,
+    KIND_WALL, LOG_FORMAT_VERSION, METADATA_RUN, METADATA_SUMMARY, NO_DISC, SNAPSHOT_MSG,
+    THERMO_JSON_SCHEMA, TOPICS,
 };
 pub use log::format::{
     wall_code, wall_of, CompactBatch, COMPACT_COLLISIONS_CHANNEL, COMPACT_COLLISION_BATCH_MSG,

@@ -40,6 +40,7 @@ fn thermo_at(t: f64) -> Thermo {
         pressure: None,
         z: None,
         collision_rate: None,
+        ..Default::default()
     }
 }
 

@@ -193,6 +193,13 @@ impl Engine {
         &self.growth
     }
 
+    /// Time of the next velocity rescale on the caller's clock (time; +∞ without
+    /// growth or once it has ended): the start of the growth plus k times the
+    /// rescale interval, to rounding.
+    pub fn next_rescale_time(&self) -> f64 {
+        self.epoch + self.growth.next_rescale
+    }
+
     /// Radii now relative to the species' reference radii: 1 without growth.
     pub fn radius_scale(&self) -> f64 {
         self.growth.now(self.clock).0

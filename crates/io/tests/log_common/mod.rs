@@ -299,6 +299,7 @@ impl Recorder {
             pressure: (t > 0.0).then_some(1.0 / 3.0 + t),
             z: (t > 0.0).then_some(1.25),
             collision_rate: (t > 0.0).then_some(pair as f64 / t),
+            ..Default::default()
         };
         self.w.write_thermo(&th).unwrap();
         self.message(CH_THERMO, t, Item::Thermo(th));
@@ -488,6 +489,7 @@ pub fn write_log(name: &str, plan: Plan) -> Written {
         virial_sum: 0.125,
         wall_seconds: 0.5,
         collisions_per_second: 1234.5,
+        potential_energy: None,
     };
     let summary_map = summary.to_map();
     let stats = rec.w.stats();

@@ -348,6 +348,9 @@ pub struct SummaryMetadata {
     pub wall_seconds: f64,
     /// `collisions_per_second`: collisions of this part per wall-clock second.
     pub collisions_per_second: f64,
+    /// `potential_energy` U = Σ m g y at the end (energy), only in runs in a field
+    /// (log format 2.2 on; `None` otherwise and in older logs).
+    pub potential_energy: Option<f64>,
 }
 
 impl SummaryMetadata {
@@ -375,6 +378,9 @@ impl SummaryMetadata {
             "collisions_per_second".into(),
             f(self.collisions_per_second),
         );
+        if let Some(u) = self.potential_energy {
+            m.insert("potential_energy".into(), f(u));
+        }
         m
     }
 
@@ -399,6 +405,10 @@ impl SummaryMetadata {
             virial_sum: parse(m, R, "virial_sum")?,
             wall_seconds: parse(m, R, "wall_seconds")?,
             collisions_per_second: parse(m, R, "collisions_per_second")?,
+            potential_energy: match m.get("potential_energy") {
+                Some(_) => Some(parse(m, R, "potential_energy")?),
+                None => None,
+            },
         })
     }
 }
@@ -506,6 +516,7 @@ mod tests {
             virial_sum: -3.0e-7,
             wall_seconds: 1.0 / 3.0,
             collisions_per_second: 2.5e6,
+            potential_energy: Some(-2.5),
         };
         assert_eq!(SummaryMetadata::from_map(&s.to_map()).unwrap(), s);
         s.error = None;

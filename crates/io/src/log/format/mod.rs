@@ -39,7 +39,7 @@ pub use facts::RunFacts;
 pub use metadata::{now_rfc3339, MetadataError, RunMetadata, StopReason, SummaryMetadata};
 pub use scene::{encode_scene, SCENE_UPDATE_MSG, SPECIES_COLORS};
 pub use snapshot::{Snapshot, SNAPSHOT_MSG};
-pub use thermo::{Thermo, THERMO_JSON_SCHEMA};
+pub use thermo::{GrowthEvent, GrowthPhase, Thermo, THERMO_JSON_SCHEMA};
 
 /// Topic of the collision batches.
 pub const TOPIC_COLLISIONS: &str = "/collisions";
@@ -69,9 +69,13 @@ pub const METADATA_SUMMARY: &str = "carom.summary";
 /// and `scene_interval` (the optional `/scene` channel); `carom.run` may hold
 /// `max_time_without_collision`, and `carom.summary` the stop reason
 /// `no_collision`. 2.1: `/snapshot` and `/checkpoint` (format 3) end with each
-/// disc's periodic image; 2.0 files read with none. Readers accept 1.x (full
+/// disc's periodic image; 2.0 files read with none. 2.2: `/thermo` records of
+/// runs in a field carry U and K + U, those of runs with growing discs the scale,
+/// η, the growth phase and Z, and such runs write an extra record after each
+/// rescale and at the end of growth ([`GrowthEvent`]); `carom.summary` may hold
+/// `potential_energy`; older files read with none. Readers accept 1.x (full
 /// records) and 2.x.
-pub const LOG_FORMAT_VERSION: &str = "2.1";
+pub const LOG_FORMAT_VERSION: &str = "2.2";
 
 /// Major versions of the log format this carom reads.
 pub const READABLE_MAJOR_VERSIONS: [&str; 2] = ["1", "2"];

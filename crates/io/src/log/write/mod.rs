@@ -459,6 +459,7 @@ mod tests {
             pressure: None,
             z: None,
             collision_rate: None,
+            ..Default::default()
         };
         let json = serde_json::to_vec(&thermo).unwrap().len() as u64;
         w.write_thermo(&thermo).unwrap();
