@@ -563,6 +563,7 @@ impl Analyzer {
             gravity,
             thermostat: None,
             compression: None,
+            floor: None,
         })
     }
 

@@ -150,6 +150,7 @@ pub fn analyze_log(
         ux: Vec::new(),
         uy: Vec::new(),
         unwrapper: Unwrapper::new(),
+        totals: Vec::new(),
     };
     for m in early {
         feed.message(m)?;
@@ -163,6 +164,7 @@ pub fn analyze_log(
         }
         feed.message(m)?;
     }
+    let totals = std::mem::take(&mut feed.totals);
     let gaps = feed.unwrapper.ambiguous_gaps();
     feed.analyzer.ambiguous_gaps(gaps);
     let mut report = feed.analyzer.finish()?;
@@ -175,6 +177,12 @@ pub fn analyze_log(
     }
     if let Some(c) = compression {
         super::compression::apply(c, &mut report);
+    }
+    if let Ok(spec) = &spec {
+        if let Some(f) = &spec.params.floor {
+            let from = report.window.equilibrate;
+            super::floor::apply(f, spec.params.gravity, &totals, from, &mut report);
+        }
     }
     Ok((report, complete))
 }
@@ -218,6 +226,8 @@ struct Feed {
     ux: Vec<f64>,
     uy: Vec<f64>,
     unwrapper: Unwrapper,
+    /// (time, floor work, energy lost) of each `/checkpoint`: the engine's totals.
+    totals: Vec<(f64, f64, f64)>,
 }
 
 /// The components of `v` into `x` and `y`.
@@ -277,7 +287,11 @@ impl Feed {
                         Some((t.time, t.virial_sum, t.wall_impulse, t.pair_collisions));
                 }
             }
-            LogMessage::Checkpoint(_) => {}
+            LogMessage::Checkpoint(c) => {
+                let s = &c.engine.stats;
+                self.totals
+                    .push((c.engine.now, s.floor_work, s.energy_lost));
+            }
         }
         Ok(())
     }

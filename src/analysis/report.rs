@@ -76,6 +76,9 @@ pub struct Report {
     /// How the discs grew: start and final η, how growth ended, the last Z and
     /// the rescales (physics.md §17); `null` unless the run compressed.
     pub compression: Option<super::compression::CompressionReport>,
+    /// The vibrating floor and the mean powers it puts in and the collisions
+    /// dissipate (physics.md §18); `null` without a floor.
+    pub floor: Option<super::floor::FloorReport>,
 }
 
 /// One species of the run.

@@ -316,6 +316,24 @@ pub fn text(r: &Report, args: &AnalyzeArgs, complete: bool) -> String {
     if let Some(t) = &r.thermostat {
         thermostat_text(t, &mut s);
     }
+    if let Some(f) = &r.floor {
+        let gamma = f
+            .shaking_parameter
+            .map(|g| format!(", Γ = Aω²/g = {g:.3}"))
+            .unwrap_or_default();
+        let _ = writeln!(
+            s,
+            "floor       vibrating, A = {}, f = {}{gamma}: from t = {} to {}, power in {:.6} (floor work {:.6}), dissipated {:.6} (energy lost {:.6}); steady when equal",
+            Num(f.amplitude),
+            Num(f.frequency),
+            Num(f.window[0]),
+            Num(f.window[1]),
+            f.power_in,
+            f.floor_work,
+            f.power_out,
+            f.energy_lost
+        );
+    }
     if let Some(i) = &r.inelastic {
         if let Some(e) = &i.energy {
             let _ = writeln!(

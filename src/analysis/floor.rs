@@ -1,0 +1,64 @@
+//! Runs on a vibrating floor (physics.md §18): the floor's amplitude, frequency
+//! and shaking parameter Γ = A ω²/g, and the energy flows over the analysis
+//! window from the engine's totals in the log's checkpoints: the work W the floor
+//! did and the energy E_lost the collisions dissipated between the first
+//! checkpoint in the window and the last, as mean powers. In a steady state they
+//! are equal; their difference is the change of K + U over the window divided by
+//! its length. The energy budget and Haff's law of an inelastic run assume no
+//! input and are taken out.
+
+use carom_core::vibrating_wall::Floor;
+use serde::Serialize;
+
+use super::report::Report;
+
+/// The floor and the energy it puts in.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct FloorReport {
+    /// Amplitude A (length): the floor moves between 0 and 2A.
+    pub amplitude: f64,
+    /// Frequency f = ω/2π (1/time).
+    pub frequency: f64,
+    /// Γ = A ω²/g, the floor's peak acceleration in units of g (`null` without a field).
+    pub shaking_parameter: Option<f64>,
+    /// The checkpoints whose totals are compared: the first at or after the
+    /// analysis window's start, and the last (time).
+    pub window: [f64; 2],
+    /// Work the floor did on the discs between them (energy).
+    pub floor_work: f64,
+    /// Energy dissipated in collisions between them (energy).
+    pub energy_lost: f64,
+    /// Mean power in from the floor over the window (energy/time).
+    pub power_in: f64,
+    /// Mean dissipated power over the window (energy/time).
+    pub power_out: f64,
+}
+
+/// The floor report of a run with floor `floor` in a field `g`, from the
+/// engine's totals (time, floor work, energy lost) at its checkpoints, over the
+/// first checkpoint at or after `from` to the last; added to `r`, whose
+/// input-free energy budget is taken out. Nothing over less than two checkpoints.
+pub(super) fn apply(floor: &Floor, g: f64, totals: &[(f64, f64, f64)], from: f64, r: &mut Report) {
+    if let Some(i) = r.inelastic.as_mut() {
+        i.energy = None;
+        i.haff = None;
+    }
+    let Some(a) = totals.iter().find(|c| c.0 >= from) else {
+        return;
+    };
+    let b = totals.last().expect("one found above");
+    let span = b.0 - a.0;
+    if span <= 0.0 {
+        return;
+    }
+    r.floor = Some(FloorReport {
+        amplitude: floor.amplitude,
+        frequency: floor.omega / (2.0 * std::f64::consts::PI),
+        shaking_parameter: (g > 0.0).then(|| floor.amplitude * floor.omega.powi(2) / g),
+        window: [a.0, b.0],
+        floor_work: b.1 - a.1,
+        energy_lost: b.2 - a.2,
+        power_in: (b.1 - a.1) / span,
+        power_out: (b.2 - a.2) / span,
+    });
+}
