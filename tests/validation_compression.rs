@@ -161,7 +161,9 @@ fn report(what: &str, o: &[[f64; 5]]) {
         let v: Vec<f64> = o.iter().map(|s| s[k]).collect();
         let (lo, hi) = v
             .iter()
-            .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &x| (a.min(x), b.max(x)));
+            .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &x| {
+                (a.min(x), b.max(x))
+            });
         let m = v.iter().sum::<f64>() / v.len() as f64;
         line += &format!(" {name} {m:.4} ({lo:.4}–{hi:.4});");
     }

@@ -16,8 +16,8 @@ use carom_core::SimBox;
 use serde::Serialize;
 
 use super::neighbours::{delaunay_neighbours, Neighbours};
-use super::psi6_estimators::{local_psi6_equal, local_psi6_nearest, six_neighbour_fraction};
 use super::pair_correlation::mean_se;
+use super::psi6_estimators::{local_psi6_equal, local_psi6_nearest, six_neighbour_fraction};
 use super::report::DriftReport;
 use super::series::{blocked, drift, subsample, MAX_SERIES};
 

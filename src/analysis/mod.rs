@@ -59,7 +59,6 @@ pub use bond_correlation::{
     BondCorrelationReport, G6_BIN_WIDTH_SIGMA, G6_R_MAX_SIGMA, G6_SNAPSHOTS,
 };
 pub use bond_order::{global_psi6, local_psi6, BondOrderReport, OtherEstimatorsReport};
-pub use psi6_estimators::{local_psi6_equal, local_psi6_nearest, six_neighbour_fraction};
 pub use contact::{
     ContactTheoremReport, ContactValue, PairCorrelationReport, PairReport, CONTACT_FIT_SIGMA,
 };
@@ -72,6 +71,7 @@ pub use neighbours::{delaunay_neighbours, Neighbours, GHOST_SPACINGS};
 pub use options::{AnalysisOptions, CORRELATED_SPACING, DECORRELATION_COLLISIONS, MAX_VELOCITIES};
 pub use origins::{MAX_DISC_ORIGINS, ORIGINS_PER_LEVEL};
 pub use pair_correlation::{BIN_WIDTH_SIGMA, BLOCKS as PAIR_CORRELATION_BLOCKS, R_MAX_SIGMA};
+pub use psi6_estimators::{local_psi6_equal, local_psi6_nearest, six_neighbour_fraction};
 pub use report::{
     ChiSquareReport, CollisionRateReport, DriftReport, EnergyBudget, EnskogReport, HaffReport,
     HistogramReport, InelasticReport, KsReport, PressureReport, Report, SonineReport, SpeciesInfo,

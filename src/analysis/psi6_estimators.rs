@@ -59,9 +59,9 @@ pub fn local_psi6_nearest(
             let mut chosen: Vec<((u32, i64, i64), [f64; 2])> = Vec::with_capacity(k);
             let mut candidates: Vec<((u32, i64, i64), [f64; 2])> = Vec::new();
             let add = |from: [f64; 2],
-                           bonds: &[(u32, [f64; 2], f64)],
-                           chosen: &[((u32, i64, i64), [f64; 2])],
-                           candidates: &mut Vec<((u32, i64, i64), [f64; 2])>| {
+                       bonds: &[(u32, [f64; 2], f64)],
+                       chosen: &[((u32, i64, i64), [f64; 2])],
+                       candidates: &mut Vec<((u32, i64, i64), [f64; 2])>| {
                 for &(j, d, _) in bonds {
                     let d = [from[0] + d[0], from[1] + d[1]];
                     let id = image(i, j, d);

@@ -17,7 +17,10 @@ fn every_estimator_gives_one_on_the_triangular_lattice() {
         let (sb, x, y) = triangular(cols, rows, a);
         let nb = delaunay_neighbours(&sb, &x, &y);
         assert_eq!(six_neighbour_fraction(&nb), 1.0);
-        for psi in [local_psi6_equal(&nb), local_psi6_nearest(&sb, &x, &y, &nb, 6)] {
+        for psi in [
+            local_psi6_equal(&nb),
+            local_psi6_nearest(&sb, &x, &y, &nb, 6),
+        ] {
             assert_eq!(psi.len(), x.len());
             for p in psi {
                 assert!(close(p, [1.0, 0.0], 1e-12), "{cols} x {rows}: {p:?}");
@@ -122,13 +125,21 @@ fn six_nearest_neighbours_are_found_through_the_delaunay_graph() {
     let sb = SimBox::walled(10.0, 10.0, 1.0);
     let nb = delaunay_neighbours(&sb, &x, &y);
     assert_eq!(nb.of(0).len(), 7);
-    assert!(nb.of(1).iter().all(|b| b.0 != 3 && b.0 != 5), "{:?}", nb.of(1));
+    assert!(
+        nb.of(1).iter().all(|b| b.0 != 3 && b.0 != 5),
+        "{:?}",
+        nb.of(1)
+    );
     let e = local_psi6_equal(&nb);
     assert!(close(e[0], [5.0 / 7.0, 0.0], 1e-12), "{:?}", e[0]);
     let k = local_psi6_nearest(&sb, &x, &y, &nb, 6);
     assert!(close(k[0], [1.0, 0.0], 1e-12), "{:?}", k[0]);
     let zq = sixfold(x[7] - x[1], y[7] - y[1]);
-    assert!(close(k[1], [(1.0 + zq[0]) / 6.0, zq[1] / 6.0], 1e-12), "{:?}", k[1]);
+    assert!(
+        close(k[1], [(1.0 + zq[0]) / 6.0, zq[1] / 6.0], 1e-12),
+        "{:?}",
+        k[1]
+    );
     let six = (0..8).filter(|&i| nb.of(i).len() == 6).count();
     assert_eq!(six_neighbour_fraction(&nb), six as f64 / 8.0);
 }
