@@ -37,6 +37,13 @@ fn a_crystal_keeps_bond_and_translational_order() {
         b.global, b.global_std_error, b.local
     );
     assert!(b.global > 0.75 && b.local > 0.8, "{b:?}");
+    // The other estimators (physics.md §11.7–11.8) agree within a few hundredths
+    // in a crystal, where few discs have other than six neighbours.
+    let o = &b.other_estimators;
+    eprintln!("other estimators: {o:?}");
+    assert!(o.six_neighbour_fraction > 0.9, "{o:?}");
+    assert!((o.delaunay_equal - b.global).abs() < 0.05, "{o:?}");
+    assert!((o.six_nearest - b.global).abs() < 0.05, "{o:?}");
     let f = r.structure_factor.as_ref().expect("S(k)");
     let area = r.box_size[0] * r.box_size[1];
     let a = (2.0 * area / (3f64.sqrt() * n as f64)).sqrt();

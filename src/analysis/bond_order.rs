@@ -17,6 +17,7 @@ use serde::Serialize;
 
 use super::neighbours::{delaunay_neighbours, Neighbours};
 use super::pair_correlation::mean_se;
+use super::psi6_estimators::{local_psi6_equal, local_psi6_nearest, six_neighbour_fraction};
 use super::report::DriftReport;
 use super::series::{blocked, drift, subsample, MAX_SERIES};
 
@@ -72,6 +73,27 @@ pub struct BondOrder {
     /// (t, |Ψ6|, mean_j |ψ6_j|) of every snapshot added.
     series: Vec<(f64, f64, f64)>,
     n: usize,
+    /// |Ψ6| equal-weight Delaunay, |Ψ6| six nearest, six-neighbour fraction
+    /// ([`super::psi6_estimators`]) of every snapshot added.
+    others: Vec<[f64; 3]>,
+}
+
+/// The other estimators of the same snapshots, for comparison (physics.md §11,
+/// eqs. 11.7–11.8): each ⟨·⟩ over the snapshots with its blocked standard error.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct OtherEstimatorsReport {
+    /// ⟨|Ψ6|⟩ with every Delaunay bond weighing the same.
+    pub delaunay_equal: f64,
+    /// Its blocked standard error.
+    pub delaunay_equal_std_error: f64,
+    /// ⟨|Ψ6|⟩ over each disc's six nearest neighbours.
+    pub six_nearest: f64,
+    /// Its blocked standard error.
+    pub six_nearest_std_error: f64,
+    /// ⟨fraction of the discs with exactly six Delaunay neighbours⟩.
+    pub six_neighbour_fraction: f64,
+    /// Its blocked standard error.
+    pub six_neighbour_fraction_std_error: f64,
 }
 
 /// Bond-orientational order of the snapshots (physics.md §11).
@@ -97,16 +119,26 @@ pub struct BondOrderReport {
     pub series: Vec<[f64; 2]>,
     /// |Ψ6| of the window's first half against its second; `null` when too short.
     pub drift: Option<DriftReport>,
+    /// The equal-weight Delaunay and six-nearest-neighbour |Ψ6| and the
+    /// six-neighbour fraction of the same snapshots.
+    pub other_estimators: OtherEstimatorsReport,
 }
 
 impl BondOrder {
     /// Add one snapshot at time `t`; returns the local ψ6 of its discs (for g6).
     pub fn add(&mut self, t: f64, sim_box: &SimBox, x: &[f64], y: &[f64]) -> Vec<[f64; 2]> {
-        let psi = local_psi6(sim_box, x, y);
+        let nb = delaunay_neighbours(sim_box, x, y);
+        let psi = local_psi6_from(&nb);
         let g = global_psi6(&psi);
         let local = psi.iter().map(|p| p[0].hypot(p[1])).sum::<f64>() / psi.len().max(1) as f64;
         self.series.push((t, g[0].hypot(g[1]), local));
         self.n = x.len();
+        let abs = |p: [f64; 2]| p[0].hypot(p[1]);
+        self.others.push([
+            abs(global_psi6(&local_psi6_equal(&nb))),
+            abs(global_psi6(&local_psi6_nearest(sim_box, x, y, &nb, 6))),
+            six_neighbour_fraction(&nb),
+        ]);
         psi
     }
 
@@ -134,6 +166,10 @@ impl BondOrder {
             .map(|k| chi(&abs[k * len..(k + 1) * len]))
             .collect();
         let (_, susceptibility_std_error) = mean_se(&per_block);
+        let other = |k: usize| estimate(&self.others.iter().map(|o| o[k]).collect::<Vec<f64>>());
+        let (delaunay_equal, delaunay_equal_std_error) = other(0);
+        let (six_nearest, six_nearest_std_error) = other(1);
+        let (six_neighbour_fraction, six_neighbour_fraction_std_error) = other(2);
         let t_abs: Vec<(f64, f64)> = self.series.iter().map(|s| (s.0, s.1)).collect();
         Some(BondOrderReport {
             neighbours: "delaunay",
@@ -146,6 +182,14 @@ impl BondOrder {
             susceptibility_std_error,
             series: subsample(&t_abs, MAX_SERIES),
             drift: drift(&abs),
+            other_estimators: OtherEstimatorsReport {
+                delaunay_equal,
+                delaunay_equal_std_error,
+                six_nearest,
+                six_nearest_std_error,
+                six_neighbour_fraction,
+                six_neighbour_fraction_std_error,
+            },
         })
     }
 }
@@ -357,6 +401,7 @@ mod tests {
         let bo = BondOrder {
             series: (0..4).map(|k| (1.5 * k as f64, abs[k], local[k])).collect(),
             n: 50,
+            others: vec![[0.0; 3]; 4],
         };
         let r = bo.report().unwrap();
         let close = |a: f64, b: f64| (a - b).abs() < 1e-12;

@@ -38,6 +38,7 @@ mod options;
 mod origins;
 mod pair_correlation;
 mod pressure;
+mod psi6_estimators;
 mod report;
 mod self_scattering;
 mod series;
@@ -60,7 +61,7 @@ pub use atmosphere::{BarometricFit, GravityReport};
 pub use bond_correlation::{
     BondCorrelationReport, G6_BIN_WIDTH_SIGMA, G6_R_MAX_SIGMA, G6_SNAPSHOTS,
 };
-pub use bond_order::{global_psi6, local_psi6, BondOrderReport};
+pub use bond_order::{global_psi6, local_psi6, BondOrderReport, OtherEstimatorsReport};
 pub use compression::CompressionReport;
 pub use contact::{
     ContactTheoremReport, ContactValue, PairCorrelationReport, PairReport, CONTACT_FIT_SIGMA,
@@ -72,10 +73,11 @@ pub use eos_reference::{henderson_z, kolafa_rottner, li_2022, KOLAFA_ROTTNER};
 pub use floor::FloorReport;
 pub use from_log::{analyze_log, AnalysisError, ReadObserver};
 pub use msd::D_WINDOW_COLLISIONS;
-pub use neighbours::GHOST_SPACINGS;
+pub use neighbours::{delaunay_neighbours, Neighbours, GHOST_SPACINGS};
 pub use options::{AnalysisOptions, CORRELATED_SPACING, DECORRELATION_COLLISIONS, MAX_VELOCITIES};
 pub use origins::{MAX_DISC_ORIGINS, ORIGINS_PER_LEVEL};
 pub use pair_correlation::{BIN_WIDTH_SIGMA, BLOCKS as PAIR_CORRELATION_BLOCKS, R_MAX_SIGMA};
+pub use psi6_estimators::{local_psi6_equal, local_psi6_nearest, six_neighbour_fraction};
 pub use report::{
     ChiSquareReport, CollisionRateReport, DriftReport, EnergyBudget, EnskogReport, HaffReport,
     HistogramReport, InelasticReport, KsReport, PressureReport, Report, SonineReport, SpeciesInfo,

@@ -407,9 +407,16 @@ fn structure_text(r: &Report, s: &mut String) {
     if let Some(b) = &r.bond_order {
         let _ = writeln!(
             s,
-            "bond order  |Ψ6| = {:.4} ± {:.4}, local ⟨|ψ6|⟩ = {:.4} ± {:.4}, susceptibility χ6 = N(⟨|Ψ6|²⟩ − ⟨|Ψ6|⟩²) = {:.4} ± {:.4} ({} snapshots, Delaunay neighbours)",
+            "bond order  |Ψ6| = {:.4} ± {:.4}, local ⟨|ψ6|⟩ = {:.4} ± {:.4}, susceptibility χ6 = N(⟨|Ψ6|²⟩ − ⟨|Ψ6|⟩²) = {:.4} ± {:.4} ({} snapshots, Delaunay neighbours weighted by Voronoi edges)",
             Num(b.global), Num(b.global_std_error), Num(b.local), Num(b.local_std_error),
             Num(b.susceptibility), Num(b.susceptibility_std_error), b.snapshots
+        );
+        let o = &b.other_estimators;
+        let _ = writeln!(
+            s,
+            "  other estimators  |Ψ6| equal-weight Delaunay = {:.4} ± {:.4}, six nearest neighbours = {:.4} ± {:.4}; discs with six Delaunay neighbours {:.4} ± {:.4}",
+            Num(o.delaunay_equal), Num(o.delaunay_equal_std_error), Num(o.six_nearest),
+            Num(o.six_nearest_std_error), Num(o.six_neighbour_fraction), Num(o.six_neighbour_fraction_std_error)
         );
         if let Some(d) = b.drift.as_ref().filter(|d| d.drifting) {
             let _ = writeln!(
