@@ -12,6 +12,9 @@
 
 use carom_core::SimBox;
 
+/// A neighbour's image: (disc, periodic image shifts) and its separation.
+type Image = ((u32, i64, i64), [f64; 2]);
+
 use super::bond_order::sixfold;
 use super::neighbours::Neighbours;
 
@@ -56,16 +59,16 @@ pub fn local_psi6_nearest(
     (0..x.len())
         .map(|i| {
             let own = (i as u32, 0, 0);
-            let mut chosen: Vec<((u32, i64, i64), [f64; 2])> = Vec::with_capacity(k);
-            let mut candidates: Vec<((u32, i64, i64), [f64; 2])> = Vec::new();
+            let mut chosen: Vec<Image> = Vec::with_capacity(k);
+            let mut candidates: Vec<Image> = Vec::new();
             let add = |from: [f64; 2],
                        bonds: &[(u32, [f64; 2], f64)],
-                       chosen: &[((u32, i64, i64), [f64; 2])],
-                       candidates: &mut Vec<((u32, i64, i64), [f64; 2])>| {
+                       chosen: &[Image],
+                       candidates: &mut Vec<Image>| {
                 for &(j, d, _) in bonds {
                     let d = [from[0] + d[0], from[1] + d[1]];
                     let id = image(i, j, d);
-                    let known = |c: &((u32, i64, i64), [f64; 2])| c.0 == id;
+                    let known = |c: &Image| c.0 == id;
                     if id != own && !chosen.iter().any(known) && !candidates.iter().any(known) {
                         candidates.push((id, d));
                     }
@@ -73,7 +76,7 @@ pub fn local_psi6_nearest(
             };
             add([0.0, 0.0], nb.of(i), &chosen, &mut candidates);
             while chosen.len() < k && !candidates.is_empty() {
-                let r2 = |c: &((u32, i64, i64), [f64; 2])| c.1[0] * c.1[0] + c.1[1] * c.1[1];
+                let r2 = |c: &Image| c.1[0] * c.1[0] + c.1[1] * c.1[1];
                 let best = (0..candidates.len())
                     .min_by(|&a, &b| r2(&candidates[a]).total_cmp(&r2(&candidates[b])))
                     .unwrap();
