@@ -67,12 +67,16 @@ mod tests {
         assert!((r.3 - 9.8328).abs() < 5e-5, "{}", r.3);
     }
 
-    /// Henderson's form lies within 1 % of Kolafa–Rottner up to η = 0.6.
+    /// Henderson's form lies within 0.5 % of Kolafa–Rottner up to η = 0.5 and
+    /// rises above it beyond (+0.74 % at 0.55, +1.18 % at 0.6, worked from (7.6)).
     #[test]
     fn henderson_follows_the_table() {
         for (eta, z, _) in KOLAFA_ROTTNER {
-            assert!((henderson_z(eta) / z - 1.0).abs() < 0.01, "η = {eta}");
+            let rel = henderson_z(eta) / z - 1.0;
+            let bound = if eta <= 0.5 { 0.005 } else { 0.0125 };
+            assert!(rel.abs() < bound, "η = {eta}: {rel}");
         }
+        assert!((henderson_z(0.6) / 6.4553 - 1.0 - 0.0118).abs() < 1e-4);
         assert_eq!(kolafa_rottner(0.3), Some((2.0633, 0.0020)));
         assert_eq!(kolafa_rottner(0.35), None);
     }
