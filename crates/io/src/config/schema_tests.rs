@@ -90,6 +90,10 @@ fn maximal_values() -> Vec<Value> {
             max_time_without_collision: Some(1.0),
         },
         gravity: 1.0,
+        vibrating_floor: Some(FloorConfig {
+            amplitude: 0.5,
+            frequency: 1.0,
+        }),
         compression: Some(GrowthConfig {
             rate: 1.0,
             target_packing_fraction: 0.5,
