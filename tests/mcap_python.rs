@@ -203,3 +203,56 @@ fn python_reads_every_field_that_rust_reads() {
         std::fs::remove_file(&out).unwrap();
     }
 }
+
+/// The Python block of docs/log-format.md, "Reading logs from Python", run as it
+/// stands: it decodes every message of every channel (the `/thermo` JSON too, where
+/// a ros2 decoder alone stops with `DecoderNotFoundError`), and its counts per
+/// topic are the log's.
+#[test]
+fn the_documented_python_loop_decodes_every_channel() {
+    let Some(py) = python() else {
+        return;
+    };
+    let doc = std::fs::read_to_string(
+        Path::new(env!("CARGO_MANIFEST_DIR")).join("docs/log-format.md"),
+    )
+    .unwrap();
+    let section = &doc[doc.find("## Reading logs from Python").expect("the section")..];
+    let start = section.find("```python\n").expect("a python block") + "```python\n".len();
+    let code = &section[start..start + section[start..].find("```").unwrap()];
+    let script = tmp("documented_loop.py");
+    std::fs::write(&script, code).unwrap();
+    let out = tmp("documented_loop.mcap");
+    let mut s = spec(
+        system(200, 0.45, true, true, 5),
+        Stop::Time(3.0),
+        LogOptions {
+            snapshot_interval: Some(1.0),
+            thermo_interval: Some(0.25),
+            checkpoint_interval: Some(1.5),
+            scene_interval: Some(1.0),
+            ..LogOptions::default()
+        },
+    );
+    s.params = EngineParams::default();
+    run(&s, &out, Control::default()).unwrap();
+    let ran = std::process::Command::new(&py)
+        .arg(&script)
+        .arg(&out)
+        .output()
+        .unwrap();
+    assert!(
+        ran.status.success(),
+        "the documented loop fails:\n{}",
+        String::from_utf8_lossy(&ran.stderr)
+    );
+    let counts: Value = serde_json::from_slice(&ran.stdout).unwrap();
+    let info = carom::io::scan(&out).unwrap();
+    for (k, topic) in TOPICS.iter().enumerate() {
+        let want = info.messages[k];
+        let got = counts[*topic].as_u64().unwrap_or(0);
+        assert_eq!(got, want, "{topic}: the loop decoded {got}, the log has {want}");
+    }
+    assert!(counts["/thermo"].as_u64().unwrap() >= 12, "{counts}");
+    std::fs::remove_file(&out).unwrap();
+}

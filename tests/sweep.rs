@@ -12,7 +12,7 @@ use std::process::{Command, Stdio};
 use std::time::{Duration, Instant};
 
 use carom::io::last_checkpoint;
-use cli_common::{carom, json_of, ok, scratch, BIN};
+use cli_common::{carom, json_of, ok, python_with, scratch, BIN};
 use serde_json::Value;
 
 fn write(dir: &Path, name: &str, text: &str) {
@@ -142,6 +142,28 @@ fn a_two_by_two_sweep_runs_then_collects_what_analyze_says() {
     );
     assert!(dir.join("figs/equation_of_state.png").exists());
     assert!(dir.join("figs/equation_of_state.svg").exists());
+    // Read back as a user would: Python's csv and pandas give the JSON's value in
+    // every column (a header one column short once shifted every value).
+    if let Some(py) = python_with(&["pandas"]) {
+        let json = ok(&carom(
+            &dir,
+            &["collect", "out", "--json", "--no-structure", "-q"],
+        ));
+        write(&dir, "table.csv", &csv);
+        write(&dir, "table.json", &json);
+        let script = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/python/check_collect_csv.py");
+        let out = Command::new(py)
+            .arg(script)
+            .args([dir.join("table.csv"), dir.join("table.json")])
+            .output()
+            .unwrap();
+        assert!(
+            out.status.success(),
+            "{}{}",
+            String::from_utf8_lossy(&out.stdout),
+            String::from_utf8_lossy(&out.stderr)
+        );
+    }
 }
 
 #[test]

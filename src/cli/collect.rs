@@ -110,36 +110,50 @@ fn value_text(v: &serde_json::Value) -> String {
     }
 }
 
+/// The four CSV columns of each quantity, as (suffix, value): the mean over
+/// replicas, its standard error, the replicas' spread and the runs' own errors
+/// combined. The header and every row are built from this one list, so they
+/// cannot disagree in width.
+const CSV_COLUMNS: [(&str, fn(&carom::sweep::Combined) -> Option<f64>); 4] = [
+    ("", |r| Some(r.value)),
+    ("_std_error", |r| r.std_error),
+    ("_spread", |r| r.spread),
+    ("_run_std_error", |r| r.run_std_error),
+];
+
+/// One CSV field (RFC 4180): quoted when it holds a comma, a quote or a line break.
+fn csv_field(x: &str) -> String {
+    if x.contains([',', '"', '\n', '\r']) {
+        format!("\"{}\"", x.replace('"', "\"\""))
+    } else {
+        x.to_string()
+    }
+}
+
 /// CSV: axes, replicas, then value, std_error, spread and the runs' own
-/// combined error per quantity.
+/// combined error per quantity; an empty field where a point lacks a value.
 fn csv(c: &Collected) -> String {
     let qs = present(c);
     let mut head: Vec<String> = c.axes.clone();
     head.push("replicas".into());
     for q in &qs {
-        head.extend([
-            q.to_string(),
-            format!("{q}_std_error"),
-            format!("{q}_spread"),
-        ]);
+        head.extend(CSV_COLUMNS.iter().map(|(suffix, _)| format!("{q}{suffix}")));
     }
-    let mut s = head.join(",") + "\n";
-    let opt = |x: Option<f64>| x.map(|x| x.to_string()).unwrap_or_default();
+    let line = |cells: Vec<String>| {
+        let cells: Vec<String> = cells.iter().map(|x| csv_field(x)).collect();
+        cells.join(",") + "\n"
+    };
+    let mut s = line(head);
     for p in &c.points {
         let mut row: Vec<String> = c.axes.iter().map(|a| value_text(&p.values[a])).collect();
         row.push(p.runs.len().to_string());
         for q in &qs {
-            match p.results.get(*q) {
-                Some(r) => row.extend([
-                    r.value.to_string(),
-                    opt(r.std_error),
-                    opt(r.spread),
-                    opt(r.run_std_error),
-                ]),
-                None => row.extend(std::iter::repeat_n(String::new(), 4)),
-            }
+            let r = p.results.get(*q);
+            row.extend(CSV_COLUMNS.iter().map(|(_, get)| {
+                r.and_then(get).map(|x| x.to_string()).unwrap_or_default()
+            }));
         }
-        s += &(row.join(",") + "\n");
+        s += &line(row);
     }
     s
 }

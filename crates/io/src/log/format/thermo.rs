@@ -26,9 +26,9 @@ pub const THERMO_JSON_SCHEMA: &str = r#"{
     "total_energy": {"type": "number", "description": "runs in a field only: K + U (energy); log format 2.2 on"},
     "radius_scale": {"type": "number", "description": "runs with growing discs only: radii now / configured radii (physics.md section 17); log format 2.2 on"},
     "packing_fraction": {"type": "number", "description": "runs with growing discs only: packing fraction of the radii now; log format 2.2 on"},
-    "growth": {"enum": ["growing", "target", "jammed"], "description": "runs with growing discs only: growing, or why growth ended; log format 2.2 on"},
+    "growth": {"type": "string", "enum": ["growing", "target", "jammed"], "description": "runs with growing discs only: growing, or why growth ended; log format 2.2 on"},
     "growth_z": {"type": "number", "description": "runs with growing discs only: virial Z over the last interval between rescales (0 before the first); log format 2.2 on"},
-    "growth_event": {"enum": ["rescale", "end"], "description": "only in the extra record written at the first event after a velocity rescale (rescale) or the end of growth (end); log format 2.2 on"}
+    "growth_event": {"type": "string", "enum": ["rescale", "end"], "description": "only in the extra record written at the first event after a velocity rescale (rescale) or the end of growth (end); log format 2.2 on"}
   },
   "required": ["time", "kinetic_energy", "temperature", "collisions", "pair_collisions", "wall_collisions", "energy_lost", "virial_sum", "wall_impulse"]
 }"#;
