@@ -137,7 +137,7 @@ fn contact_theorem(key: &'static str, title: &str, runs: &[(f64, usize, f64, u64
             m.t_end,
             m.collisions,
             m.seconds,
-            fmt_se(contact.value, contact.std_error),
+            fmt_se(contact.value, contact.std_error.expect("its error")),
             contact.fit_bins,
             fmt_se(ct.z_structure, ct.z_structure_std_error),
             fmt_se(ct.z_virial, ct.z_virial_std_error),
@@ -260,8 +260,8 @@ fn case9_hexatic() {
         g6.xi6.map_or("—".into(), |[v, e]| fmt_se(v, e)),
         fmt_se(b.global, b.global_std_error),
         fmt_se(f.translational, f.translational_std_error),
-        f.peak_s,
-        f.peak_k,
+        f.peak_s.unwrap_or(f64::NAN),
+        f.peak_k.unwrap_or(f64::NAN),
     ));
     frag.finish();
 }

@@ -12,8 +12,9 @@ use carom_core::rates::expected_mean_free_time;
 
 use super::atmosphere::Atmosphere;
 use super::bond_correlation::BondCorrelation;
-use super::bond_order::BondOrder;
+use super::bond_order::{BondOrder, MIN_BOND_ORDER_DISCS};
 use super::dynamics::Dynamics;
+use super::not_computed;
 use super::options::{budget_spacing, AnalysisOptions, DECORRELATION_COLLISIONS};
 use super::pair_correlation::PairCorrelation;
 use super::report::{Report, SpeciesInfo, WindowReport};
@@ -528,7 +529,7 @@ impl Analyzer {
             a.report(&kinetic, kt_used)
         });
         let run = &self.run;
-        Ok(Report {
+        let mut report = Report {
             n: run.n(),
             species: run
                 .species
@@ -554,7 +555,10 @@ impl Analyzer {
             inelastic,
             pair_correlation,
             bond_order: self.bond_order.report(),
-            orientational_correlation: self.bond_correlation.report(),
+            orientational_correlation: self
+                .bond_correlation
+                .report()
+                .filter(|_| run.n() >= MIN_BOND_ORDER_DISCS),
             structure_factor: self
                 .structure_factor
                 .as_ref()
@@ -564,7 +568,10 @@ impl Analyzer {
             thermostat: None,
             compression: None,
             floor: None,
-        })
+            not_computed: Vec::new(),
+        };
+        report.not_computed = not_computed::explain(&report);
+        Ok(report)
     }
 
     /// The window analysed, with the spacing of the snapshots used in collisions

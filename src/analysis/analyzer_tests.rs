@@ -424,7 +424,8 @@ fn the_window_reports_the_closest_snapshots_in_collisions_per_disc() {
 /// is g(r) but no comparison with the virial pressure.
 #[test]
 fn the_contact_theorem_is_made_only_for_elastic_periodic_runs() {
-    let (periodic, x, y) = crate::analysis::test_lattice::triangular(4, 4, 2.0);
+    // Lattice spacing 1.1 σ: every disc has neighbours in the contact fit range.
+    let (periodic, x, y) = crate::analysis::test_lattice::triangular(4, 4, 1.1);
     let walled = SimBox {
         boundary: [Boundary::Walls { restitution: 1.0 }; 2],
         ..periodic

@@ -18,6 +18,10 @@ use serde::Serialize;
 use super::neighbours::{delaunay_neighbours, Neighbours};
 use super::pair_correlation::mean_se;
 use super::psi6_estimators::{local_psi6_equal, local_psi6_nearest, six_neighbour_fraction};
+
+/// Fewer discs than this get no bond order, g6 or χ6: a disc with its six
+/// neighbours is seven, and below that ψ6 measures the box, not an order.
+pub const MIN_BOND_ORDER_DISCS: usize = 7;
 use super::report::DriftReport;
 use super::series::{blocked, drift, subsample, MAX_SERIES};
 
@@ -142,9 +146,10 @@ impl BondOrder {
         psi
     }
 
-    /// The report; `None` without at least two snapshots.
+    /// The report; `None` without at least two snapshots or with fewer than
+    /// [`MIN_BOND_ORDER_DISCS`] discs.
     pub fn report(&self) -> Option<BondOrderReport> {
-        if self.series.len() < 2 {
+        if self.series.len() < 2 || self.n < MIN_BOND_ORDER_DISCS {
             return None;
         }
         let abs: Vec<f64> = self.series.iter().map(|s| s.1).collect();

@@ -34,6 +34,11 @@ pub(super) fn report(
         logged_pair_collisions: a.pair_total,
         logged_wall_collisions: a.wall_total,
         collision_stride: a.run.collision_stride,
+        counted_from: if a.run.totals_from_thermo {
+            "thermo"
+        } else {
+            "collisions"
+        },
         window: [a.t_eq, a.run.t_end],
         drift: if elastic { drift(omega_bins) } else { None },
     })

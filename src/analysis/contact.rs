@@ -48,8 +48,13 @@ pub struct PairReport {
     pub g: Vec<f64>,
     /// Standard error of g from the spread of the time blocks.
     pub std_error: Vec<f64>,
-    /// Contact value g_ab(σ_ab⁺); `null` when no bin lies in the fit range.
+    /// Contact value g_ab(σ_ab⁺); `null` when it cannot be estimated, then
+    /// `contact_missing` says why.
     pub contact: Option<ContactValue>,
+    /// Why there is no contact value: no bin in the fit range, or too few pairs
+    /// near contact to fit.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub contact_missing: Option<String>,
 }
 
 /// The contact value with its error.
@@ -57,8 +62,12 @@ pub struct PairReport {
 pub struct ContactValue {
     /// g(σ⁺) extrapolated from the straight line in ln g over [σ, σ + 0.1 σ].
     pub value: f64,
-    /// Its standard error (spread of the per-block fits).
-    pub std_error: f64,
+    /// Its standard error (spread of the per-block fits); `null` when a time
+    /// block has too few pairs near contact to fit, then `no_error` says so.
+    pub std_error: Option<f64>,
+    /// Why there is no standard error.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub no_error: Option<String>,
     /// Number of bins in the fit.
     pub fit_bins: usize,
 }
@@ -86,6 +95,20 @@ pub struct ContactTheoremReport {
 /// low (physics.md §10). A bin holds g averaged over its annulus, which for
 /// ln g = f is g(x)(1 + (f'² + f'')h²/24 + f'h²/(12x)) to order h²; that factor
 /// is taken off at x0. Empty bins (g = 0) are left out.
+/// The standard error of a contact value from its per-block fits, or why there
+/// is none: fewer than two blocks, or blocks with too few pairs to fit.
+fn block_error(per_block: &[f64]) -> Result<f64, String> {
+    let empty = per_block.iter().filter(|g| !g.is_finite()).count();
+    if empty > 0 || per_block.len() < 2 {
+        return Err(format!(
+            "{empty} of {} time blocks have too few pairs near contact to fit ln g (too few \
+             discs or snapshots)",
+            per_block.len()
+        ));
+    }
+    Ok(mean_se(per_block).1)
+}
+
 fn contact_at(x: &[f64], g: &[f64], x0: f64, h: f64) -> f64 {
     let (x, lg): (Vec<f64>, Vec<f64>) = x
         .iter()
@@ -189,7 +212,13 @@ pub(super) fn report(
                 lo >= sigma - tol && hi <= sigma * (1.0 + CONTACT_FIT_SIGMA) + tol
             })
             .collect();
-        let contact = (!fit.is_empty()).then(|| {
+        let contact = if fit.is_empty() {
+            Err(format!(
+                "no bin of width {} lies within [σ, {} σ]",
+                pc.dr,
+                1.0 + CONTACT_FIT_SIGMA
+            ))
+        } else {
             let xs: Vec<f64> = fit.iter().map(|&k| r[k]).collect();
             let per_block: Vec<f64> = blocks
                 .iter()
@@ -200,8 +229,15 @@ pub(super) fn report(
                 .collect();
             let g: Vec<f64> = fit.iter().map(|&k| pooled[k]).collect();
             let value = contact_at(&xs, &g, sigma, pc.dr);
-            (per_block, value)
-        });
+            if value.is_finite() {
+                Ok((per_block, value))
+            } else {
+                Err(format!(
+                    "too few pairs within [σ, {} σ] to fit ln g",
+                    1.0 + CONTACT_FIT_SIGMA
+                ))
+            }
+        };
         let weight = {
             let (xa, xb) = (
                 sa.count as f64 / n_total as f64,
@@ -210,13 +246,17 @@ pub(super) fn report(
             let ordered = if a == b { 1.0 } else { 2.0 };
             ordered * xa * xb * sigma * sigma
         };
-        match &contact {
-            Some((per_block, _)) => {
+        let error = contact
+            .as_ref()
+            .ok()
+            .map(|(per_block, _)| block_error(per_block));
+        match (&contact, &error) {
+            (Ok((per_block, _)), Some(Ok(_))) => {
                 for (s, g) in block_sum.iter_mut().zip(per_block) {
                     *s += weight * g;
                 }
             }
-            None => all_contacts = false,
+            _ => all_contacts = false,
         }
         out.push(PairReport {
             a,
@@ -224,10 +264,15 @@ pub(super) fn report(
             sigma,
             g: pooled,
             std_error,
-            contact: contact.map(|(per_block, value)| ContactValue {
-                value,
-                std_error: mean_se(&per_block).1,
-                fit_bins: fit.len(),
+            contact_missing: contact.as_ref().err().cloned(),
+            contact: contact.ok().map(|(_, value)| {
+                let error = error.expect("a value has an error or a reason");
+                ContactValue {
+                    value,
+                    std_error: error.as_ref().ok().copied(),
+                    no_error: error.err(),
+                    fit_bins: fit.len(),
+                }
             }),
         });
     }
@@ -514,7 +559,10 @@ mod tests {
             let c = pr.contact.as_ref().unwrap();
             assert_eq!(c.fit_bins, fit_bins, "{pr:?}");
             assert!(close(c.value, mean), "{c:?} vs {mean}");
-            assert!((c.std_error - se).abs() <= 1e-12 * mean, "{c:?} vs {se}");
+            assert!(
+                (c.std_error.unwrap() - se).abs() <= 1e-12 * mean,
+                "{c:?} vs {se}"
+            );
         }
         // Z = 1 + (π/2)(5/63) Σ x_a x_b σ² g over ordered pairs, x = 3/5, 2/5.
         let z = |gaa: f64| {
@@ -558,13 +606,31 @@ mod tests {
         let x = [1.0, 1.63, 1.0, 1.0, 5.0];
         big.add(0.5, &[0, 0, 0, 1, 1], &x, &[1.0, 1.0, 1.6, 5.0, 5.0]);
         let rep = report(&big, true, Some(&p)).unwrap();
+        // A–A has pairs near contact; A–B (σ = 2.3) none within [2.3, 2.76]: no
+        // value rather than a NaN; B–B's fit range lies beyond r_max.
         let contacts: Vec<bool> = rep.pairs.iter().map(|p| p.contact.is_some()).collect();
-        assert_eq!(contacts, [true, true, false]);
+        assert_eq!(contacts, [true, false, false]);
+        assert!(rep.pairs[1]
+            .contact_missing
+            .as_ref()
+            .unwrap()
+            .contains("too few pairs"));
+        assert!(rep.pairs[2]
+            .contact_missing
+            .as_ref()
+            .unwrap()
+            .contains("no bin"));
         assert!(rep.contact_theorem.is_none());
         // One disc of each species: only the A–B pair, which has its contact.
         let sp = [Species::new(1, 0.3, 2.0), Species::new(1, 0.45, 0.5)];
         let mut two = PairCorrelation::new(&sp, &SimBox::periodic(9.0, 7.0), 0.0, 16.0);
         two.add(0.5, &[0, 1], &[1.0, 1.798], &[1.0, 1.0]);
+        // One time block: a contact value, but no error, so no theorem.
+        let rep = report(&two, true, Some(&p)).unwrap();
+        let c = rep.pairs[0].contact.as_ref().unwrap();
+        assert!(c.std_error.is_none() && c.no_error.as_ref().unwrap().contains("1 time blocks"));
+        assert!(rep.contact_theorem.is_none());
+        two.add(8.5, &[0, 1], &[1.0, 1.0], &[1.0, 1.799]);
         let rep = report(&two, true, Some(&p)).unwrap();
         assert_eq!(
             rep.pairs.iter().map(|p| (p.a, p.b)).collect::<Vec<_>>(),

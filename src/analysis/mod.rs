@@ -33,6 +33,7 @@ mod increment_correlator;
 mod inelastic;
 mod msd;
 mod neighbours;
+mod not_computed;
 mod nufft;
 mod options;
 mod origins;
@@ -61,7 +62,9 @@ pub use atmosphere::{BarometricFit, GravityReport};
 pub use bond_correlation::{
     BondCorrelationReport, G6_BIN_WIDTH_SIGMA, G6_R_MAX_SIGMA, G6_SNAPSHOTS,
 };
-pub use bond_order::{global_psi6, local_psi6, BondOrderReport, OtherEstimatorsReport};
+pub use bond_order::{
+    global_psi6, local_psi6, BondOrderReport, OtherEstimatorsReport, MIN_BOND_ORDER_DISCS,
+};
 pub use compression::CompressionReport;
 pub use contact::{
     ContactTheoremReport, ContactValue, PairCorrelationReport, PairReport, CONTACT_FIT_SIGMA,
@@ -74,6 +77,7 @@ pub use floor::FloorReport;
 pub use from_log::{analyze_log, AnalysisError, ReadObserver};
 pub use msd::D_WINDOW_COLLISIONS;
 pub use neighbours::{delaunay_neighbours, Neighbours, GHOST_SPACINGS};
+pub use not_computed::NotComputed;
 pub use options::{AnalysisOptions, CORRELATED_SPACING, DECORRELATION_COLLISIONS, MAX_VELOCITIES};
 pub use origins::{MAX_DISC_ORIGINS, ORIGINS_PER_LEVEL};
 pub use pair_correlation::{BIN_WIDTH_SIGMA, BLOCKS as PAIR_CORRELATION_BLOCKS, R_MAX_SIGMA};
@@ -85,7 +89,9 @@ pub use report::{
 };
 pub use self_scattering::bessel_j0;
 pub use series::DRIFT_STD_ERRORS;
-pub use structure_factor::{StructureFactorReport, SK_K_MAX_SIGMA, SK_MAX_MODES, SK_SNAPSHOTS};
+pub use structure_factor::{
+    StructureFactorReport, K_STAR_MIN_SIGMA, SK_K_MAX_SIGMA, SK_MAX_MODES, SK_SNAPSHOTS,
+};
 pub use thermostat::{
     driven_a2, driven_steady_temperature, enskog_rate_coefficient, ThermostatReport,
 };

@@ -79,6 +79,9 @@ pub struct Report {
     /// The vibrating floor and the mean powers it puts in and the collisions
     /// dissipate (physics.md §18); `null` without a floor.
     pub floor: Option<super::floor::FloorReport>,
+    /// The quantities absent above that a reader would look for, each with the
+    /// reason it could not be computed.
+    pub not_computed: Vec<super::not_computed::NotComputed>,
 }
 
 /// One species of the run.
@@ -333,6 +336,11 @@ pub struct CollisionRateReport {
     pub logged_wall_collisions: u64,
     /// Every k-th collision is logged; counts are scaled by it.
     pub collision_stride: u64,
+    /// Where the pair collisions were counted: `"collisions"`, the logged
+    /// collisions (the counts above); `"thermo"`, the running counts of the
+    /// `/thermo` records (logs without every collision: the logged counts above
+    /// are then not what ω is made of).
+    pub counted_from: &'static str,
     /// [start, end] of the window the rate is measured over (time).
     pub window: [f64; 2],
     /// Drift check of ω over the window; `null` for inelastic runs (ω ∝ √T

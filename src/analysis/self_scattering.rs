@@ -14,7 +14,7 @@
 
 use carom_core::SimBox;
 
-use super::structure_factor::{shells, snapshot_sk};
+use super::structure_factor::{first_peak, shells, snapshot_sk};
 
 /// The Bessel function J₀(x) to about 10⁻⁷ (Abramowitz & Stegun 9.4.1, 9.4.3).
 pub fn bessel_j0(x: f64) -> f64 {
@@ -42,14 +42,10 @@ pub fn bessel_j0(x: f64) -> f64 {
     }
 }
 
-/// Shells below this many 1/σ_min are not searched for k*: a liquid's first
-/// peak lies near 2π/σ, and the few vectors of a small-k shell can scatter above
-/// a gas's weak peak.
-pub const K_STAR_MIN_SIGMA: f64 = std::f64::consts::PI;
-
-/// k* (1/length): the centre of the S(k) shell at k ≥ [`K_STAR_MIN_SIGMA`]/σ_min,
-/// short of the last (cut by k_max), with the largest mean over the discs at (`x`, `y`) (any images) in the
-/// periodic `sim_box`; `None` for walls or when no such shell holds a vector.
+/// k* (1/length): the first peak of S(k) ([`first_peak`], physics.md §11) of the
+/// discs at (`x`, `y`) (any images) in the periodic `sim_box`; `None` for walls
+/// or when no shell reaches
+/// [`K_STAR_MIN_SIGMA`](super::structure_factor::K_STAR_MIN_SIGMA)/σ_min.
 pub fn first_peak_k(sim_box: &SimBox, sigma_min: f64, x: &[f64], y: &[f64]) -> Option<f64> {
     if !sim_box.boundary.iter().all(|b| b.is_periodic())
         || x.is_empty()
@@ -60,17 +56,12 @@ pub fn first_peak_k(sim_box: &SimBox, sigma_min: f64, x: &[f64], y: &[f64]) -> O
     }
     let sk = snapshot_sk(sim_box, sigma_min, x, y);
     let (dk, _, _) = shells(sim_box, sigma_min);
-    // The last shell is cut by k_max: few vectors, noisy.
-    (1..sk.sums.len().saturating_sub(1))
-        .filter(|&s| sk.counts[s] > 0 && s as f64 * dk >= K_STAR_MIN_SIGMA / sigma_min)
-        .max_by(|&a, &b| {
-            let (sa, sb) = (
-                sk.sums[a] / sk.counts[a] as f64,
-                sk.sums[b] / sk.counts[b] as f64,
-            );
-            sa.total_cmp(&sb)
-        })
-        .map(|s| s as f64 * dk)
+    // Shells with vectors, short of the last (cut by k_max: few vectors, noisy).
+    let (k, s): (Vec<f64>, Vec<f64>) = (1..sk.sums.len().saturating_sub(1))
+        .filter(|&sh| sk.counts[sh] > 0)
+        .map(|sh| (sh as f64 * dk, sk.sums[sh] / sk.counts[sh] as f64))
+        .unzip();
+    first_peak(&k, &s, sigma_min).map(|p| k[p])
 }
 
 /// τ_α: the first lag where `fs` falls to 1/e, linear in ln τ between the two

@@ -15,6 +15,11 @@ use serde::Serialize;
 use super::nufft::density_modes;
 use super::pair_correlation::{mean_se, BLOCKS};
 
+/// Shells below this many 1/σ_min are not searched for the first peak of S(k):
+/// a liquid's first peak lies near 2π/σ, and the few vectors of a small-k shell
+/// can scatter above a gas's weak peak.
+pub const K_STAR_MIN_SIGMA: f64 = std::f64::consts::PI;
+
 /// Largest |k| in units of 1/σ_min (the first peak of a dense fluid is near 7).
 pub const SK_K_MAX_SIGMA: f64 = 10.0;
 /// Most modes per axis and sign: bounds the FFT grid at 2048² points (64 MiB),
@@ -117,10 +122,13 @@ pub struct StructureFactorReport {
     pub vectors: Vec<u64>,
     /// Snapshots used (one per time block).
     pub snapshots: usize,
-    /// Position of the largest shell average (the first peak), 1/length.
-    pub peak_k: f64,
+    /// Position of the first peak ([`first_peak`]), 1/length; `null` when no
+    /// shell reaches k = π/σ_min (a box too small).
+    pub peak_k: Option<f64>,
     /// Its height.
-    pub peak_s: f64,
+    pub peak_s: Option<f64>,
+    /// The standard error of its height.
+    pub peak_std_error: Option<f64>,
     /// ψ_T = max_k |ρ_k|/N, mean over the snapshots.
     pub translational: f64,
     /// Its standard error.
@@ -160,6 +168,7 @@ impl StructureFactor {
         let last = used.last()?;
         let (dk, nshell, _) = shells(&self.sim_box, self.sigma_min);
         let (mut k, mut s, mut std_error, mut vectors) = (vec![], vec![], vec![], vec![]);
+        let mut uncut = 0;
         for sh in 0..nshell {
             let c = last.counts[sh];
             if c == 0 {
@@ -171,16 +180,20 @@ impl StructureFactor {
             s.push(m);
             std_error.push(se);
             vectors.push(c);
+            if sh + 1 < nshell {
+                uncut = k.len();
+            }
         }
-        let top = (0..s.len()).max_by(|&a, &b| s[a].total_cmp(&s[b]))?;
+        let peak = first_peak(&k[..uncut], &s[..uncut], self.sigma_min);
         let psi_t: Vec<f64> = used
             .iter()
             .map(|u| (u.peak.0 / u.n as f64).sqrt())
             .collect();
         let (translational, translational_std_error) = mean_se(&psi_t);
         Some(StructureFactorReport {
-            peak_k: k[top],
-            peak_s: s[top],
+            peak_k: peak.map(|p| k[p]),
+            peak_s: peak.map(|p| s[p]),
+            peak_std_error: peak.map(|p| std_error[p]),
             k,
             s,
             std_error,
@@ -191,6 +204,17 @@ impl StructureFactor {
             translational_k: [last.peak.1, last.peak.2],
         })
     }
+}
+
+/// The first peak of S(k), the one rule for it: the index of the shell with the
+/// largest S among those at k ≥ [`K_STAR_MIN_SIGMA`]/σ_min (`k` increasing, the
+/// last shell, cut by k_max, already left out); `None` when no shell is that far
+/// out. Below π/σ, S(k) measures long-wavelength density fluctuations (the
+/// compressibility, a granular gas's clusters), not the shell of neighbours.
+pub fn first_peak(k: &[f64], s: &[f64], sigma_min: f64) -> Option<usize> {
+    (0..k.len())
+        .filter(|&i| k[i] >= K_STAR_MIN_SIGMA / sigma_min)
+        .max_by(|&a, &b| s[a].total_cmp(&s[b]))
 }
 
 #[cfg(test)]
@@ -436,12 +460,16 @@ mod tests {
                 r.s[i]
             );
             assert!((r.std_error[i] - (var / 3.0).sqrt()).abs() < 1e-9);
-            if mean > top.1 {
+            // The first peak: k ≥ π/σ_min (σ_min = 1.25), short of the last
+            // shell (16, cut by k_max).
+            let k = sh as f64 * 0.5;
+            if k >= K_STAR_MIN_SIGMA / 1.25 && sh < 16 && mean > top.1 {
                 top = (sh, mean);
             }
         }
-        assert_eq!(r.peak_k, top.0 as f64 * 0.5);
-        assert!((r.peak_s - top.1).abs() < 1e-9);
+        assert!(top.0 >= 6, "{top:?}");
+        assert_eq!(r.peak_k, Some(top.0 as f64 * 0.5));
+        assert!((r.peak_s.unwrap() - top.1).abs() < 1e-9);
         // ψ_T = √(S_max/N) per snapshot, N = 2; its vector from the last (dd).
         let psi: Vec<f64> = exp.iter().map(|e| (e.2 .0 / 2.0).sqrt()).collect();
         let mean = psi.iter().sum::<f64>() / 3.0;

@@ -114,12 +114,15 @@ fn value_text(v: &serde_json::Value) -> String {
 /// replicas, its standard error, the replicas' spread and the runs' own errors
 /// combined. The header and every row are built from this one list, so they
 /// cannot disagree in width.
-const CSV_COLUMNS: [(&str, fn(&carom::sweep::Combined) -> Option<f64>); 4] = [
+const CSV_COLUMNS: [(&str, CsvCell); 4] = [
     ("", |r| Some(r.value)),
     ("_std_error", |r| r.std_error),
     ("_spread", |r| r.spread),
     ("_run_std_error", |r| r.run_std_error),
 ];
+
+/// How a CSV cell reads its number from a quantity's combined result.
+type CsvCell = fn(&carom::sweep::Combined) -> Option<f64>;
 
 /// One CSV field (RFC 4180): quoted when it holds a comma, a quote or a line break.
 fn csv_field(x: &str) -> String {
@@ -149,9 +152,11 @@ fn csv(c: &Collected) -> String {
         row.push(p.runs.len().to_string());
         for q in &qs {
             let r = p.results.get(*q);
-            row.extend(CSV_COLUMNS.iter().map(|(_, get)| {
-                r.and_then(get).map(|x| x.to_string()).unwrap_or_default()
-            }));
+            row.extend(
+                CSV_COLUMNS
+                    .iter()
+                    .map(|(_, get)| r.and_then(get).map(|x| x.to_string()).unwrap_or_default()),
+            );
         }
         s += &line(row);
     }

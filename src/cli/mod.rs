@@ -13,6 +13,7 @@ mod plot;
 mod reading;
 mod render;
 mod repair;
+mod report_text;
 mod run;
 mod sweep;
 

@@ -114,9 +114,13 @@ pub(super) fn draw_sk<DB: DrawingBackend>(
 ) -> DrawResult<DB> {
     let x1 = f.k.last().copied().unwrap_or(1.0);
     let y1 = top(f.s.iter().zip(&f.std_error).map(|(s, e)| s + e.max(0.0)));
+    let peak = match (f.peak_s, f.peak_k) {
+        (Some(s), Some(k)) => format!("first peak {s:.3} at k = {k:.3}"),
+        _ => "no first peak in range".to_string(),
+    };
     let caption = format!(
-        "S(k): first peak {:.3} at k = {:.3}; ψ_T = {:.3} ± {:.3}",
-        f.peak_s, f.peak_k, f.translational, f.translational_std_error
+        "S(k): {peak}; ψ_T = {:.3} ± {:.3}",
+        f.translational, f.translational_std_error
     );
     let axis = (
         "wave number k (1/length)",

@@ -1,0 +1,104 @@
+//! What the report could not compute, and why. A section of the [`Report`] that
+//! is `null` is not a silent gap: each absent quantity that a reader of this kind
+//! of run would look for is listed with the reason, in the JSON
+//! (`not_computed`) and in the text. The reasons are read off the report itself
+//! (box, elasticity, N, window, what the log holds), so they stay true to it.
+
+use serde::Serialize;
+
+use super::bond_order::MIN_BOND_ORDER_DISCS;
+use super::report::Report;
+
+/// One quantity the report lacks.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct NotComputed {
+    /// The report's field (e.g. `structure_factor`).
+    pub quantity: &'static str,
+    /// Why it is absent, in words.
+    pub why: String,
+}
+
+/// The quantities absent from `r` with the reason for each.
+pub fn explain(r: &Report) -> Vec<NotComputed> {
+    let mut out = Vec::new();
+    let mut say = |quantity: &'static str, why: String| out.push(NotComputed { quantity, why });
+    let periodic = r.periodic.iter().all(|&p| p);
+    let snapshots = r.window.snapshot_times.len();
+    let no_snapshots = || "no snapshot after the equilibration time".to_string();
+    let few_discs = r.n < MIN_BOND_ORDER_DISCS;
+    if r.pressure.is_none() {
+        say("pressure", "no temperature in the log".into());
+    }
+    if r.enskog.is_none() {
+        let species = r.species.iter().filter(|s| s.count > 0).count();
+        let why = if !periodic {
+            "needs a periodic box (walls change the collision rate near them)"
+        } else if !r.elastic {
+            "needs elastic collisions"
+        } else if species != 1 {
+            "needs a single species"
+        } else {
+            "needs a pressure"
+        };
+        say("enskog", why.into());
+    }
+    match &r.pair_correlation {
+        None => say("pair_correlation", no_snapshots()),
+        Some(pc) => {
+            if pc.contact_theorem.is_none() && periodic && r.elastic {
+                say(
+                    "contact_theorem",
+                    "needs every contact value (pair_correlation.pairs[].contact_missing says \
+                     why one is absent) and a pressure"
+                        .into(),
+                );
+            }
+        }
+    }
+    let bond_why = || {
+        if few_discs {
+            format!("needs at least {MIN_BOND_ORDER_DISCS} discs (a disc and six neighbours); the run has {}", r.n)
+        } else {
+            "needs at least two snapshots after the equilibration time".into()
+        }
+    };
+    if r.bond_order.is_none() {
+        say("bond_order", bond_why());
+    }
+    if r.orientational_correlation.is_none() {
+        say("orientational_correlation", bond_why());
+    }
+    if r.structure_factor.is_none() {
+        say(
+            "structure_factor",
+            if periodic {
+                no_snapshots()
+            } else {
+                "needs a periodic box (the box's wave vectors)".into()
+            },
+        );
+    }
+    if r.dynamics.is_none() {
+        say(
+            "dynamics",
+            format!("needs two snapshots after the equilibration time; {snapshots} used"),
+        );
+    }
+    if r.transport.is_none() {
+        let c = &r.collision_rate;
+        let why = if !r.elastic {
+            "needs elastic collisions"
+        } else if !periodic {
+            "needs a periodic box"
+        } else if c.counted_from == "thermo" && c.logged_pair_collisions == 0 {
+            "needs the collisions in the log (the run did not log them)"
+        } else if c.collision_stride > 1 {
+            "needs every collision in the log (log.collision_every > 1)"
+        } else {
+            "needs a snapshot after the equilibration time to start the collision replay \
+             from, and time after it"
+        };
+        say("transport", why.into());
+    }
+    out
+}
