@@ -4,7 +4,7 @@
 //! A log axis is ticked at the decades 10^k and labelled "10ᵏ" in superscripts
 //! (DejaVu Sans, the embedded font, has them); at most [`MAX_DECADE_LABELS`]
 //! decades are labelled (every second, third, … when it spans more), and an axis
-//! spanning fewer than two decades is labelled at 1, 2 and 5 × 10^k (or at
+//! holding fewer than three decades is labelled at 1, 2 and 5 × 10^k (or at
 //! every m × 10^k when even those are fewer than two). The light grid is at
 //! m × 10^k, m = 1…9. The legend goes to the corner of the plot holding the
 //! fewest data points, and each key is drawn in its series' style (solid,
@@ -61,7 +61,7 @@ pub(super) fn log_ticks(lo: f64, hi: f64) -> (Vec<f64>, Vec<f64>) {
     };
     let all = with(&[1.0, 2.0, 3.0, 4.0, 5.0, 6.0, 7.0, 8.0, 9.0]);
     let decades: Vec<i32> = (k0..=k1).filter(|&k| inside(&at(1.0, k))).collect();
-    if decades.len() >= 2 {
+    if decades.len() >= 3 {
         let stride = decades.len().div_ceil(MAX_DECADE_LABELS) as i32;
         let major = decades
             .iter()
@@ -139,7 +139,9 @@ pub(super) fn chart<'a, DB: DrawingBackend, X: Axis, Y: Axis>(
         .build_cartesian_2d(x, y)?;
     let log = |v: &f64| pow10_label(*v);
     let mut mesh = chart.configure_mesh();
-    mesh.x_desc(x_desc).y_desc(y_desc).label_style(("sans-serif", 14));
+    mesh.x_desc(x_desc)
+        .y_desc(y_desc)
+        .label_style(("sans-serif", 14));
     if X::LOG {
         mesh.x_label_formatter(&log);
     }
@@ -237,7 +239,10 @@ pub(super) fn dash_key(style: ShapeStyle) -> impl Fn(BackendCoord) -> Dashes {
 }
 
 /// The key of a dot (a marker of radius `r`).
-pub(super) fn dot_key(style: ShapeStyle, r: i32) -> impl Fn(BackendCoord) -> Circle<BackendCoord, i32> {
+pub(super) fn dot_key(
+    style: ShapeStyle,
+    r: i32,
+) -> impl Fn(BackendCoord) -> Circle<BackendCoord, i32> {
     move |(x, y)| Circle::new((x + 10, y), r, style)
 }
 
@@ -251,7 +256,14 @@ pub(super) fn bar_key(style: ShapeStyle) -> impl Fn(BackendCoord) -> PathElement
     move |(x, y)| {
         let c = x + 10;
         PathElement::new(
-            vec![(c - 4, y - 7), (c + 4, y - 7), (c, y - 7), (c, y + 7), (c - 4, y + 7), (c + 4, y + 7)],
+            vec![
+                (c - 4, y - 7),
+                (c + 4, y - 7),
+                (c, y - 7),
+                (c, y + 7),
+                (c - 4, y + 7),
+                (c + 4, y + 7),
+            ],
             style,
         )
     }
@@ -330,6 +342,9 @@ mod tests {
         let (major, _) = log_ticks(1.3e-3, 2.4);
         let labels: Vec<String> = major.iter().map(|&v| pow10_label(v)).collect();
         assert_eq!(labels, ["10⁻²", "10⁻¹", "10⁰"]);
+        let (major, _) = log_ticks(1.0, 40.0);
+        let labels: Vec<String> = major.iter().map(|&v| pow10_label(v)).collect();
+        assert_eq!(labels, ["10⁰", "2×10⁰", "5×10⁰", "10¹", "2×10¹"]);
         let (major, _) = log_ticks(0.15, 0.9);
         let labels: Vec<String> = major.iter().map(|&v| pow10_label(v)).collect();
         assert_eq!(labels, ["2×10⁻¹", "5×10⁻¹"]);

@@ -104,12 +104,8 @@ pub(super) fn draw_msd<DB: DrawingBackend>(
                 ))?);
             }
             if let Some(w) = drawn {
-                w.label(format!(
-                    "fit window [{:.3}, {:.3}]",
-                    f.t_a * ts,
-                    f.t_b * ts
-                ))
-                .legend(dash_key(grey));
+                w.label(format!("fit window [{:.3}, {:.3}]", f.t_a * ts, f.t_b * ts))
+                    .legend(dash_key(grey));
             }
         }
     }

@@ -104,7 +104,10 @@ pub(super) fn draw_bond_order<DB: DrawingBackend>(
     );
     let axis = ("time t (time)", "|Ψ6| (dimensionless)");
     let mut chart = axes(root, &caption, axis, x0..x1, 0.0..y1)?;
-    let mean = [(x0, b.global, b.global_std_error), (x1, b.global, b.global_std_error)];
+    let mean = [
+        (x0, b.global, b.global_std_error),
+        (x1, b.global, b.global_std_error),
+    ];
     band(
         &mut chart,
         mean.into_iter(),

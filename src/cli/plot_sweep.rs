@@ -153,10 +153,7 @@ pub(super) fn draw_eos<DB: DrawingBackend>(
         .map(|p| p.1.abs())
         .fold(3.0, f64::max)
         * 1.15;
-    let axis = (
-        "packing fraction η",
-        "(Z − Z_ref)/SE",
-    );
+    let axis = ("packing fraction η", "(Z − Z_ref)/SE");
     let mut chart = axes(
         &lower,
         "residual against Kolafa–Rottner (η ≤ 0.6) and Li et al. (η > 0.6); SE² = SE² + SE_ref²",
@@ -168,8 +165,7 @@ pub(super) fn draw_eos<DB: DrawingBackend>(
     chart.draw_series(LineSeries::new([(x0, 0.0), (x1, 0.0)], grey))?;
     let dashed = BLACK.mix(0.5).stroke_width(1);
     for v in [-2.0, 2.0] {
-        chart
-            .draw_series(DashedLineSeries::new([(x0, v), (x1, v)], 6, 4, dashed))?;
+        chart.draw_series(DashedLineSeries::new([(x0, v), (x1, v)], 6, 4, dashed))?;
     }
     for (k, r) in residuals.iter().enumerate() {
         let colour = Palette99::pick(k).to_rgba();

@@ -7,8 +7,8 @@
 //! and n(y) per species on a log axis with the fitted barometric law
 //! n(a) e^{−β(y − a)} (`density_profile`). Axes are in the run's units.
 
-use carom::analysis::{GravityReport, HaffReport, HistogramReport, PressureReport, SpeciesMb};
 use carom::analysis::Report;
+use carom::analysis::{GravityReport, HaffReport, HistogramReport, PressureReport, SpeciesMb};
 use plotters::coord::Shift;
 use plotters::prelude::*;
 
@@ -29,10 +29,7 @@ fn histogram_series<DB: DrawingBackend>(
         .windows(2)
         .zip(&h.density)
         .map(move |(e, &d)| Rectangle::new([(e[0], 0.0), (e[1], d)], fill.filled()));
-    chart
-        .draw_series(bars)?
-        .label(label)
-        .legend(fill_key(fill));
+    chart.draw_series(bars)?.label(label).legend(fill_key(fill));
     Ok(())
 }
 
