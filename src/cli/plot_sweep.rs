@@ -156,7 +156,7 @@ pub(super) fn draw_eos<DB: DrawingBackend>(
     let axis = ("packing fraction η", "(Z − Z_ref)/SE");
     let mut chart = axes(
         &lower,
-        "residual against Kolafa–Rottner (η ≤ 0.6) and Li et al. (η > 0.6); SE² = SE² + SE_ref²",
+        "residual (Z − Z_ref)/√(SE² + SE_ref²), Z_ref: Kolafa–Rottner or Li et al.",
         axis,
         x0..x1,
         -big..big,

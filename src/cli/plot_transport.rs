@@ -351,6 +351,8 @@ pub(super) fn draw_helfand<DB: DrawingBackend>(
             .label(format!("Enskog {symbol}_E = {e:.4}"))
             .legend(dash_key(style));
     }
-    let data: Vec<(f64, f64)> = helfand.iter().chain(&gk).copied().collect();
+    // Enskog's line is data too: the legend must not hide it.
+    let line = (0..=20).filter_map(|k| enskog.map(|e| (x0 * (x1 / x0).powf(k as f64 / 20.0), e)));
+    let data: Vec<(f64, f64)> = helfand.iter().chain(&gk).copied().chain(line).collect();
     legend(&mut chart, &data)
 }
