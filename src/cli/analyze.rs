@@ -60,7 +60,10 @@ pub fn analyze(args: AnalyzeArgs) -> Result<ExitCode, CliError> {
     let (report, complete) = read_report(&args)?;
     if let Some(dir) = &args.plot {
         let written = super::plot::write_all(&report, dir)?;
-        eprintln!("wrote {} figures to {}", written, dir.display());
+        eprintln!("wrote {} figures to {}", written.figures, dir.display());
+        for (name, why) in &written.skipped {
+            eprintln!("skipped {name}: {why}");
+        }
     }
     if args.json {
         let mut v = serde_json::to_value(&report).expect("a Report serialises");
