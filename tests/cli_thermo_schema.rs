@@ -11,14 +11,11 @@ mod cli_common;
 use std::path::Path;
 use std::process::Command;
 
-use cli_common::{carom, ok, scratch};
-
-#[path = "readers_common/mod.rs"]
-mod readers_common;
+use cli_common::{carom, node_with, ok, scratch};
 
 /// What the node checker says of `log`: (schemas, messages on `/thermo`).
 fn foxglove_check(dir: &Path, log: &str) -> Option<(u64, u64)> {
-    let node = readers_common::node_with("@mcap/core")?;
+    let node = node_with("@mcap/core")?;
     let out = Command::new("node")
         .arg(node.join("jsonschema.mjs"))
         .arg(dir.join(log))

@@ -139,6 +139,22 @@ pub struct Written {
 }
 
 impl Written {
+    /// The figures of report sections that were not computed, with the report's
+    /// reason (`not_computed`), so that a missing figure is never silent.
+    fn not_computed(&mut self, report: &Report) {
+        const FIGURES: [(&str, &str); 4] = [
+            ("pair_correlation", "pair_correlation"),
+            ("bond_order", "bond_order"),
+            ("orientational_correlation", "g6"),
+            ("structure_factor", "structure_factor"),
+        ];
+        for n in &report.not_computed {
+            if let Some((_, figure)) = FIGURES.iter().find(|(q, _)| *q == n.quantity) {
+                self.skipped.push((figure, n.why.clone()));
+            }
+        }
+    }
+
     /// Draw the figure `name` unless `why_not` gives a reason not to.
     fn one(
         &mut self,
@@ -167,6 +183,7 @@ pub fn write_all(report: &Report, dir: &Path) -> Result<Written, CliError> {
     carom::render::register_font();
     let u = Units::of(report);
     let mut w = Written::default();
+    w.not_computed(report);
     for m in &report.maxwell_boltzmann {
         let name = format!("speed_species{}", m.species);
         both!(dir, &name, |root| thermo::draw_speed(root, m));

@@ -72,18 +72,21 @@ pub(super) fn draw_g<DB: DrawingBackend>(
         data.extend(pts.iter().map(|p| (p.0, p.1)));
         if let Some(c) = &p.contact {
             let at = (p.sigma * s, c.value);
-            bars(
-                &mut chart,
-                std::iter::once((at.0, at.1, c.std_error)),
-                BLACK.stroke_width(2),
-                None,
-            )?;
+            if let Some(se) = c.std_error {
+                bars(
+                    &mut chart,
+                    std::iter::once((at.0, at.1, se)),
+                    BLACK.stroke_width(2),
+                    None,
+                )?;
+            }
+            let value = match c.std_error {
+                Some(se) => format!("{:.4} ± {se:.4}", c.value),
+                None => format!("{:.4} (no error estimate)", c.value),
+            };
             chart
                 .draw_series(std::iter::once(Circle::new(at, 5, colour.filled())))?
-                .label(format!(
-                    "contact g(σ⁺) = {:.4} ± {:.4} ({}–{})",
-                    c.value, c.std_error, p.a, p.b
-                ))
+                .label(format!("contact g(σ⁺) = {value} ({}–{})", p.a, p.b))
                 .legend(super::axes::dot_key(colour.filled(), 5));
             data.push(at);
         }

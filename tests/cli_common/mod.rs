@@ -9,8 +9,8 @@ use serde_json::Value;
 
 #[path = "../readers_common/mod.rs"]
 mod readers_common;
-#[allow(unused_imports)] // only the tests that run Python use it
-pub use readers_common::python_with;
+#[allow(unused_imports)] // only the tests that run Python or node use them
+pub use readers_common::{node_with, python_with};
 
 /// The `carom` binary under test.
 pub const BIN: &str = env!("CARGO_BIN_EXE_carom");
