@@ -118,7 +118,10 @@ fn an_elastic_periodic_run_shows_its_transport_in_json_text_and_figures() {
         assert!(text.contains(&line), "{line} missing from\n{text}");
     }
     // One quantity per line, ≤ 100 columns, in both sections.
-    let section = text.split("dynamics (snapshot MSD").nth(1).expect("dynamics");
+    let section = text
+        .split("dynamics (snapshot MSD")
+        .nth(1)
+        .expect("dynamics");
     for line in section.lines() {
         assert!(line.chars().count() <= 100, "too long: {line}");
     }
@@ -135,7 +138,10 @@ fn an_elastic_periodic_run_shows_its_transport_in_json_text_and_figures() {
         ("  η    ", &t["viscosity"]["reliability"]),
         ("  λ    ", &t["thermal_conductivity"]["reliability"]),
     ] {
-        let transport = text.split("transport (exact collision replay").nth(1).unwrap();
+        let transport = text
+            .split("transport (exact collision replay")
+            .nth(1)
+            .unwrap();
         let line = transport.lines().find(|l| l.starts_with(name)).expect(name);
         let reliable = rel["reliable"].as_bool().unwrap();
         assert_eq!(line.ends_with("UNRELIABLE"), !reliable, "{line} {rel}");
@@ -169,18 +175,40 @@ fn a_short_window_in_a_dilute_gas_is_flagged_unreliable() {
         &["analyze", "d.mcap", "--quiet", "--json", "--no-structure"],
     ));
     let t = &r["transport"];
-    assert!(finite(&t["window_collision_times"][1]) < 10.0, "{}", t["window"]);
+    assert!(
+        finite(&t["window_collision_times"][1]) < 10.0,
+        "{}",
+        t["window"]
+    );
     let d = &t["species"][0]["diffusion_reliability"];
     assert_eq!(d["reliable"], false, "{d}");
-    let why: Vec<&str> = d["why"].as_array().unwrap().iter().filter_map(|w| w.as_str()).collect();
-    assert!(why.iter().any(|w| w.contains("shorter than the documented")), "{d}");
+    let why: Vec<&str> = d["why"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .filter_map(|w| w.as_str())
+        .collect();
+    assert!(
+        why.iter()
+            .any(|w| w.contains("shorter than the documented")),
+        "{d}"
+    );
     assert!(why.iter().any(|w| w.contains("not levelled off")), "{d}");
     for q in ["viscosity", "thermal_conductivity"] {
         assert_eq!(t[q]["reliability"]["reliable"], false, "{q}");
     }
-    assert_eq!(t["species"][0]["tail_amplitude_reliability"]["reliable"], false);
-    let text = ok(&carom(&dir, &["analyze", "d.mcap", "--quiet", "--no-structure"]));
-    assert!(text.contains("why: running value has not levelled off"), "{text}");
+    assert_eq!(
+        t["species"][0]["tail_amplitude_reliability"]["reliable"],
+        false
+    );
+    let text = ok(&carom(
+        &dir,
+        &["analyze", "d.mcap", "--quiet", "--no-structure"],
+    ));
+    assert!(
+        text.contains("why: running value has not levelled off"),
+        "{text}"
+    );
     assert!(text.matches("UNRELIABLE").count() >= 4, "{text}");
 }
 

@@ -20,13 +20,21 @@ use serde_json::Value;
 fn one_seed(seed: u64) -> [(f64, f64); 3] {
     let dir = scratch(&format!("seeds-{seed}"));
     let s = format!("seed={seed}");
-    ok(&carom(&dir, &["run", "--quiet", "--out", "r.mcap", "--set", &s]));
+    ok(&carom(
+        &dir,
+        &["run", "--quiet", "--out", "r.mcap", "--set", &s],
+    ));
     let r = json_of(&carom(
         &dir,
         &["analyze", "r.mcap", "--quiet", "--json", "--no-structure"],
     ));
     let t = &r["transport"];
-    let pair = |e: &Value| (e["value"].as_f64().unwrap(), e["std_error"].as_f64().unwrap());
+    let pair = |e: &Value| {
+        (
+            e["value"].as_f64().unwrap(),
+            e["std_error"].as_f64().unwrap(),
+        )
+    };
     [
         pair(&t["species"][0]["diffusion_msd"]),
         pair(&t["viscosity"]["value_helfand"]),

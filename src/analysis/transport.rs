@@ -98,8 +98,8 @@ impl Transport {
         let dt = t_c / SAMPLES_PER_COLLISION_TIME;
         let tau_max = (1000.0 * t_c).min(segment / 2.0);
         // Helfand lags reach (p − 1)·2^(levels−1)·Δ ≥ τ_max, as the VACF's do.
-        let levels = ((tau_max / ((RING - 1) as f64 * dt)).log2().ceil().max(0.0) as usize + 1)
-            .min(48);
+        let levels =
+            ((tau_max / ((RING - 1) as f64 * dt)).log2().ceil().max(0.0) as usize + 1).min(48);
         let w = mass.iter().zip(&v).map(|(&m, &v)| (m, v - v_cm));
         let helfand = Helfand::new(t, w, dt, levels, segments);
         let origins = (ORIGIN_DISCS / n)

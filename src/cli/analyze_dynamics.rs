@@ -26,7 +26,11 @@ pub(super) fn dynamics_text(r: &Report, s: &mut String) {
         d.origins,
         d.origins_per_level,
         d.levels,
-        if d.origins_capped { ", capped: long lags may be missing" } else { "" },
+        if d.origins_capped {
+            ", capped: long lags may be missing"
+        } else {
+            ""
+        },
     );
     let _ = writeln!(
         s,
@@ -38,7 +42,11 @@ pub(super) fn dynamics_text(r: &Report, s: &mut String) {
     }
     let several = d.species.len() > 1;
     for sp in &d.species {
-        let tag = if several { format!(" species {}", sp.species) } else { String::new() };
+        let tag = if several {
+            format!(" {}", sp.species)
+        } else {
+            String::new()
+        };
         if several {
             let _ = writeln!(s, "  species {} ({} discs)", sp.species, sp.count);
         }
@@ -49,7 +57,12 @@ pub(super) fn dynamics_text(r: &Report, s: &mut String) {
                 } else {
                     "headline"
                 };
-                let _ = writeln!(s, "  {:<18}{}  ({role})", format!("D{tag}"), pm(f.d, f.std_error));
+                let _ = writeln!(
+                    s,
+                    "  {:<18}{}  ({role})",
+                    format!("D{tag}"),
+                    pm(f.d, f.std_error)
+                );
                 let tc = d
                     .collision_time
                     .map(|tc| format!(" = [{:.1}, {:.1}] t_c", f.t_a / tc, f.t_b / tc))
@@ -71,7 +84,11 @@ pub(super) fn dynamics_text(r: &Report, s: &mut String) {
                 );
             }
             None => {
-                let _ = writeln!(s, "  {:<18}too few lags in the fit window", format!("D{tag}"));
+                let _ = writeln!(
+                    s,
+                    "  {:<18}too few lags in the fit window",
+                    format!("D{tag}")
+                );
             }
         }
         let last = sp.lag.len().saturating_sub(1);
@@ -119,6 +136,9 @@ pub(super) fn dynamics_text(r: &Report, s: &mut String) {
             "  warning: {} snapshot gaps too long to unwrap with certainty (log without",
             d.ambiguous_gaps
         );
-        let _ = writeln!(s, "  images): MSD, D and F_s over them may be off by box lengths");
+        let _ = writeln!(
+            s,
+            "  images): MSD, D and F_s over them may be off by box lengths"
+        );
     }
 }

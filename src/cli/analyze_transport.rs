@@ -125,7 +125,7 @@ pub(super) fn transport_text(t: &TransportReport, s: &mut String) {
     let several = t.species.len() > 1;
     for p in &t.species {
         let tag = if several {
-            format!(" species {}", p.species)
+            format!(" {}", p.species)
         } else {
             String::new()
         };
@@ -136,7 +136,12 @@ pub(super) fn transport_text(t: &TransportReport, s: &mut String) {
             ens.map(|e| e.diffusion),
             &p.diffusion_reliability,
         );
-        check(s, &format!("D{tag} VACF ∫"), &p.diffusion_vacf, &p.difference);
+        check(
+            s,
+            &format!("D{tag} VACF ∫"),
+            &p.diffusion_vacf,
+            &p.difference,
+        );
     }
     coefficient(s, "η", &t.viscosity, ens.map(|e| e.viscosity));
     match &t.thermal_conductivity {
@@ -156,7 +161,12 @@ pub(super) fn transport_text(t: &TransportReport, s: &mut String) {
                 None => String::new(),
             };
             let (v, why) = verdict(&p.tail_amplitude_reliability);
-            let name = format!("VACF tail A{}", if several { format!(" {}", p.species) } else { String::new() });
+            let tag = if several {
+                format!(" {}", p.species)
+            } else {
+                String::new()
+            };
+            let name = format!("VACF tail A{tag}");
             let _ = writeln!(s, "  {name:<18}{}{theory}{v}", est(m));
             s.push_str(&why);
         }
