@@ -108,14 +108,108 @@ fn an_elastic_periodic_run_shows_its_transport_in_json_text_and_figures() {
     let text = ok(&carom(&dir, &["analyze", "t.mcap", "--quiet"]));
     let n = t["snapshots_checked"].as_u64().unwrap();
     for line in [
-        "transport  N = 200, t_c = ".to_string(),
-        format!("replayed velocities matched all {n} snapshots"),
-        "shear viscosity η: Einstein–Helfand ".to_string(),
-        "thermal conductivity λ: Einstein–Helfand ".to_string(),
+        "transport (exact collision replay".to_string(),
+        "  N                 200 discs".to_string(),
+        format!("velocities matched all {n} snapshots"),
+        "  η Green–Kubo      ".to_string(),
+        "  λ Green–Kubo      ".to_string(),
         "grow like ln τ".to_string(),
     ] {
         assert!(text.contains(&line), "{line} missing from\n{text}");
     }
+    // One quantity per line, ≤ 100 columns, in both sections.
+    let section = text
+        .split("dynamics (snapshot MSD")
+        .nth(1)
+        .expect("dynamics");
+    for line in section.lines() {
+        assert!(line.chars().count() <= 100, "too long: {line}");
+    }
+    // The window in t_c, beside the documented one; each unreliable value says
+    // why on the next line, and the JSON says the same.
+    let w = &t["window_collision_times"];
+    assert!(text.contains(&format!(
+        "= [{:.1}, {:.1}] t_c  (documented [10, 100] t_c)",
+        finite(&w[0]),
+        finite(&w[1])
+    )));
+    for (name, rel) in [
+        ("  D    ", &t["species"][0]["diffusion_reliability"]),
+        ("  η    ", &t["viscosity"]["reliability"]),
+        ("  λ    ", &t["thermal_conductivity"]["reliability"]),
+    ] {
+        let transport = text
+            .split("transport (exact collision replay")
+            .nth(1)
+            .unwrap();
+        let line = transport.lines().find(|l| l.starts_with(name)).expect(name);
+        let reliable = rel["reliable"].as_bool().unwrap();
+        assert_eq!(line.ends_with("UNRELIABLE"), !reliable, "{line} {rel}");
+        assert_eq!(line.ends_with("  reliable"), reliable, "{line} {rel}");
+        assert_eq!(rel["why"].as_array().unwrap().is_empty(), reliable, "{rel}");
+    }
+}
+
+/// The dilute gas (data/dilute-gas.json, φ = 0.05, t_c ≈ 4) run for 100 time
+/// units: the window is a few t_c, far short of [10, 100] t_c, and the running
+/// D(τ) still climbs over it (the VACF has not decayed at τ ≈ t_c): D is flagged
+/// for both reasons, η and λ at least for the window, in the JSON and the text.
+#[test]
+fn a_short_window_in_a_dilute_gas_is_flagged_unreliable() {
+    let dir = scratch("dilute-flags");
+    let cfg = Path::new(env!("CARGO_MANIFEST_DIR")).join("data/dilute-gas.json");
+    ok(&carom(
+        &dir,
+        &[
+            "run",
+            "--quiet",
+            cfg.to_str().unwrap(),
+            "--out",
+            "d.mcap",
+            "--set",
+            "stop.duration=100",
+        ],
+    ));
+    let r = json_of(&carom(
+        &dir,
+        &["analyze", "d.mcap", "--quiet", "--json", "--no-structure"],
+    ));
+    let t = &r["transport"];
+    assert!(
+        finite(&t["window_collision_times"][1]) < 10.0,
+        "{}",
+        t["window"]
+    );
+    let d = &t["species"][0]["diffusion_reliability"];
+    assert_eq!(d["reliable"], false, "{d}");
+    let why: Vec<&str> = d["why"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .filter_map(|w| w.as_str())
+        .collect();
+    assert!(
+        why.iter()
+            .any(|w| w.contains("shorter than the documented")),
+        "{d}"
+    );
+    assert!(why.iter().any(|w| w.contains("not levelled off")), "{d}");
+    for q in ["viscosity", "thermal_conductivity"] {
+        assert_eq!(t[q]["reliability"]["reliable"], false, "{q}");
+    }
+    assert_eq!(
+        t["species"][0]["tail_amplitude_reliability"]["reliable"],
+        false
+    );
+    let text = ok(&carom(
+        &dir,
+        &["analyze", "d.mcap", "--quiet", "--no-structure"],
+    ));
+    assert!(
+        text.contains("why: running value has not levelled off"),
+        "{text}"
+    );
+    assert!(text.matches("UNRELIABLE").count() >= 4, "{text}");
 }
 
 /// A channel (walls in y) has no transport report and none of its figures.

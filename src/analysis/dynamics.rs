@@ -185,6 +185,7 @@ impl Dynamics {
             origins_capped: self.capped,
             max_stored: self.max_stored,
             segments: SEGMENTS,
+            collision_time: t_a.map(|t| t / D_WINDOW_COLLISIONS),
             k_star,
             ambiguous_gaps: self.ambiguous_gaps,
         })

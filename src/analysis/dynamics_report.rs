@@ -27,6 +27,9 @@ pub struct DynamicsReport {
     pub origins_capped: bool,
     /// Time segments the errors come from.
     pub segments: usize,
+    /// The mean collision time t_c = 1/ω (time) the D window is set from; `null`
+    /// without a collision rate.
+    pub collision_time: Option<f64>,
     /// k* (1/length), the first peak of S(k) of the first origin; `null` unless
     /// the box is periodic.
     pub k_star: Option<f64>,
@@ -75,8 +78,14 @@ pub struct SpeciesDynamics {
 pub struct DiffusionFit {
     /// D (length²/time).
     pub d: f64,
-    /// Its standard error, from the same fit done per time segment.
+    /// Its standard error: the statistical one and the fit's spread in
+    /// quadrature, √(statistical_std_error² + (d − d_unweighted)²) (physics.md §13).
     pub std_error: f64,
+    /// The statistical part, from the same fit done per time segment.
+    pub statistical_std_error: f64,
+    /// D from the unweighted fit over the same window (a consistency check; its
+    /// difference from `d` is part of `std_error`).
+    pub d_unweighted: f64,
     /// Intercept c (length²).
     pub intercept: f64,
     /// Window start t_a (time).

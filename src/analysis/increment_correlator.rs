@@ -1,8 +1,10 @@
 //! Fixed-memory statistics of a scalar series G sampled every Δ (the Helfand
-//! moments of physics.md §14): the variance of its increments
-//! ⟨[G(t+τ) − G(t)]²⟩ − ⟨G(t+τ) − G(t)⟩² (the Einstein–Helfand route), and the
-//! autocorrelation ⟨J(t) J(t+τ)⟩ − ⟨J⟩² of its flux J = ΔG/Δt over one sample
-//! interval (the Green–Kubo route), at lags τ = m·2^ℓ·Δ.
+//! moments of physics.md §14): the mean square of its increments
+//! ⟨[G(t+τ) − G(t)]²⟩ (the Einstein–Helfand route), and the autocorrelation
+//! ⟨J(t) J(t+τ)⟩ of its flux J = ΔG/Δt over one sample interval (the Green–Kubo
+//! route), at lags τ = m·2^ℓ·Δ. The fluxes have zero mean by symmetry, so no mean
+//! is subtracted: a mean taken over a time segment would bias each segment's
+//! value low by about τ/(segment length) (physics.md §14.2, Errors).
 //!
 //! Level ℓ holds every 2^ℓ-th sample in a ring of the last p + 1; a new value
 //! pairs with the values m = 1..p−1 back on level 0 and m = p/2..p−1 back on
@@ -31,20 +33,15 @@ pub(super) struct LagSums {
 }
 
 impl LagSums {
-    /// Var[ΔG] at this lag, or `None` without data.
-    pub(super) fn increment_variance(&self) -> Option<f64> {
-        (self.count > 0.0).then(|| {
-            let mean = self.inc / self.count;
-            self.inc2 / self.count - mean * mean
-        })
+    /// ⟨ΔG²⟩ at this lag (Var[ΔG], as ⟨ΔG⟩ = 0), or `None` without data.
+    pub(super) fn increment_mean_square(&self) -> Option<f64> {
+        (self.count > 0.0).then(|| self.inc2 / self.count)
     }
 
-    /// Cov[J(t), J(t+τ)] at this lag, or `None` without data.
-    pub(super) fn flux_covariance(&self) -> Option<f64> {
-        (self.flux_count > 0.0).then(|| {
-            let c = self.flux_count;
-            self.flux2 / c - (self.flux_now / c) * (self.flux_then / c)
-        })
+    /// ⟨J(t) J(t+τ)⟩ at this lag (the covariance, as ⟨J⟩ = 0), or `None`
+    /// without data.
+    pub(super) fn flux_product(&self) -> Option<f64> {
+        (self.flux_count > 0.0).then(|| self.flux2 / self.flux_count)
     }
 }
 
@@ -219,8 +216,8 @@ mod tests {
     }
 
     /// A series whose flux alternates +1, −1 (G = 0, 1, 0, 1, …, Δ = 1): the flux
-    /// covariance at lag m is (−1)^m, its variance 1; the increment over an even
-    /// lag is 0, over an odd one ±1 (variance 1 − mean²).
+    /// product at lag m is (−1)^m, 1 at m = 0; the increment over an even lag is
+    /// 0, over an odd one ±1 (mean square 1).
     #[test]
     fn flux_of_an_alternating_series() {
         let mut c = IncrementCorrelator::new(1.0, 1, 1);
@@ -229,13 +226,13 @@ mod tests {
         }
         for lag in c.lags() {
             let t = c.total(lag);
-            let cov = t.flux_covariance().unwrap();
+            let cov = t.flux_product().unwrap();
             let want = if lag.m % 2 == 0 { 1.0 } else { -1.0 };
-            assert!((cov - want).abs() < 1e-2, "lag {}: {cov}", lag.m);
+            assert!((cov - want).abs() < 1e-12, "lag {}: {cov}", lag.m);
             if lag.m > 0 {
-                let var = t.increment_variance().unwrap();
+                let var = t.increment_mean_square().unwrap();
                 let want = if lag.m % 2 == 0 { 0.0 } else { 1.0 };
-                assert!((var - want).abs() < 1e-2, "lag {}: {var}", lag.m);
+                assert!((var - want).abs() < 1e-12, "lag {}: {var}", lag.m);
             }
         }
     }

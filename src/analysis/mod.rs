@@ -51,6 +51,7 @@ mod temperature;
 mod test_lattice;
 mod thermostat;
 mod transport;
+mod transport_reliability;
 mod transport_report;
 mod transport_theory;
 mod unwrap;
@@ -95,9 +96,10 @@ pub use structure_factor::{
 pub use thermostat::{
     driven_a2, driven_steady_temperature, enskog_rate_coefficient, ThermostatReport,
 };
-pub use transport::{TRANSPORT_SEGMENTS, TRANSPORT_WINDOW};
+pub use transport::TRANSPORT_SEGMENTS;
+pub use transport_reliability::{LEVELLING_SLOPE, TRANSPORT_WINDOW};
 pub use transport_report::{
-    EnskogTransport, Estimate, HelfandReport, SpeciesTransport, TransportReport,
+    EnskogTransport, Estimate, HelfandReport, Reliability, SpeciesTransport, TransportReport,
 };
 pub use unwrap::Unwrapper;
 pub use velocity::{MAX_SNAPSHOT_CORRELATION, MB_FAMILY_ALPHA, MB_TESTS_PER_SPECIES};

@@ -6,7 +6,9 @@
 //! unknown) to half the longest lag with data from ≥ 3 time segments. The lags
 //! share origins, so the fit's own error is meaningless; the error of D is the
 //! spread of the same fit done segment by segment, widened for the overlap of
-//! displacements longer than a segment ([`overlap_factor`]). In 2D the velocity
+//! displacements longer than a segment ([`overlap_factor`]); the choice of fit is
+//! part of the error: the unweighted fit over the same window is done too, and
+//! SE² = SE_segments² + (D_weighted − D_unweighted)². In 2D the velocity
 //! correlation decays like 1/τ and D grows like ln τ: D is a function of the
 //! window and of N, and the report states both.
 
@@ -44,8 +46,9 @@ pub fn weighted_line(x: &[f64], y: &[f64], w: &[f64]) -> Option<(f64, f64)> {
 /// and `per_segment[s][i]` the MSD of segment s at lag i (NaN without data).
 /// `t_a`: the window's start when known (10 collision times); `w`: the segments'
 /// width (time). The error is the spread of the segments' D widened by
-/// [`overlap_factor`] at t_b. `None` with fewer than two lags in the window or no
-/// line through them.
+/// [`overlap_factor`] at t_b, with the difference from the unweighted fit added
+/// in quadrature. `None` with fewer than two lags in the window or no line
+/// through them.
 pub fn fit_diffusion(
     lag: &[f64],
     msd: &[f64],
@@ -76,6 +79,9 @@ pub fn fit_diffusion(
         weighted_line(&x, &yv, &w)
     };
     let (slope, intercept) = fit(&window, &|i| msd[i])?;
+    let x: Vec<f64> = window.iter().map(|&i| lag[i]).collect();
+    let y: Vec<f64> = window.iter().map(|&i| msd[i]).collect();
+    let unweighted = weighted_line(&x, &y, &vec![1.0; x.len()]).map_or(f64::NAN, |l| l.0 / 4.0);
     let per: Vec<f64> = per_segment
         .iter()
         .filter_map(|s| {
@@ -87,14 +93,17 @@ pub fn fit_diffusion(
             fit(&pts, &|i| s[i]).map(|(b, _)| b / 4.0)
         })
         .collect();
-    let std_error = if per.len() >= 2 {
+    let statistical = if per.len() >= 2 {
         mean_se(&per).1 * overlap_factor(t_b, w)
     } else {
         f64::NAN
     };
+    let fit_spread = (slope / 4.0 - unweighted).abs();
     Some(DiffusionFit {
         d: slope / 4.0,
-        std_error,
+        std_error: statistical.hypot(fit_spread),
+        statistical_std_error: statistical,
+        d_unweighted: unweighted,
         intercept,
         t_a,
         t_b,
@@ -145,6 +154,7 @@ mod tests {
         assert!((f.d - 0.25).abs() < 1e-12 && (f.intercept - 1.0).abs() < 1e-12);
         assert_eq!((f.t_a, f.t_b, f.points, f.segments), (1.0, 5.0, 5, 10));
         assert!(f.std_error.abs() < 1e-12);
+        assert!((f.d_unweighted - 0.25).abs() < 1e-12);
         let f = fit_diffusion(&lag, &msd, &se, &per, Some(2.5), 1.0).unwrap();
         assert_eq!(f.points, 3);
         assert!(fit_diffusion(&lag, &msd, &se, &per, Some(4.5), 1.0).is_none());

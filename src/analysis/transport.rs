@@ -5,7 +5,8 @@
 //! snapshots check the replay bit for bit. [`Transport::report`] turns the sums
 //! into D (from the MSD and from the VACF integral), η and λ (Einstein–Helfand
 //! and Green–Kubo) over one lag window, each with an error from the spread over
-//! time segments, next to Enskog's values and the mode-coupling tail.
+//! time segments, next to Enskog's values and the mode-coupling tail, each
+//! with its verdict (transport_reliability.rs).
 //!
 //! Only elastic, fully periodic runs that log every collision qualify; the lags
 //! are set from the mean collision time t_c: Helfand samples every t_c/20, the
@@ -15,11 +16,9 @@ use carom_core::DVec2;
 
 use super::helfand::Helfand;
 use super::increment_correlator::RING;
-use super::pair_correlation::mean_se;
 use super::sonine::SONINE_FACTORS;
-use super::transport_report::{
-    EnskogTransport, Estimate, HelfandReport, SpeciesTransport, TransportReport,
-};
+use super::transport_reliability::{estimate, judge, Halves, TRANSPORT_WINDOW};
+use super::transport_report::{EnskogTransport, HelfandReport, SpeciesTransport, TransportReport};
 use super::transport_theory::{chi_from_z, enskog, tail_amplitude};
 use super::vacf_exact::{ExactVacf, Replayed, VacfSums};
 use super::RunDescription;
@@ -35,8 +34,6 @@ const ORIGIN_DISCS: usize = 131_072;
 const SAMPLES_PER_COLLISION_TIME: f64 = 20.0;
 /// Bytes of VACF origins at most (each keeps v and X of every disc: 32 bytes).
 const ORIGIN_BYTES: usize = 1 << 29;
-/// The lag window, in collision times.
-pub const TRANSPORT_WINDOW: [f64; 2] = [10.0, 100.0];
 
 /// The replayed run and its accumulators.
 #[derive(Debug, Clone)]
@@ -99,11 +96,12 @@ impl Transport {
         let segment = (run.t_end - t) / TRANSPORT_SEGMENTS as f64;
         let segments = (TRANSPORT_SEGMENTS, segment);
         let dt = t_c / SAMPLES_PER_COLLISION_TIME;
+        let tau_max = (1000.0 * t_c).min(segment / 2.0);
+        // Helfand lags reach (p − 1)·2^(levels−1)·Δ ≥ τ_max, as the VACF's do.
         let levels =
-            ((segment / 4.0 / (RING as f64 * dt)).log2().ceil().max(0.0) as usize + 1).min(48);
+            ((tau_max / ((RING - 1) as f64 * dt)).log2().ceil().max(0.0) as usize + 1).min(48);
         let w = mass.iter().zip(&v).map(|(&m, &v)| (m, v - v_cm));
         let helfand = Helfand::new(t, w, dt, levels, segments);
-        let tau_max = (1000.0 * t_c).min(segment / 2.0);
         let origins = (ORIGIN_DISCS / n)
             .clamp(2, ORIGINS)
             .min(ORIGIN_BYTES / (32 * n))
@@ -173,6 +171,12 @@ impl Transport {
         self.pairs += 1;
     }
 
+    /// The mean time between a disc's pair collisions, t_c = N T/(2 N_pair).
+    fn collision_time(&self) -> f64 {
+        let elapsed = self.t_now - self.t_start;
+        self.discs.len() as f64 * elapsed / (2.0 * self.pairs as f64)
+    }
+
     /// Pair collisions replayed.
     pub(super) fn pairs(&self) -> u64 {
         self.pairs
@@ -208,10 +212,11 @@ impl Transport {
         if self.pairs == 0 || elapsed <= 0.0 {
             return None;
         }
-        let t_c = n as f64 * elapsed / (2.0 * self.pairs as f64);
+        let t_c = self.collision_time();
         let tau_b_max = self.vacf.lags.last().copied().unwrap_or(0.0);
         let tau_b = (TRANSPORT_WINDOW[1] * t_c).min(tau_b_max);
         let tau_a = (TRANSPORT_WINDOW[0] * t_c).min(tau_b / 10.0);
+        let window_tc = [tau_a / t_c, tau_b / t_c];
         let viscosity = self.helfand_report("shear viscosity", [0, 1], 1, (tau_a, tau_b))?;
         let counts = species_counts(&self.species);
         let one_species = counts.iter().filter(|&&c| c > 0).count() == 1;
@@ -225,7 +230,7 @@ impl Transport {
         let species = (0..counts.len())
             .filter(|&s| counts[s] > 0)
             .map(|s| {
-                let mut r = self.species_report(s, (tau_a, tau_b));
+                let mut r = self.species_report(s, (tau_a, tau_b), t_c);
                 if one_species {
                     let (d, eta) = (r.diffusion_vacf, viscosity.value_helfand);
                     let a = tail_amplitude(density, m, d.value, eta.value);
@@ -258,6 +263,8 @@ impl Transport {
             collision_time: t_c,
             kt: self.kt,
             window: [tau_a, tau_b],
+            window_collision_times: window_tc,
+            documented_window_collision_times: TRANSPORT_WINDOW,
             segments: TRANSPORT_SEGMENTS,
             snapshots_checked: self.checked,
             snapshots_mismatched: self.mismatched,
@@ -291,8 +298,8 @@ impl Transport {
                         Some(p) => corr[k].sums(lag, p),
                         None => corr[k].total(lag),
                     };
-                    var[q] += s.increment_variance().unwrap_or(f64::NAN) / 2.0;
-                    cov[q] += s.flux_covariance().unwrap_or(f64::NAN) / 2.0;
+                    var[q] += s.increment_mean_square().unwrap_or(f64::NAN) / 2.0;
+                    cov[q] += s.flux_product().unwrap_or(f64::NAN) / 2.0;
                 }
             }
             if !lags.is_empty() {
@@ -306,19 +313,33 @@ impl Transport {
         if b <= a {
             return None;
         }
-        // The two estimates over the window from one set of curves.
-        let values = |(var, cov): &(Vec<f64>, Vec<f64>)| -> (f64, f64) {
+        let m = nearest(&taus, (taus[a] * taus[b]).sqrt());
+        // The two estimates over the window from one set of curves, and the
+        // Green–Kubo running integral's means over the window's halves.
+        let values = |(var, cov): &(Vec<f64>, Vec<f64>)| -> (f64, f64, [f64; 2]) {
             let helfand = (var[b] - var[a]) / (2.0 * (taus[b] - taus[a])) * scale;
             let gk = running_integral(&taus, cov);
             let mean_gk = window_mean(&taus, &gk, a, b) * scale;
-            (helfand, mean_gk)
+            let halves = [
+                window_mean(&taus, &gk, a, m) * scale,
+                window_mean(&taus, &gk, m, b) * scale,
+            ];
+            (helfand, mean_gk, halves)
         };
         let all = curves(None);
-        let (h, g) = values(&all);
-        let parts: Vec<(f64, f64)> = (0..segments).map(|p| values(&curves(Some(p)))).collect();
-        let pick = |f: fn(&(f64, f64)) -> f64| -> Vec<f64> {
+        let (h, g, halves) = values(&all);
+        let parts: Vec<_> = (0..segments).map(|p| values(&curves(Some(p)))).collect();
+        let pick = |f: fn(&(f64, f64, [f64; 2])) -> f64| -> Vec<f64> {
             parts.iter().map(f).filter(|x| x.is_finite()).collect()
         };
+        let halves = (m > a && b > m).then(|| Halves {
+            first: halves[0],
+            second: halves[1],
+            difference_std_error: estimate(0.0, &pick(|p| p.2[1] - p.2[0])).std_error,
+            mean: g,
+        });
+        let t_c = self.collision_time();
+        let reliability = judge([taus[a] / t_c, taus[b] / t_c], halves);
         let gk_curve = running_integral(&taus, &all.1);
         Some(HelfandReport {
             quantity,
@@ -339,11 +360,12 @@ impl Transport {
             value_helfand: estimate(h, &pick(|p| p.0)),
             value_green_kubo: estimate(g, &pick(|p| p.1)),
             difference: estimate(h - g, &pick(|p| p.0 - p.1)),
+            reliability,
         })
     }
 
     /// One species' exact VACF, MSD and D.
-    fn species_report(&self, s: usize, (tau_a, tau_b): (f64, f64)) -> SpeciesTransport {
+    fn species_report(&self, s: usize, (tau_a, tau_b): (f64, f64), t_c: f64) -> SpeciesTransport {
         let lags = &self.vacf.lags;
         let sums = &self.vacf.sums;
         let segments = sums[0][s].len();
@@ -359,6 +381,7 @@ impl Transport {
         };
         let a = nearest(lags, tau_a);
         let b = nearest(lags, tau_b);
+        let m = nearest(lags, (lags[a] * lags[b]).sqrt());
         // (C/C0 per lag, MSD, D(τ)) from per-lag sums.
         let curves = |get: &dyn Fn(usize) -> VacfSums| {
             let c0 = get(0).c / get(0).count;
@@ -378,21 +401,33 @@ impl Transport {
             let d_vacf = window_mean(lags, d, a, b);
             let tail: Vec<f64> = (a..lags.len()).map(|q| lags[q] * vacf[q]).collect();
             let tail = tail.iter().sum::<f64>() / tail.len() as f64;
-            (d_msd, d_vacf, tail)
+            let halves = if m > a && b > m {
+                window_mean(lags, d, m, b) - window_mean(lags, d, a, m)
+            } else {
+                f64::NAN
+            };
+            (d_msd, d_vacf, tail, halves)
         };
         let all = curves(&total);
         let parts: Vec<_> = (0..segments)
             .filter(|&p| sums[lags.len() - 1][s][p].count > 0.0)
             .map(|p| curves(&|q| sums[q][s][p]))
             .collect();
-        let per: Vec<(f64, f64, f64)> = parts.iter().map(window).collect();
-        let (d_msd, d_vacf, tail) = window(&all);
+        let per: Vec<(f64, f64, f64, f64)> = parts.iter().map(window).collect();
+        let (d_msd, d_vacf, tail, _) = window(&all);
         let vacf_std_error = (0..lags.len())
             .map(|q| {
                 estimate(all.1[q], &parts.iter().map(|p| p.1[q]).collect::<Vec<_>>()).std_error
             })
             .collect();
-        let col = |f: fn(&(f64, f64, f64)) -> f64| per.iter().map(f).collect::<Vec<f64>>();
+        let col = |f: fn(&(f64, f64, f64, f64)) -> f64| per.iter().map(f).collect::<Vec<f64>>();
+        let window_tc = [lags[a] / t_c, lags[b] / t_c];
+        let halves = (m > a && b > m).then(|| Halves {
+            first: window_mean(lags, &all.3, a, m),
+            second: window_mean(lags, &all.3, m, b),
+            difference_std_error: estimate(0.0, &col(|p| p.3)).std_error,
+            mean: d_vacf,
+        });
         SpeciesTransport {
             species: s,
             origins: self.vacf.started,
@@ -405,7 +440,9 @@ impl Transport {
             diffusion_msd: estimate(d_msd, &col(|p| p.0)),
             diffusion_vacf: estimate(d_vacf, &col(|p| p.1)),
             difference: estimate(d_msd - d_vacf, &col(|p| p.0 - p.1)),
+            diffusion_reliability: judge(window_tc, halves),
             tail_amplitude: (b > a).then(|| estimate(tail, &col(|p| p.2))),
+            tail_amplitude_reliability: judge(window_tc, None),
             tail_amplitude_theory: None,
             tail_amplitude_theory_std_error: None,
         }
@@ -441,13 +478,6 @@ fn running_integral(taus: &[f64], f: &[f64]) -> Vec<f64> {
 fn window_mean(taus: &[f64], f: &[f64], a: usize, b: usize) -> f64 {
     let integral = running_integral(&taus[a..=b], &f[a..=b]);
     integral[integral.len() - 1] / (taus[b] - taus[a])
-}
-
-/// `value` with the standard error of the mean of its per-segment values (NaN
-/// with fewer than two).
-fn estimate(value: f64, per_segment: &[f64]) -> Estimate {
-    let std_error = mean_se(per_segment).1;
-    Estimate { value, std_error }
 }
 
 #[cfg(test)]

@@ -18,7 +18,13 @@ pub struct TransportReport {
     /// The lag window [τ_a, τ_b] (time) over which D, η and λ are taken: they
     /// grow like ln τ in 2D, so each value belongs to its window.
     pub window: [f64; 2],
-    /// Time segments the run was cut into for the standard errors.
+    /// The same window in collision times, [τ_a/t_c, τ_b/t_c].
+    pub window_collision_times: [f64; 2],
+    /// The documented window in collision times, [10, 100] (physics.md §14.6): a
+    /// shorter window makes every value below unreliable.
+    pub documented_window_collision_times: [f64; 2],
+    /// Time segments the run was cut into for the standard errors (each error is
+    /// the segments' spread over √segments times Student's t, physics.md §14.6).
     pub segments: usize,
     /// Snapshots whose velocities were compared with the replayed ones, and how
     /// many differed (a sign of missing collisions; then nothing here holds).
@@ -62,8 +68,13 @@ pub struct SpeciesTransport {
     pub diffusion_vacf: Estimate,
     /// D(MSD) − D(VACF), with the error of the difference per segment.
     pub difference: Estimate,
+    /// Whether D (both routes) holds: the window and the levelling off of D(τ)
+    /// (physics.md §14.6).
+    pub diffusion_reliability: Reliability,
     /// The measured tail amplitude A, τ C(τ)/C(0) averaged over lags ≥ τ_a.
     pub tail_amplitude: Option<Estimate>,
+    /// Whether A holds (lags ≥ τ_a: the window rule only).
+    pub tail_amplitude_reliability: Reliability,
     /// The mode-coupling amplitude 1/[8π n (D + ν)] with D and ν = η/(n m)
     /// measured here (one-species runs).
     pub tail_amplitude_theory: Option<f64>,
@@ -76,7 +87,8 @@ pub struct SpeciesTransport {
 pub struct Estimate {
     /// The value.
     pub value: f64,
-    /// One standard error (over time segments).
+    /// One standard error: the spread of the time segments' values over
+    /// √segments, times Student's t for segments − 1 degrees of freedom.
     pub std_error: f64,
 }
 
@@ -101,6 +113,19 @@ pub struct HelfandReport {
     pub value_green_kubo: Estimate,
     /// Helfand − Green–Kubo, with the error of the difference per segment.
     pub difference: Estimate,
+    /// Whether the coefficient holds: the window and the levelling off of the
+    /// Green–Kubo running integral (physics.md §14.6).
+    pub reliability: Reliability,
+}
+
+/// Whether a value can be trusted, and if not why (physics.md §14.6).
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Reliability {
+    /// `false` when the window is shorter than the documented one or the running
+    /// coefficient has not levelled off.
+    pub reliable: bool,
+    /// The reasons, in words (empty when reliable).
+    pub why: Vec<String>,
 }
 
 /// Enskog's values for this run, with the dilute gas's Sonine factors on their
