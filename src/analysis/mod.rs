@@ -26,6 +26,7 @@ mod description;
 mod dynamics;
 mod dynamics_report;
 mod eos_reference;
+mod hydrostatic;
 mod floor;
 mod from_log;
 mod helfand;
