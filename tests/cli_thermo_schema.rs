@@ -44,15 +44,35 @@ fn every_kind_of_log_has_a_thermo_channel_foxglove_decodes() {
     // (log, configuration or none for the default, overrides that keep it short)
     let kinds: [(&str, Option<String>, &[&str]); 6] = [
         ("plain", None, &["species.0.count=200", "stop.duration=5"]),
-        ("gravity", Some(example("atmosphere.json")), &["stop.duration=10"]),
-        ("andersen", Some(example("thermostatted-fluid.json")), &["stop.duration=5"]),
-        ("driven", Some(example("driven-granular.json")), &["stop.duration=5"]),
+        (
+            "gravity",
+            Some(example("atmosphere.json")),
+            &["stop.duration=10"],
+        ),
+        (
+            "andersen",
+            Some(example("thermostatted-fluid.json")),
+            &["stop.duration=5"],
+        ),
+        (
+            "driven",
+            Some(example("driven-granular.json")),
+            &["stop.duration=5"],
+        ),
         (
             "compression",
             Some(example("compression-crystal.json")),
-            &["species.0.count=200", "compression.rate=0.05", "stop.duration=20"],
+            &[
+                "species.0.count=200",
+                "compression.rate=0.05",
+                "stop.duration=20",
+            ],
         ),
-        ("floor", Some(example("vibrated-bed.json")), &["stop.duration=10"]),
+        (
+            "floor",
+            Some(example("vibrated-bed.json")),
+            &["stop.duration=10"],
+        ),
     ];
     for (name, config, sets) in kinds {
         let log = format!("{name}.mcap");

@@ -213,11 +213,12 @@ fn the_documented_python_loop_decodes_every_channel() {
     let Some(py) = python() else {
         return;
     };
-    let doc = std::fs::read_to_string(
-        Path::new(env!("CARGO_MANIFEST_DIR")).join("docs/log-format.md"),
-    )
-    .unwrap();
-    let section = &doc[doc.find("## Reading logs from Python").expect("the section")..];
+    let doc =
+        std::fs::read_to_string(Path::new(env!("CARGO_MANIFEST_DIR")).join("docs/log-format.md"))
+            .unwrap();
+    let section = &doc[doc
+        .find("## Reading logs from Python")
+        .expect("the section")..];
     let start = section.find("```python\n").expect("a python block") + "```python\n".len();
     let code = &section[start..start + section[start..].find("```").unwrap()];
     let script = tmp("documented_loop.py");
@@ -251,7 +252,10 @@ fn the_documented_python_loop_decodes_every_channel() {
     for (k, topic) in TOPICS.iter().enumerate() {
         let want = info.messages[k];
         let got = counts[*topic].as_u64().unwrap_or(0);
-        assert_eq!(got, want, "{topic}: the loop decoded {got}, the log has {want}");
+        assert_eq!(
+            got, want,
+            "{topic}: the loop decoded {got}, the log has {want}"
+        );
     }
     assert!(counts["/thermo"].as_u64().unwrap() >= 12, "{counts}");
     std::fs::remove_file(&out).unwrap();

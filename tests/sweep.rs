@@ -151,7 +151,8 @@ fn a_two_by_two_sweep_runs_then_collects_what_analyze_says() {
         ));
         write(&dir, "table.csv", &csv);
         write(&dir, "table.json", &json);
-        let script = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/python/check_collect_csv.py");
+        let script =
+            Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/python/check_collect_csv.py");
         let out = Command::new(py)
             .arg(script)
             .args([dir.join("table.csv"), dir.join("table.json")])

@@ -166,7 +166,9 @@ impl Atmosphere {
                 let expected = kt.map_or(f64::NAN, |kt| self.masses[s] * self.g / kt);
                 let n = self.snapshots[0].2[s].1 as f64;
                 let hydrostatic = (self.masses.len() == 1)
-                    .then(|| hydrostatic_beta(expected, n / self.size[0], self.radii[s], span_of(s)))
+                    .then(|| {
+                        hydrostatic_beta(expected, n / self.size[0], self.radii[s], span_of(s))
+                    })
                     .filter(|b| b.is_finite());
                 BarometricFit {
                     species: s,

@@ -508,8 +508,9 @@ fn gravity_text(g: &carom::analysis::GravityReport, s: &mut String) {
             .beta_std_error
             .map_or("?".to_owned(), |e| format!("{e:.5}"));
         let apart = |known: f64| {
-            b.beta_std_error
-                .map_or(String::new(), |e| format!(" ({} apart)", sigmas(b.beta - known, e)))
+            b.beta_std_error.map_or(String::new(), |e| {
+                format!(" ({} apart)", sigmas(b.beta - known, e))
+            })
         };
         let _ = writeln!(
             s,
@@ -527,12 +528,7 @@ fn gravity_text(g: &carom::analysis::GravityReport, s: &mut String) {
                 apart(b.beta_expected)
             );
             if let Some(h) = b.beta_hydrostatic {
-                let _ = writeln!(
-                    s,
-                    "  hydrostatic (15.7) = {:.5}{} (EOS)",
-                    Num(h),
-                    apart(h)
-                );
+                let _ = writeln!(s, "  hydrostatic (15.7) = {:.5}{} (EOS)", Num(h), apart(h));
             }
         }
         let _ = writeln!(

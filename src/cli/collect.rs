@@ -149,9 +149,11 @@ fn csv(c: &Collected) -> String {
         row.push(p.runs.len().to_string());
         for q in &qs {
             let r = p.results.get(*q);
-            row.extend(CSV_COLUMNS.iter().map(|(_, get)| {
-                r.and_then(get).map(|x| x.to_string()).unwrap_or_default()
-            }));
+            row.extend(
+                CSV_COLUMNS
+                    .iter()
+                    .map(|(_, get)| r.and_then(get).map(|x| x.to_string()).unwrap_or_default()),
+            );
         }
         s += &line(row);
     }
