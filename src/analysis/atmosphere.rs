@@ -7,12 +7,17 @@
 //! block of the snapshot schedule (as for g(r)); the fit is made for each of up to
 //! [`BLOCKS`] consecutive groups of snapshots, and β_g is their mean with the
 //! standard error of their spread (neighbouring snapshots are correlated, groups
-//! much less). The known value uses kT = 2K/f of the same snapshots. (15.6) is a
-//! dilute gas's law: at higher density the fitted β_g comes out smaller than
-//! m g/kT, and the hydrostatic balance (15.7) is the check (docs/validation.md).
+//! much less). The ideal gas's value m g/kT uses kT = 2K/f of the same
+//! snapshots. (15.6) is a dilute gas's law: at higher density the fitted β_g comes
+//! out smaller than m g/kT, so a single species is judged by the β_g of the
+//! hydrostatic profile (15.7) with the equation of state ([`hydrostatic_beta`]).
+//! Neither is an equilibrium to judge a driven run by (a vibrated bed): there
+//! `not_applicable` says why, and no known value is compared.
 
 use carom_core::gravity::barometric_beta;
 use serde::Serialize;
+
+use super::hydrostatic::hydrostatic_beta;
 
 /// Groups of snapshots the fit's standard error comes from.
 pub const BLOCKS: usize = 16;
@@ -47,10 +52,19 @@ pub struct BarometricFit {
     pub beta: f64,
     /// Its standard error from the groups' spread (`null` with one group).
     pub beta_std_error: Option<f64>,
-    /// m g/kT with kT = 2K/f of the same snapshots (1/length).
+    /// m g/kT with kT = 2K/f of the same snapshots (1/length): the ideal gas's
+    /// β_g, the law (15.6) of a dilute atmosphere.
     pub beta_expected: f64,
-    /// (beta − beta_expected)/beta_std_error.
+    /// (beta − beta_expected)/beta_std_error; `null` when not applicable.
     pub deviation_se: Option<f64>,
+    /// The β_g that (15.8) gives for the hydrostatic profile (15.7) of this
+    /// column with Henderson's Z(η) at the same kT: the known value for a gas
+    /// that is not dilute (one species only; `null` otherwise).
+    pub beta_hydrostatic: Option<f64>,
+    /// (beta − beta_hydrostatic)/beta_std_error.
+    pub deviation_hydrostatic_se: Option<f64>,
+    /// Why no known value applies (a driven, non-equilibrium run), else `null`.
+    pub not_applicable: Option<&'static str>,
     /// n at the floor of the fitted law, n(a) = N β/(L_x (1 − e^{−β D})) (1/length²).
     pub floor_density: f64,
     /// The lowest height a centre reaches, the radius a (length).
@@ -151,12 +165,20 @@ impl Atmosphere {
                 });
                 let expected = kt.map_or(f64::NAN, |kt| self.masses[s] * self.g / kt);
                 let n = self.snapshots[0].2[s].1 as f64;
+                let hydrostatic = (self.masses.len() == 1)
+                    .then(|| {
+                        hydrostatic_beta(expected, n / self.size[0], self.radii[s], span_of(s))
+                    })
+                    .filter(|b| b.is_finite());
                 BarometricFit {
                     species: s,
                     beta: mean,
                     beta_std_error: se,
                     beta_expected: expected,
                     deviation_se: se.map(|se| (mean - expected) / se),
+                    beta_hydrostatic: hydrostatic,
+                    deviation_hydrostatic_se: se.zip(hydrostatic).map(|(se, h)| (mean - h) / se),
+                    not_applicable: None,
                     floor_density: n * mean / (self.size[0] * -(-mean * span_of(s)).exp_m1()),
                     floor: self.radii[s],
                 }

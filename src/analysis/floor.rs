@@ -5,12 +5,18 @@
 //! checkpoint in the window and the last, as mean powers. In a steady state they
 //! are equal; their difference is the change of K + U over the window divided by
 //! its length. The energy budget and Haff's law of an inelastic run assume no
-//! input and are taken out.
+//! input and are taken out, and so are the cooling state's a2 and the barometric
+//! law's known value: a driven
+//! bed is not in equilibrium (its n(y) and fitted β_g are still reported).
 
 use carom_core::vibrating_wall::Floor;
 use serde::Serialize;
 
 use super::report::Report;
+
+/// Why the barometric law has no known value on a vibrating floor.
+pub const NOT_IN_EQUILIBRIUM: &str = "the barometric and hydrostatic laws hold in equilibrium; \
+     a bed driven by a vibrating floor and cooled by its collisions is not";
 
 /// The floor and the energy it puts in.
 #[derive(Debug, Clone, PartialEq, Serialize)]
@@ -42,6 +48,18 @@ pub(super) fn apply(floor: &Floor, g: f64, totals: &[(f64, f64, f64)], from: f64
     if let Some(i) = r.inelastic.as_mut() {
         i.energy = None;
         i.haff = None;
+        // van Noije–Ernst's a2 is the homogeneous cooling state's.
+        if let Some(a2) = i.sonine.as_mut() {
+            a2.theory = None;
+        }
+    }
+    if let Some(g) = r.gravity.as_mut() {
+        for b in &mut g.barometric {
+            b.deviation_se = None;
+            b.beta_hydrostatic = None;
+            b.deviation_hydrostatic_se = None;
+            b.not_applicable = Some(NOT_IN_EQUILIBRIUM);
+        }
     }
     let Some(a) = totals.iter().find(|c| c.0 >= from) else {
         return;

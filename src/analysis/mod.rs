@@ -29,6 +29,7 @@ mod eos_reference;
 mod floor;
 mod from_log;
 mod helfand;
+mod hydrostatic;
 mod increment_correlator;
 mod inelastic;
 mod msd;

@@ -2,6 +2,7 @@
 //! standard error (the blocking analysis when it converges, else 16 blocks), and
 //! series thinned or coarsened to a few thousand points for the JSON and figures.
 
+use super::pair_correlation::mean_se;
 use super::report::DriftReport;
 use super::stats::{block_average, blocking, StatsError};
 
@@ -70,23 +71,30 @@ pub const DRIFT_STD_ERRORS: f64 = 3.0;
 
 /// The drift check of a per-bin series: the blocked means of its first and second
 /// halves and their difference in combined standard errors
-/// (m₂ − m₁)/√(s₁² + s₂²); `None` when a half is too short to block.
+/// (m₂ − m₁)/√(s₁² + s₂²). A half too short to block (< 16 values, e.g. a few
+/// snapshots) takes its values as independent, s = std/√n: snapshots are usually
+/// further apart than the correlation time, and a series that rises across the
+/// window must not go unchecked. `None` below 2 values per half.
 pub(super) fn drift(x: &[f64]) -> Option<DriftReport> {
     let (a, b) = x.split_at(x.len() / 2);
-    let (a, b) = (blocked(a).ok()?, blocked(b).ok()?);
-    let se = a.std_error.hypot(b.std_error);
+    let half = |h: &[f64]| match blocked(h) {
+        Ok(b) => Some((b.mean, b.std_error)),
+        Err(_) => (h.len() >= 2).then(|| mean_se(h)),
+    };
+    let ((m1, s1), (m2, s2)) = (half(a)?, half(b)?);
+    let se = s1.hypot(s2);
     let d = if se > 0.0 {
-        (b.mean - a.mean) / se
-    } else if b.mean == a.mean {
+        (m2 - m1) / se
+    } else if m2 == m1 {
         0.0
     } else {
-        f64::INFINITY.copysign(b.mean - a.mean)
+        f64::INFINITY.copysign(m2 - m1)
     };
     Some(DriftReport {
-        first_half: a.mean,
-        first_half_std_error: a.std_error,
-        second_half: b.mean,
-        second_half_std_error: b.std_error,
+        first_half: m1,
+        first_half_std_error: s1,
+        second_half: m2,
+        second_half_std_error: s2,
         difference_std_errors: d,
         drifting: d.abs() > DRIFT_STD_ERRORS,
     })
@@ -150,8 +158,24 @@ mod tests {
         let d = drift(&series(130.0, 100.0)).unwrap();
         assert_eq!(d.difference_std_errors, -6.0);
         assert!(d.drifting);
-        // A half of 15 values is too short to block (the other has 16).
-        assert_eq!(drift(&series(100.0, 115.0)[1..]), None);
+        // One value per half is too few to check.
+        assert_eq!(drift(&[1.0, 2.0]), None);
+    }
+
+    /// Halves too short to block (10 values each, as 20 snapshots give) use
+    /// s/√n: 0, 1, …, 9 then 10, …, 19 have means 4.5 and 14.5, each with
+    /// s² = 55/6 and SE √(55/60), so d = 10/√(2·55/60) = 7.385…, drifting; a
+    /// flat pair of halves (alternating 0, 1) is not.
+    #[test]
+    fn short_halves_are_checked_with_independent_errors() {
+        let ramp: Vec<f64> = (0..20).map(f64::from).collect();
+        let d = drift(&ramp).unwrap();
+        assert_eq!((d.first_half, d.second_half), (4.5, 14.5));
+        let expect = 10.0 / (2.0 * 55.0 / 60.0f64).sqrt();
+        assert!((d.difference_std_errors - expect).abs() < 1e-12, "{d:?}");
+        assert!(d.drifting);
+        let flat: Vec<f64> = (0..20).map(|k| f64::from(k % 2)).collect();
+        assert!(!drift(&flat).unwrap().drifting);
     }
 
     /// Constant halves have no error: equal means are no drift (d = 0), unequal

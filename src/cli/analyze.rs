@@ -222,15 +222,33 @@ fn gravity_text(g: &carom::analysis::GravityReport, s: &mut String) {
         let se = b
             .beta_std_error
             .map_or("?".to_owned(), |e| format!("{e:.5}"));
-        let dev = b.beta_std_error.map_or(String::new(), |e| {
-            format!(" ({} apart)", sigmas(b.beta - b.beta_expected, e))
-        });
+        let apart = |known: f64| {
+            b.beta_std_error.map_or(String::new(), |e| {
+                format!(" ({} apart)", sigmas(b.beta - known, e))
+            })
+        };
         let _ = writeln!(
             s,
-            "barometric law  species {}: fitted m g/kT = {:.5} ± {se}, known m g/kT = {:.5}{dev}; n(a) = {:.5} (the fitted law at the floor)",
+            "barometric law  species {}: fitted m g/kT = {:.5} ± {se} (15.8)",
             b.species,
-            Num(b.beta),
-            Num(b.beta_expected),
+            Num(b.beta)
+        );
+        if let Some(why) = b.not_applicable {
+            let _ = writeln!(s, "  no known value: {why}");
+        } else {
+            let _ = writeln!(
+                s,
+                "  ideal gas m g/kT = {:.5}{} (dilute law)",
+                Num(b.beta_expected),
+                apart(b.beta_expected)
+            );
+            if let Some(h) = b.beta_hydrostatic {
+                let _ = writeln!(s, "  hydrostatic (15.7) = {:.5}{} (EOS)", Num(h), apart(h));
+            }
+        }
+        let _ = writeln!(
+            s,
+            "  n(a) = {:.5} (the fitted law at the floor)",
             Num(b.floor_density)
         );
     }

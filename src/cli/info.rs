@@ -29,15 +29,24 @@ fn end_text(e: &LogEnd) -> (bool, String) {
 }
 
 /// The scan as one JSON object: `file`, `bytes`, `complete`, `end`, `run`
-/// (version, start time, seed, N, stop, resumed_from/at, config), `channels`
+/// (version, start time, seed, N, stop, resumed_from/at, config with the resolved
+/// `log.collision_detail`), `channels`
 /// (topic → defined, messages, time span), `logged_collisions`,
 /// `last_checkpoint_time`, `summary` (null for a cut-off log). `carom info --json`
 /// adds `verified`: whether every message was read (a log cut short, or
 /// `--verify`) rather than the file's index.
 pub fn info_json(path: &str, i: &LogInfo) -> Value {
     let (complete, end) = end_text(&i.end);
-    let config: Value =
+    let mut config: Value =
         serde_json::from_str(&i.run.config).unwrap_or(Value::String(i.run.config.clone()));
+    // The resolved record, which a configuration that left it out does not say.
+    if let Some(c) = config.as_object_mut() {
+        let log = c.entry("log").or_insert_with(|| json!({}));
+        if let Some(log) = log.as_object_mut() {
+            log.entry("collision_detail")
+                .or_insert_with(|| json!(i.run.log.collision_detail.name()));
+        }
+    }
     let channels: serde_json::Map<String, Value> = TOPICS
         .iter()
         .enumerate()
@@ -184,6 +193,11 @@ pub fn info(args: InfoArgs) -> Result<ExitCode, CliError> {
         }),
         None => writeln!(s, "  summary: none (the run did not finish; `carom resume` continues it)"),
     };
+    let _ = writeln!(
+        s,
+        "  collision record (log.collision_detail): {}",
+        i.run.log.collision_detail.name()
+    );
     let _ = writeln!(s, "  configuration:");
     for line in i.run.config.lines() {
         let _ = writeln!(s, "    {line}");
