@@ -18,8 +18,8 @@ use super::{AnalyzeArgs, CliError, Num};
 #[path = "analyze_transport.rs"]
 mod transport;
 
-#[path = "analyze_compression.rs"]
-mod compression;
+#[path = "analyze_driven.rs"]
+mod driven;
 
 #[path = "analyze_sections.rs"]
 mod sections;
@@ -87,42 +87,31 @@ pub fn text(r: &Report, args: &AnalyzeArgs, complete: bool) -> String {
     let mut t = Text::default();
     run_text(r, args, complete, &mut t);
     if let Some(c) = &r.compression {
-        compression::compression_text(c, t.raw());
+        driven::compression_text(c, &mut t);
     }
     velocity_text(r, &mut t);
     pressure_text(r, &mut t);
     pair_correlation_text(r, &mut t);
     structure_text(r, &mut t);
+    if let Some(g) = &r.gravity {
+        driven::gravity_text(g, &mut t);
+    }
+    if let Some(th) = &r.thermostat {
+        driven::thermostat_text(th, &mut t);
+    }
+    if let Some(f) = &r.floor {
+        driven::floor_text(f, &mut t);
+    }
     let mut s = t.finish();
     s.push('\n');
     use std::fmt::Write;
+    let before = s.len();
     dynamics::dynamics_text(r, &mut s);
     if let Some(t) = &r.transport {
+        if s.len() > before {
+            s.push('\n');
+        }
         transport::transport_text(t, &mut s);
-    }
-    if let Some(g) = &r.gravity {
-        gravity_text(g, &mut s);
-    }
-    if let Some(t) = &r.thermostat {
-        thermostat_text(t, &mut s);
-    }
-    if let Some(f) = &r.floor {
-        let gamma = f
-            .shaking_parameter
-            .map(|g| format!(", Γ = Aω²/g = {g:.3}"))
-            .unwrap_or_default();
-        let _ = writeln!(
-            s,
-            "floor       vibrating, A = {}, f = {}{gamma}: from t = {} to {}, power in {:.6} (floor work {:.6}), dissipated {:.6} (energy lost {:.6}); steady when equal",
-            Num(f.amplitude),
-            Num(f.frequency),
-            Num(f.window[0]),
-            Num(f.window[1]),
-            f.power_in,
-            f.floor_work,
-            f.power_out,
-            f.energy_lost
-        );
     }
     if let Some(i) = &r.inelastic {
         if let Some(e) = &i.energy {
@@ -172,84 +161,4 @@ pub fn text(r: &Report, args: &AnalyzeArgs, complete: bool) -> String {
         s += &t.finish();
     }
     report_text::fit(&s)
-}
-
-/// The thermostat's target against the measured temperature (physics.md §16);
-/// it replaces the energy budget, which a thermostat does not close.
-fn thermostat_text(t: &carom::analysis::ThermostatReport, s: &mut String) {
-    use std::fmt::Write;
-    let opt = |x: Option<f64>| x.map_or("–".to_owned(), |v| format!("{:.5}", Num(v)));
-    match (t.target_kt, t.granular_temperature) {
-        (Some(target), _) => {
-            let _ = writeln!(
-                s,
-                "thermostat  Andersen, rate {} per disc: kT = 2K/(2N) = {:.5} against the target {:.5} (relative difference {:+.2e}); energy is not conserved",
-                opt(t.rate), Num(t.kt_all_components), Num(target), t.relative_difference.unwrap_or(f64::NAN)
-            );
-        }
-        (None, Some(tg)) => {
-            let _ = writeln!(
-                s,
-                "thermostat  driven, ξ² = {}, kicks every {}: granular T = K/N = {:.5}; steady T from the energy balance {} (Enskog–Henderson rate), {} (measured rate); energy is not conserved",
-                opt(t.xi2), opt(t.interval), Num(tg), opt(t.predicted_temperature), opt(t.predicted_temperature_from_rate)
-            );
-        }
-        _ => {}
-    }
-}
-
-/// The lines of a run in a field (physics.md §15): potential and total energy, and
-/// the barometric fit per species.
-fn gravity_text(g: &carom::analysis::GravityReport, s: &mut String) {
-    use std::fmt::Write;
-    let total = match (g.total_energy_first, g.total_energy_last) {
-        (Some(a), Some(b)) => format!(
-            "; K + U = {:.6} at the first snapshot, {:.6} at the last (relative change {:.3e})",
-            Num(a),
-            Num(b),
-            (b - a) / a.abs()
-        ),
-        _ => String::new(),
-    };
-    let _ = writeln!(
-        s,
-        "gravity  g = {}, potential energy U = Σ m g y = {:.6} (mean of {} snapshots){total}",
-        g.g,
-        Num(g.potential_energy),
-        g.snapshots
-    );
-    for b in &g.barometric {
-        let se = b
-            .beta_std_error
-            .map_or("?".to_owned(), |e| format!("{e:.5}"));
-        let apart = |known: f64| {
-            b.beta_std_error.map_or(String::new(), |e| {
-                format!(" ({} apart)", sigmas(b.beta - known, e))
-            })
-        };
-        let _ = writeln!(
-            s,
-            "barometric law  species {}: fitted m g/kT = {:.5} ± {se} (15.8)",
-            b.species,
-            Num(b.beta)
-        );
-        if let Some(why) = b.not_applicable {
-            let _ = writeln!(s, "  no known value: {why}");
-        } else {
-            let _ = writeln!(
-                s,
-                "  ideal gas m g/kT = {:.5}{} (dilute law)",
-                Num(b.beta_expected),
-                apart(b.beta_expected)
-            );
-            if let Some(h) = b.beta_hydrostatic {
-                let _ = writeln!(s, "  hydrostatic (15.7) = {:.5}{} (EOS)", Num(h), apart(h));
-            }
-        }
-        let _ = writeln!(
-            s,
-            "  n(a) = {:.5} (the fitted law at the floor)",
-            Num(b.floor_density)
-        );
-    }
 }

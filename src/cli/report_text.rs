@@ -43,11 +43,6 @@ impl Text {
         self.wrapped(&format!("  {text}"), 4);
     }
 
-    /// The text so far, for a section written with `writeln!` (wrapped by [`fit`]).
-    pub fn raw(&mut self) -> &mut String {
-        &mut self.out
-    }
-
     /// The report written so far.
     pub fn finish(self) -> String {
         self.out
