@@ -220,18 +220,36 @@ fn the_figures_of_a_fluid_have_decade_ticks_errors_and_references() {
     // Distances in σ, lags in τ₀.
     assert!(svg(&dir, "pair_correlation").contains("r/σ"));
     assert!(svg(&dir, "msd").contains("τ/τ₀"));
-    // A coefficient is titled with ± only if it levelled off.
-    for name in ["helfand_viscosity", "helfand_conductivity"] {
+    // A coefficient is titled with ± only if the report judges it reliable
+    // (one rule, physics.md §14.6), and its legend says the same verdict.
+    let report = json_of(&carom(&dir, &["analyze", "carom.mcap", "--json", "-q"]));
+    for (name, field) in [
+        ("helfand_viscosity", "viscosity"),
+        ("helfand_conductivity", "thermal_conductivity"),
+    ] {
+        let reliable = report["transport"][field]["reliability"]["reliable"]
+            .as_bool()
+            .unwrap();
         let s = svg(&dir, name);
         let caption = &texts(&s)[0].s;
+        assert_eq!(caption.contains('±'), reliable, "{name}: {caption}");
+        assert_eq!(
+            caption.contains("unreliable here"),
+            !reliable,
+            "{name}: {caption}"
+        );
+        let verdict = if reliable {
+            "(reliable)"
+        } else {
+            "(UNRELIABLE)"
+        };
         for method in ["Einstein–Helfand", "Green–Kubo"] {
-            let levelled = s.contains(&format!("{method} read:"))
-                && texts(&s).iter().any(|t| {
-                    t.s.starts_with(&format!("{method} read:")) && t.s.contains("(levelled off")
-                });
-            let titled = caption.contains(&format!("{method} "))
-                && !caption.contains(&format!("{method} not"));
-            assert_eq!(levelled, titled, "{name}: {caption}");
+            assert!(
+                texts(&s)
+                    .iter()
+                    .any(|t| t.s.starts_with(&format!("{method} read:")) && t.s.ends_with(verdict)),
+                "{name}: no '{method} read: … {verdict}'"
+            );
         }
     }
 }

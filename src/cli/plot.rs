@@ -288,7 +288,12 @@ pub fn write_all(report: &Report, dir: &Path) -> Result<Written, CliError> {
     if let Some(d) = report.dynamics.as_ref().filter(|d| !d.species.is_empty()) {
         let few = skip::few_discs(report);
         w.one("msd", few.clone(), || {
-            both!(dir, "msd", |root| dynamics::draw_msd(root, d, &u));
+            both!(dir, "msd", |root| dynamics::draw_msd(
+                root,
+                d,
+                &u,
+                report.transport.is_some()
+            ));
             Ok(())
         })?;
         w.one("vacf", few.clone(), || {

@@ -41,10 +41,12 @@ fn xy(pts: &[(f64, f64, f64)]) -> impl Iterator<Item = (f64, f64)> + '_ {
 
 /// MSD(τ) per species with its band, 4Dτ + c over the fit window, τ through
 /// the first point with slope 1, and the window's ends.
+/// `exact`: the report has the exact replay's D, the headline one.
 pub(super) fn draw_msd<DB: DrawingBackend>(
     root: &DrawingArea<DB, Shift>,
     d: &DynamicsReport,
     u: &Units,
+    exact: bool,
 ) -> DrawResult<DB> {
     let (ts, lag_desc) = u.lag();
     let curves: Vec<Vec<(f64, f64, f64)>> = d
@@ -58,8 +60,16 @@ pub(super) fn draw_msd<DB: DrawingBackend>(
     };
     let caption = match d.species.first().and_then(|s| s.diffusion.as_ref()) {
         Some(f) => format!(
-            "MSD: D = {:.4} ± {:.4} (length²/time) over τ ∈ [{:.3}, {:.3}]",
-            f.d, f.std_error, f.t_a, f.t_b
+            "snapshot MSD: D = {:.4} ± {:.4} over τ ∈ [{:.3}, {:.3}]{}",
+            f.d,
+            f.std_error,
+            f.t_a,
+            f.t_b,
+            if exact {
+                " (a check: D from msd_exact)"
+            } else {
+                ""
+            }
         ),
         None => "mean-square displacement".to_owned(),
     };

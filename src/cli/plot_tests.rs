@@ -40,6 +40,8 @@ fn report() -> DynamicsReport {
         diffusion: fit.then_some(DiffusionFit {
             d: 0.5,
             std_error: 0.01,
+            statistical_std_error: 0.008,
+            d_unweighted: 0.49,
             intercept: -1.0,
             t_a: 2.0,
             t_b: 4.0,
@@ -57,6 +59,7 @@ fn report() -> DynamicsReport {
         segments: 10,
         k_star: Some(6.0),
         ambiguous_gaps: 0,
+        collision_time: Some(0.5),
     }
 }
 
@@ -80,7 +83,7 @@ fn the_dynamics_figures_carry_their_guides() {
     let d = report();
     let figures = [
         (
-            svg!(draw_msd, &d),
+            svg!(|root, d, u| draw_msd(root, d, u, false), &d),
             &[
                 "slope 1",
                 "D = 0.5000",

@@ -8,8 +8,8 @@
 //! the ballistic ⟨v²⟩τ², diffusive 4Dτ and Enskog 4D_Eτ guides (`msd_exact`).
 //! Lags τ > 0 only (a log axis has no 0), in τ₀ when kT is constant; the window
 //! [τ_a, τ_b] is marked on every figure, and on η and λ the value read over it
-//! (± one standard error) with whether the curve levelled off there
-//! ([`levelled_off`]): a value that has not is not titled as a result.
+//! (± one standard error) with the report's verdict on it (physics.md §14.6): an
+//! unreliable value is not titled as a result.
 
 use carom::analysis::{HelfandReport, TransportReport};
 use plotters::coord::Shift;
@@ -212,25 +212,6 @@ pub(super) fn draw_msd<DB: DrawingBackend>(
 
 /// How many standard errors a running coefficient may still change by over
 /// the second half of the window and count as levelled off.
-pub(super) const LEVEL_STD_ERRORS: f64 = 2.0;
-
-/// Whether the running coefficient `ys` at `lags` levelled off in the window
-/// [a, b]: its change from the window's middle √(ab) (on the log τ axis) to
-/// its end, |y(τ_b) − y(√(ab))|, is at most [`LEVEL_STD_ERRORS`] standard
-/// errors `se` of the value read. Returns the change in standard errors, and
-/// None when the curve has no point in the window's second half.
-pub(super) fn levelled_off(lags: &[f64], ys: &[f64], [a, b]: [f64; 2], se: f64) -> Option<f64> {
-    let mid = (a * b).sqrt();
-    let half: Vec<f64> = lags
-        .iter()
-        .zip(ys)
-        .filter(|(&t, y)| t >= mid && t <= b * (1.0 + 1e-9) && y.is_finite())
-        .map(|(_, &y)| y)
-        .collect();
-    let (first, last) = (half.first()?, half.last()?);
-    Some((last - first).abs() / se)
-}
-
 /// A coefficient against τ (log axis) by Einstein–Helfand and Green–Kubo, the
 /// window shaded, the value read over it as a line across the window with a
 /// one-standard-error bar (hollow where the curve has not levelled off),
@@ -272,21 +253,25 @@ pub(super) fn draw_helfand<DB: DrawingBackend>(
         ("Einstein–Helfand", vh, &h.helfand, BLUE.to_rgba()),
         ("Green–Kubo", vg, &h.green_kubo, RED.to_rgba()),
     ];
-    let judged: Vec<Option<f64>> = methods
-        .iter()
-        .map(|m| levelled_off(&h.lags, m.2, window, m.1.std_error))
-        .collect();
-    let title = |(name, v, _, _): &(&str, &carom::analysis::Estimate, &Vec<f64>, RGBAColor),
-                 j: &Option<f64>| match j {
-        Some(c) if *c <= LEVEL_STD_ERRORS => format!("{name} {:.4} ± {:.4}", v.value, v.std_error),
-        _ => format!("{name} not levelled off"),
+    // The report's verdict (physics.md §14.6, one rule for text, JSON and figure):
+    // an unreliable value is not titled as a result.
+    let r = &h.reliability;
+    let caption = if r.reliable {
+        format!(
+            "{} {symbol}: Einstein–Helfand {:.4} ± {:.4}, Green–Kubo {:.4} ± {:.4}",
+            h.quantity, vh.value, vh.std_error, vg.value, vg.std_error
+        )
+    } else {
+        format!(
+            "{} {symbol}: unreliable here ({})",
+            h.quantity,
+            if r.why.iter().any(|w| w.contains("levelled")) {
+                "not levelled off"
+            } else {
+                "window shorter than documented"
+            }
+        )
     };
-    let caption = format!(
-        "{} {symbol}: {}, {}",
-        h.quantity,
-        title(&methods[0], &judged[0]),
-        title(&methods[1], &judged[1])
-    );
     let axis = (
         lag_desc.as_str(),
         format!("{} {symbol} ({unit})", h.quantity),
@@ -311,9 +296,9 @@ pub(super) fn draw_helfand<DB: DrawingBackend>(
         "Einstein–Helfand Var[ΔG]/(2V kT^a τ)",
         "Green–Kubo ∫₀^τ ⟨J(0)J(s)⟩ ds/(V kT^a)",
     ];
-    for ((m, j), (pts, label)) in methods
+    let verdict = if r.reliable { "reliable" } else { "UNRELIABLE" };
+    for (m, (pts, label)) in methods
         .iter()
-        .zip(&judged)
         .zip([(&helfand, labels[0]), (&gk, labels[1])])
     {
         let (name, v, _, colour) = *m;
@@ -325,11 +310,6 @@ pub(super) fn draw_helfand<DB: DrawingBackend>(
         // middle (Green–Kubo's a little to the right, not to hide the other).
         let mid = (a * b).sqrt() * if name == "Green–Kubo" { 1.15 } else { 1.0 };
         let read = colour.mix(0.7).stroke_width(3);
-        let verdict = match j {
-            Some(c) if *c <= LEVEL_STD_ERRORS => format!("levelled off, Δ = {c:.1} SE"),
-            Some(c) => format!("NOT levelled off, Δ = {c:.1} SE"),
-            None => "no point in the window's second half".to_owned(),
-        };
         chart
             .draw_series(LineSeries::new([(a, v.value), (b, v.value)], read))?
             .label(format!(
