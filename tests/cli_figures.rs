@@ -64,12 +64,15 @@ fn is_power_of_ten(s: &str) -> bool {
         .is_some_and(|e| !e.is_empty() && e.chars().all(|c| "⁰¹²³⁴⁵⁶⁷⁸⁹⁻".contains(c)))
 }
 
+/// Which coordinate of a label its axis shares.
+type Coordinate = fn(&Text) -> f64;
+
 /// The x-axis tick labels (the numbers sharing a baseline, centred) and the
 /// y-axis tick labels (right-aligned, sharing an x), per axis.
 fn axes(svg: &str) -> (Vec<Vec<Text>>, Vec<Vec<Text>>) {
     let (mut xs, mut ys): (Vec<Vec<Text>>, Vec<Vec<Text>>) = (vec![], vec![]);
     for t in texts(svg).into_iter().filter(|t| is_tick(&t.s)) {
-        let (groups, key): (&mut Vec<Vec<Text>>, fn(&Text) -> f64) = if t.anchor == "end" {
+        let (groups, key): (&mut Vec<Vec<Text>>, Coordinate) = if t.anchor == "end" {
             (&mut ys, |t| t.x)
         } else {
             (&mut xs, |t| t.y)
