@@ -41,7 +41,8 @@ pub struct PlacementProgress {
 /// How the discs are placed.
 #[derive(Debug, Clone, PartialEq)]
 pub enum Placement {
-    /// On the best-fitting square or triangular lattice (any density up to ~0.72).
+    /// On the best-fitting lattice: any density up to 0.72 (N ≥ 34), and beyond it up
+    /// to the densest lattice that fits the box.
     Lattice,
     /// Uniformly at random without overlap (low density only).
     Random,
@@ -333,7 +334,8 @@ impl SystemSpec {
             return Err(InitError::invalid(
                 "packing_fraction",
                 format!("{eta:.4} is above hexagonal close packing"),
-                "η < 0.9069 (and ≤ 0.72 for lattice placement, at N ≥ 34 or where a lattice fits)",
+                "η < 0.9069 (lattice placement: always up to 0.72 at N ≥ 34, beyond that up to the \
+                 densest lattice that fits the box)",
             ));
         }
         Ok(())

@@ -189,8 +189,8 @@ pub struct SpeciesConfig {
 pub struct BoxConfig {
     /// Packing fraction η = Σ N_s π a_s² / (L_x L_y) (dimensionless). Default 0.5
     /// when `size` is not given; allowed: 0 < η < 0.9069 (close packing). Lattice
-    /// placement reaches 0.72, random placement only low densities (η ≲ 0.4),
-    /// relaxed placement about 0.8.
+    /// placement reaches at least 0.72 and up to the densest lattice that fits the
+    /// box, random placement only low densities (η ≲ 0.4), relaxed placement about 0.8.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub packing_fraction: Option<f64>,
     /// Aspect ratio L_x / L_y (dimensionless), with `packing_fraction`. Default 1;
@@ -303,8 +303,9 @@ impl<'de> Deserialize<'de> for BoundaryConfig {
 #[serde(rename_all = "kebab-case", deny_unknown_fields)]
 pub enum PlacementConfig {
     /// `"lattice"`: the best-fitting square or triangular lattice (any η ≤ 0.72 from
-    /// 34 discs on, and for fewer wherever a lattice fits; a mixture's sites are
-    /// spaced for its largest disc).
+    /// 34 discs on, denser up to the densest lattice that fits the box, and for
+    /// fewer discs wherever a lattice fits; a mixture's sites are spaced for its
+    /// largest disc).
     #[default]
     Lattice,
     /// `"random"`: uniformly random without overlap, largest discs first (low

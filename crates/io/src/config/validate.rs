@@ -119,7 +119,8 @@ impl Config {
                     return Err(ConfigError::invalid(
                         "box.packing_fraction",
                         format!("value {eta}"),
-                        "0 < η < 0.9069 (hexagonal close packing); lattice placement reaches 0.72",
+                        "0 < η < 0.9069 (hexagonal close packing); lattice placement reaches at least \
+                         0.72, and up to the densest lattice that fits the box",
                     ));
                 }
             }
