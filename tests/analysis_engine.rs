@@ -400,7 +400,7 @@ fn pair_correlation_at_eta_0_3_and_contact_theorem() {
         (c.value - expected).abs() < tol,
         "g(σ+) = {} ± {} vs {expected}",
         c.value,
-        c.std_error
+        se
     );
     assert!(se > 1e-4 && se < 0.05, "{c:?}");
     eprintln!("g(σ+) = {} ± {se}", c.value);
@@ -439,7 +439,7 @@ fn identical_species_mixture_has_equal_pair_correlations() {
     for i in 0..3 {
         for j in i + 1..3 {
             let (a, b) = (&contacts[i], &contacts[j]);
-            let se = a.std_error.hypot(b.std_error);
+            let se = a.std_error.unwrap().hypot(b.std_error.unwrap());
             assert!((a.value - b.value).abs() < 4.0 * se, "{a:?} {b:?}");
         }
     }
