@@ -57,7 +57,8 @@ fn a_shaken_bed_is_analysed_with_its_floor_power() {
         &["analyze", "bed.mcap", "--no-structure", "-q"],
     ));
     assert!(
-        text.contains("floor       vibrating, A = 0.5, f = 0.45"),
+        text.contains("vibrating floor (physics.md §18)")
+            && text.contains("A = 0.500000, f = 0.450000, Γ = Aω²/g"),
         "{text}"
     );
 }

@@ -35,10 +35,10 @@ fn a_run_in_a_field_shows_its_atmosphere_in_json_text_and_figure() {
     }
     let text = ok(&carom(&dir, &["analyze", "g.mcap", "--quiet"]));
     assert!(
-        text.contains("barometric law  species 0: fitted m g/kT"),
+        text.contains("density profile n(y), species 0") && text.contains("fitted m g/kT"),
         "{text}"
     );
-    assert!(text.contains("potential energy U"), "{text}");
+    assert!(text.contains("U = Σ m g y"), "{text}");
 
     let refused = carom(&dir, &["run", "--quiet", "--dry-run", "--set", "gravity=1"]);
     assert_eq!(refused.status.code(), Some(2));

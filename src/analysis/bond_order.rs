@@ -419,6 +419,13 @@ mod tests {
             r.series,
             vec![[0.0, 0.1], [1.5, 0.3], [3.0, 0.2], [4.5, 0.6]]
         );
-        assert_eq!(r.drift, None);
+        // Halves of two values, plain errors: 0.2 ± 0.1 and 0.4 ± 0.2, 0.89 SE
+        // apart: checked, not drifting.
+        let d = r.drift.expect("a drift check of two halves of two");
+        assert!(
+            close(d.first_half, 0.2) && close(d.second_half, 0.4),
+            "{d:?}"
+        );
+        assert!(!d.drifting, "{d:?}");
     }
 }

@@ -3,7 +3,9 @@
 //! the gas is not ideal (Z > 1) and the barometric exponential (15.6) is the wrong
 //! model there: the pressure p = n kT Z(η) must carry the weight above,
 //!
-//!     dp/dy = −m g n   ⇒   dn/dy = −β_g n / (Z + η dZ/dη),   β_g = m g/kT,
+//! ```text
+//! dp/dy = −m g n   ⇒   dn/dy = −β_g n / (Z + η dZ/dη),   β_g = m g/kT,
+//! ```
 //!
 //! with Henderson's Z(η) (7.6) in the local-density approximation. The floor
 //! density n(a) is fixed by the number of discs, N = L_x ∫ n dy. The estimator
