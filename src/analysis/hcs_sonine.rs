@@ -206,7 +206,7 @@ mod tests {
             let got = m.first_order();
             assert!((got - a2_theory(e)).abs() < 1e-12, "e = {e}: {got}");
             let fine = Moments::new(e, 2 * NODES);
-            let [a, b] = (m.second_order(), fine.second_order());
+            let (a, b) = (m.second_order(), fine.second_order());
             assert!((a[0] - b[0]).abs() < 1e-10 && (a[1] - b[1]).abs() < 1e-10);
         }
         for e in [0.5, 0.8, 0.9] {
