@@ -92,7 +92,10 @@ fn a_cooling_gas_gets_advice_and_spacing_that_fit_it() {
     assert!(ratio > 1.5 && (ratio / sqrt_t - 1.0).abs() < 0.15, "{c}");
     // The Enskog check is in the JSON with its verdict.
     let h = &r["inelastic"]["haff"]["enskog"];
-    assert!(h["agrees"].is_boolean() && h["ratio"].as_f64().unwrap() > 0.0, "{h}");
+    assert!(
+        h["agrees"].is_boolean() && h["ratio"].as_f64().unwrap() > 0.0,
+        "{h}"
+    );
     let s = &r["inelastic"]["sonine"];
     assert!(s["theory_second_order"].as_f64().unwrap() < s["theory"].as_f64().unwrap());
 }

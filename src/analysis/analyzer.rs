@@ -128,9 +128,9 @@ impl Analyzer {
                 // snapshots are closer than its interval.
                 every_collisions = Some(DECORRELATION_COLLISIONS);
                 let room = (opts.max_velocities / run.n().max(1)) as f64;
-                let by_count = run.pair_rate.map(|w| {
-                    w * (run.t_end - run.t_start) / DECORRELATION_COLLISIONS + 1.0
-                });
+                let by_count = run
+                    .pair_rate
+                    .map(|w| w * (run.t_end - run.t_start) / DECORRELATION_COLLISIONS + 1.0);
                 let interval = run
                     .snapshot_interval
                     .filter(|_| run.snapshot_schedule.is_none());

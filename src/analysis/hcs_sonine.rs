@@ -6,8 +6,8 @@
 //! the Sonine (Laguerre) polynomials of discs. The Boltzmann (or Enskog)
 //! equation of the cooling state gives, for every moment, μ_p = (p/d) μ2 ⟨c^p⟩
 //! with μ_p = −∫ c^p I(f, f) dc the collisional moments (Brilliantov & Pöschel,
-//! Phys. Rev. E 61, 5573 (2000); Santos & Montanero, Granular Matter 11, 157
-//! (2009)). Linear in a2 and a3: p = 4 alone with a3 = 0 is the first Sonine
+//! Phys. Rev. E 61, 5573 (2000), and for a3 Europhys. Lett. 74, 424 (2006);
+//! physics.md (8.8)). Linear in a2 and a3: p = 4 alone with a3 = 0 is the first Sonine
 //! approximation (van Noije & Ernst's a2, which the tests recover to 10⁻¹²);
 //! p = 4 and 6 together the second. The collisional moments are integrals over
 //! both velocities and the contact normal, done here by product quadrature
@@ -183,10 +183,10 @@ mod tests {
                 .map(|(j, a)| a * fact(n + j as i32))
                 .sum()
         };
-        for i in 0..3 {
-            for k in 0..3 {
+        for (i, row) in C_MOMENTS.iter().enumerate() {
+            for (k, c) in row.iter().enumerate() {
                 let want = avg(i as i32 + 1, k);
-                assert!((C_MOMENTS[i][k] - want).abs() < 1e-12, "{i} {k}: {want}");
+                assert!((c - want).abs() < 1e-12, "{i} {k}: {want}");
             }
         }
         // The polynomials are the ones coded.

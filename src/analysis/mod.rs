@@ -78,8 +78,8 @@ pub use dynamics::SEGMENTS as DYNAMICS_SEGMENTS;
 pub use dynamics_report::{DiffusionFit, DynamicsReport, SpeciesDynamics};
 pub use eos_reference::{henderson_z, kolafa_rottner, li_2022, KOLAFA_ROTTNER};
 pub use floor::FloorReport;
-pub use haff_enskog::ENSKOG_COOLING_TOLERANCE;
 pub use from_log::{analyze_log, AnalysisError, ReadObserver};
+pub use haff_enskog::ENSKOG_COOLING_TOLERANCE;
 pub use msd::D_WINDOW_COLLISIONS;
 pub use neighbours::{delaunay_neighbours, Neighbours, GHOST_SPACINGS};
 pub use not_computed::NotComputed;
@@ -89,8 +89,8 @@ pub use pair_correlation::{BIN_WIDTH_SIGMA, BLOCKS as PAIR_CORRELATION_BLOCKS, R
 pub use psi6_estimators::{local_psi6_equal, local_psi6_nearest, six_neighbour_fraction};
 pub use report::{
     ChiSquareReport, CollisionRateReport, DriftReport, EnergyBudget, EnskogReport, HaffEnskog,
-    HaffReport, HistogramReport, RateAt, InelasticReport, KsReport, PressureReport, Report, SonineReport, SpeciesInfo,
-    SpeciesMb, SpeciesUntested, TemperatureReport, WindowReport,
+    HaffReport, HistogramReport, InelasticReport, KsReport, PressureReport, RateAt, Report,
+    SonineReport, SpeciesInfo, SpeciesMb, SpeciesUntested, TemperatureReport, WindowReport,
 };
 pub use self_scattering::bessel_j0;
 pub use series::DRIFT_STD_ERRORS;

@@ -22,7 +22,10 @@ pub(super) fn inelastic_text(r: &Report, t: &mut Text) {
     let series = &r.temperature.series;
     let step = (series.len() / 10).max(1);
     for p in series.iter().step_by(step) {
-        t.item(&format!("t = {}", sig(p[0], 5)), &format!("kT = {}", sig(p[1], 6)));
+        t.item(
+            &format!("t = {}", sig(p[0], 5)),
+            &format!("kT = {}", sig(p[1], 6)),
+        );
     }
 }
 
@@ -39,10 +42,7 @@ fn energy_text(i: &InelasticReport, t: &mut Text) {
     );
     t.item(
         "E0 − dissipated − E",
-        &format!(
-            "{:.3e} (relative {:.3e})",
-            e.residual, e.relative_residual
-        ),
+        &format!("{:.3e} (relative {:.3e})", e.residual, e.relative_residual),
     );
 }
 

@@ -88,7 +88,10 @@ pub(super) fn run_text(r: &Report, args: &AnalyzeArgs, complete: bool, t: &mut T
         .filter(|&c| c < CORRELATED_SPACING && rate > 0.0)
     {
         let cure = if r.elastic {
-            format!("--every {} or more", sig(DECORRELATION_COLLISIONS / rate, 4))
+            format!(
+                "--every {} or more",
+                sig(DECORRELATION_COLLISIONS / rate, 4)
+            )
         } else {
             "leave out --every: the default spaces them by counted collisions, as the rate \
              changes"
