@@ -65,6 +65,16 @@ pub struct Analyzer {
     /// Whether the memory bound set `opts.every` (spacing the snapshots further
     /// apart than the collision rate asks).
     pub(super) every_from_budget: bool,
+    /// The default spacing of an inelastic run, in pair collisions per disc
+    /// counted between the snapshots used (its rate changes, so no one time
+    /// spacing fits); `None`: the time spacing `opts.every` alone.
+    pub(super) every_collisions: Option<f64>,
+    /// The engine's running count of pair collisions at the last `/thermo`
+    /// record read ([`Analyzer::pair_count`]).
+    pub(super) thermo_pairs: Option<u64>,
+    /// The pair collisions counted at each snapshot used: (the last `/thermo`
+    /// count, [`Analyzer::pairs_counted`]).
+    pub(super) snapshot_pairs: Vec<(Option<u64>, f64)>,
     /// Pair-distance histograms per time block (physics.md §10).
     pub(super) pair_correlation: PairCorrelation,
     /// |Ψ6| and local |ψ6| of every snapshot (physics.md §11).
@@ -109,8 +119,27 @@ impl Analyzer {
         let nbins = opts.time_bins.max(16);
         let ns = run.species.len();
         let mut opts = opts;
+        let mut every_collisions = None;
         let (every_default, every_from_budget) = match opts.every {
             Some(_) => (false, false),
+            None if !run.restitution.is_elastic() => {
+                // Snapshots DECORRELATION_COLLISIONS apart by count number at most
+                // the log's collisions per disc over that, plus one; a schedule's
+                // snapshots are closer than its interval.
+                every_collisions = Some(DECORRELATION_COLLISIONS);
+                let room = (opts.max_velocities / run.n().max(1)) as f64;
+                let by_count = run
+                    .pair_rate
+                    .map(|w| w * (run.t_end - run.t_start) / DECORRELATION_COLLISIONS + 1.0);
+                let interval = run
+                    .snapshot_interval
+                    .filter(|_| run.snapshot_schedule.is_none());
+                opts.every = match by_count {
+                    Some(k) if k <= room => None,
+                    _ => budget_spacing(run.n(), opts.max_velocities, run.t_end - t_eq, interval),
+                };
+                (true, opts.every.is_some())
+            }
             None => {
                 let decorrelated = run
                     .pair_rate
@@ -150,6 +179,9 @@ impl Analyzer {
             dynamics: Dynamics::new(&run, t_eq, sigma_min),
             every_default,
             every_from_budget,
+            every_collisions,
+            thermo_pairs: None,
+            snapshot_pairs: Vec::new(),
             bin_width: (run.t_end - t_eq) / nbins as f64,
             bins: vec![TimeBin::default(); nbins],
             t_eq,
@@ -276,6 +308,35 @@ impl Analyzer {
         }
     }
 
+    /// The engine's running count of pair collisions (since the run's start) at
+    /// a `/thermo` record: with it the snapshots of an inelastic run are spaced by
+    /// the collisions between them (see [`AnalysisOptions::every`]).
+    pub fn pair_count(&mut self, pairs: u64) {
+        self.thermo_pairs = Some(pairs);
+    }
+
+    /// Pair collisions counted so far: the logged ones × stride (unless the
+    /// totals come from `/thermo`) plus those of [`Analyzer::increment`].
+    pub(super) fn pairs_counted(&self) -> f64 {
+        let logged = if self.run.totals_from_thermo {
+            0.0
+        } else {
+            self.pair_total as f64 * self.run.collision_stride as f64
+        };
+        logged + self.pairs_from_increments as f64
+    }
+
+    /// Pair collisions per disc, 2ΔN_pair/N, between two counts of
+    /// `snapshot_pairs`: the `/thermo` running counts when both have one, else
+    /// the collisions counted.
+    fn collisions_between(&self, a: (Option<u64>, f64), b: (Option<u64>, f64)) -> f64 {
+        let pairs = match (a.0, b.0) {
+            (Some(x), Some(y)) if y > x => (y - x) as f64,
+            _ => b.1 - a.1,
+        };
+        2.0 * pairs / self.run.n().max(1) as f64
+    }
+
     /// A thermodynamic record: kinetic energy K (energy) at time `t`, and the
     /// energy dissipated since the start when known.
     pub fn thermo(&mut self, t: f64, kinetic_energy: f64, energy_lost: Option<f64>) {
@@ -323,8 +384,21 @@ impl Analyzer {
             return Ok(());
         }
         self.transport_snapshot(t, species_of, vx, vy, kt);
-        if !self.block_start(t) {
-            return Ok(());
+        // Spaced by the collisions counted, any snapshot far enough from the last
+        // one used is as independent as a block start.
+        let counted = (self.thermo_pairs, self.pairs_counted());
+        match (self.every_collisions, self.snapshot_pairs.last()) {
+            (Some(c), Some(&last)) => {
+                if self.collisions_between(last, counted) < c * (1.0 - 1e-9) {
+                    return Ok(());
+                }
+            }
+            (Some(_), None) => {}
+            (None, _) => {
+                if !self.block_start(t) {
+                    return Ok(());
+                }
+            }
         }
         if let (Some(&last), Some(every)) = (self.snapshots_used.last(), self.opts.every) {
             if t < last + every * (1.0 - 1e-9) {
@@ -332,6 +406,7 @@ impl Analyzer {
             }
         }
         self.snapshots_used.push(t);
+        self.snapshot_pairs.push(counted);
         self.snapshot_kt.push(kt);
         self.snapshot_a2
             .push(inelastic::sonine_a2(&masses, species_of, vx, vy));
@@ -586,8 +661,21 @@ impl Analyzer {
     }
 
     /// The window analysed, with the spacing of the snapshots used in collisions
-    /// per disc at the measured rate `omega`.
+    /// per disc: counted between them for an inelastic run (whose rate changes),
+    /// else at the measured rate `omega`.
     fn window(&self, omega: f64) -> WindowReport {
+        let spacing_collisions = if self.run.restitution.is_elastic() {
+            self.snapshots_used
+                .windows(2)
+                .map(|w| w[1] - w[0])
+                .reduce(f64::min)
+                .map(|gap| gap * omega)
+        } else {
+            self.snapshot_pairs
+                .windows(2)
+                .map(|w| self.collisions_between(w[0], w[1]))
+                .reduce(f64::min)
+        };
         WindowReport {
             t_start: self.run.t_start,
             t_end: self.run.t_end,
@@ -595,13 +683,9 @@ impl Analyzer {
             every: self.opts.every,
             every_default: self.every_default,
             every_from_budget: self.every_from_budget,
+            every_collisions: self.every_collisions,
             max_velocities: self.opts.max_velocities,
-            spacing_collisions: self
-                .snapshots_used
-                .windows(2)
-                .map(|w| w[1] - w[0])
-                .reduce(f64::min)
-                .map(|gap| gap * omega),
+            spacing_collisions,
             snapshots_seen: self.snapshots_seen,
             snapshot_times: self.snapshots_used.clone(),
         }

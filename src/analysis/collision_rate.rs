@@ -2,12 +2,14 @@
 //! blocked standard error, and the Enskog consistency check
 //! Z − 1 = (√π/4) ω τ0 with τ0 = σ √(m/kT) (physics.md §7), made bin by bin so
 //! that the correlation of pressure and rate is in the error (periodic,
-//! monodisperse, elastic runs only).
+//! monodisperse, elastic runs only). An inelastic run's rate changes as it
+//! cools (ω ∝ √T in the homogeneous cooling state): its report adds ω over the
+//! first and the last sixteenth of the window.
 
 use carom_core::observables::{collision_rate, has_walls};
 
 use super::analyzer::Analyzer;
-use super::report::{CollisionRateReport, EnskogReport, PressureReport};
+use super::report::{CollisionRateReport, EnskogReport, PressureReport, RateAt};
 use super::series::{blocked, drift};
 use super::stats::StatsError;
 
@@ -41,6 +43,24 @@ pub(super) fn report(
         },
         window: [a.t_eq, a.run.t_end],
         drift: if elastic { drift(omega_bins) } else { None },
+        start: (!elastic).then(|| rate_at(a, omega_bins, false)).flatten(),
+        end: (!elastic).then(|| rate_at(a, omega_bins, true)).flatten(),
+    })
+}
+
+/// ω over the first (`last` false) or last sixteenth of the window's bins, with
+/// its blocked error; `None` when the part has too few bins to block.
+fn rate_at(a: &Analyzer, omega_bins: &[f64], last: bool) -> Option<RateAt> {
+    let k = omega_bins.len() / 16;
+    let first = if last { omega_bins.len() - k } else { 0 };
+    let est = blocked(&omega_bins[first..first + k]).ok()?;
+    let t0 = a.t_eq + first as f64 * a.bin_width;
+    let t1 = t0 + k as f64 * a.bin_width;
+    Some(RateAt {
+        window: [t0, t1],
+        per_disc: est.mean,
+        std_error: est.std_error,
+        kt: a.kt_at(0.5 * (t0 + t1)).unwrap_or(f64::NAN),
     })
 }
 

@@ -271,6 +271,7 @@ impl Feed {
             }
             LogMessage::Thermo(t) => {
                 a.thermo(t.time, t.kinetic_energy, Some(t.energy_lost));
+                a.pair_count(t.pair_collisions);
                 if self.totals_from_thermo {
                     if let Some((t0, v0, w0, p0)) = self.previous_thermo {
                         if t.pair_collisions >= p0 {

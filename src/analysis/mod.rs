@@ -28,6 +28,8 @@ mod dynamics_report;
 mod eos_reference;
 mod floor;
 mod from_log;
+mod haff_enskog;
+mod hcs_sonine;
 mod helfand;
 mod hydrostatic;
 mod increment_correlator;
@@ -77,6 +79,7 @@ pub use dynamics_report::{DiffusionFit, DynamicsReport, SpeciesDynamics};
 pub use eos_reference::{henderson_z, kolafa_rottner, li_2022, KOLAFA_ROTTNER};
 pub use floor::FloorReport;
 pub use from_log::{analyze_log, AnalysisError, ReadObserver};
+pub use haff_enskog::ENSKOG_COOLING_TOLERANCE;
 pub use msd::D_WINDOW_COLLISIONS;
 pub use neighbours::{delaunay_neighbours, Neighbours, GHOST_SPACINGS};
 pub use not_computed::NotComputed;
@@ -85,9 +88,9 @@ pub use origins::{MAX_DISC_ORIGINS, ORIGINS_PER_LEVEL};
 pub use pair_correlation::{BIN_WIDTH_SIGMA, BLOCKS as PAIR_CORRELATION_BLOCKS, R_MAX_SIGMA};
 pub use psi6_estimators::{local_psi6_equal, local_psi6_nearest, six_neighbour_fraction};
 pub use report::{
-    ChiSquareReport, CollisionRateReport, DriftReport, EnergyBudget, EnskogReport, HaffReport,
-    HistogramReport, InelasticReport, KsReport, PressureReport, Report, SonineReport, SpeciesInfo,
-    SpeciesMb, SpeciesUntested, TemperatureReport, WindowReport,
+    ChiSquareReport, CollisionRateReport, DriftReport, EnergyBudget, EnskogReport, HaffEnskog,
+    HaffReport, HistogramReport, InelasticReport, KsReport, PressureReport, RateAt, Report,
+    SonineReport, SpeciesInfo, SpeciesMb, SpeciesUntested, TemperatureReport, WindowReport,
 };
 pub use self_scattering::bessel_j0;
 pub use series::DRIFT_STD_ERRORS;

@@ -84,6 +84,7 @@ pub fn explain(r: &Report) -> Vec<NotComputed> {
             format!("needs two snapshots after the equilibration time; {snapshots} used"),
         );
     }
+    inelastic(r, &mut say);
     if r.transport.is_none() {
         let c = &r.collision_rate;
         let why = if !r.elastic {
@@ -101,4 +102,52 @@ pub fn explain(r: &Report) -> Vec<NotComputed> {
         say("transport", why.into());
     }
     out
+}
+
+/// The parts of an inelastic run's report that are absent: its Sonine
+/// coefficient, Haff's law and its Enskog prediction, the energy budget.
+fn inelastic(r: &Report, say: &mut dyn FnMut(&'static str, String)) {
+    let Some(i) = &r.inelastic else {
+        return;
+    };
+    let used = r.window.snapshot_times.len();
+    if i.sonine.is_none() {
+        say(
+            "inelastic.sonine",
+            format!(
+                "needs two snapshots in the window t ∈ [{}, {}] with a finite a2; {used} used                  of {} in the log",
+                r.window.equilibrate, r.window.t_end, r.window.snapshots_seen
+            ),
+        );
+    }
+    if i.energy.is_none() && r.gravity.is_none() {
+        say(
+            "inelastic.energy",
+            "needs two kinetic-energy records (/thermo or snapshots)".into(),
+        );
+    }
+    // In a field (a vibrated bed, say) the cooling laws are not compared at all.
+    if r.gravity.is_some() {
+        return;
+    }
+    match &i.haff {
+        None => say(
+            "inelastic.haff",
+            "needs normal restitution e < 1, three kT records and counted pair collisions".into(),
+        ),
+        Some(h) if h.enskog.is_none() => {
+            let species = r.species.iter().filter(|s| s.count > 0).count();
+            let why = if species != 1 {
+                "needs a single species"
+            } else if !r.periodic.iter().all(|&p| p) {
+                "needs a periodic box"
+            } else if i.sonine.is_none() {
+                "needs the measured a2 (inelastic.sonine)"
+            } else {
+                "needs three kT records in the window"
+            };
+            say("inelastic.haff.enskog", why.into());
+        }
+        _ => {}
+    }
 }

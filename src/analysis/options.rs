@@ -32,8 +32,12 @@ pub struct AnalysisOptions {
     /// Use snapshots at least this far apart for the velocity distribution (time).
     /// `None`: [`DECORRELATION_COLLISIONS`] collision times apart when
     /// [`RunDescription::pair_rate`] is known, otherwise every snapshot after
-    /// `equilibrate`; either way spaced further apart when that would keep more
-    /// than `max_velocities` velocities.
+    /// `equilibrate`; for an inelastic run, whose collision rate changes as it
+    /// cools, [`DECORRELATION_COLLISIONS`] pair collisions per disc counted
+    /// between the snapshots (from the `/thermo` running counts or the logged
+    /// collisions), from any snapshot of a `log.snapshot_schedule`; either way
+    /// spaced further apart when that would keep more than `max_velocities`
+    /// velocities.
     pub every: Option<f64>,
     /// The most velocities (discs × snapshots used) that the default spacing keeps
     /// in memory; an `every` asked for is used as it is. Default

@@ -14,7 +14,9 @@ use super::stats::{Histogram, KsTest};
 use super::structure_factor::StructureFactorReport;
 use super::transport_report::TransportReport;
 #[cfg(doc)]
-use super::{DECORRELATION_COLLISIONS, MAX_SNAPSHOT_CORRELATION, MB_FAMILY_ALPHA};
+use super::{
+    DECORRELATION_COLLISIONS, ENSKOG_COOLING_TOLERANCE, MAX_SNAPSHOT_CORRELATION, MB_FAMILY_ALPHA,
+};
 
 /// Everything `carom analyze` reports. Serialised as one JSON object; units are
 /// the run's (length, time, mass; energies as kT).
@@ -111,13 +113,19 @@ pub struct WindowReport {
     /// collision times from the log's collision rate, or more when that would keep
     /// more than `max_velocities` velocities.
     pub every_default: bool,
+    /// The default spacing of an inelastic run, whose collision rate changes: the
+    /// snapshots used are at least this many pair collisions per disc apart,
+    /// counted between them (`every` then only applies the memory bound); `null`
+    /// otherwise.
+    pub every_collisions: Option<f64>,
     /// Whether the default `every` was widened to keep at most `max_velocities`
     /// velocities in memory.
     pub every_from_budget: bool,
     /// The most velocities (discs × snapshots) the default spacing keeps.
     pub max_velocities: usize,
-    /// The smallest spacing of the snapshots used, in pair collisions per disc (ω
-    /// times the spacing, with the measured ω); `null` with fewer than two. Below
+    /// The smallest spacing of the snapshots used, in pair collisions per disc
+    /// counted between them (2 ΔN_pair/N, from the `/thermo` running counts or
+    /// the logged collisions); `null` with fewer than two. Below
     /// about 4, the velocities of consecutive snapshots are correlated and the
     /// Maxwell–Boltzmann tests reject too often.
     pub spacing_collisions: Option<f64>,
@@ -326,7 +334,9 @@ pub struct DriftReport {
 /// Pair collision rate (physics.md §7).
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct CollisionRateReport {
-    /// ω = 2 N_pair / (N t): pair collisions per disc per unit time (1/time).
+    /// ω = 2 N_pair / (N t): pair collisions per disc per unit time (1/time),
+    /// the mean over the window (for a cooling gas, an average over a rate that
+    /// falls as √T: see `start` and `end`).
     pub per_disc: f64,
     /// One standard error of ω.
     pub std_error: f64,
@@ -346,6 +356,23 @@ pub struct CollisionRateReport {
     /// Drift check of ω over the window; `null` for inelastic runs (ω ∝ √T
     /// changes as they cool) or a window too short.
     pub drift: Option<DriftReport>,
+    /// ω over the first sixteenth of the window (inelastic runs only).
+    pub start: Option<RateAt>,
+    /// ω over the last sixteenth of the window (inelastic runs only).
+    pub end: Option<RateAt>,
+}
+
+/// The pair collision rate over part of the window.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct RateAt {
+    /// [start, end] of the part (time).
+    pub window: [f64; 2],
+    /// ω over it (1/time).
+    pub per_disc: f64,
+    /// One standard error (blocked over its time bins).
+    pub std_error: f64,
+    /// kT at its middle (energy).
+    pub kt: f64,
 }
 
 /// Enskog consistency check Z − 1 = (√π/4) ω τ0 (physics.md §7).
@@ -377,7 +404,7 @@ pub struct InelasticReport {
     /// Haff's law check (normal restitution only).
     pub haff: Option<HaffReport>,
     /// Sonine coefficient a2 of the velocities; `null` with fewer than two
-    /// snapshots used.
+    /// snapshots used (`not_computed` says why).
     pub sonine: Option<SonineReport>,
 }
 
@@ -394,9 +421,14 @@ pub struct SonineReport {
     pub std_error_blocked: bool,
     /// Snapshots averaged.
     pub snapshots: usize,
-    /// van Noije & Ernst's a2 for the run's e (physics.md (8.4)); `null` unless
-    /// normal restitution.
+    /// van Noije & Ernst's a2 for the run's e (physics.md (8.4)): the first
+    /// Sonine approximation, linear in a2 — an approximation, 10–20 % off for
+    /// discs near e = 0.8–0.9; `null` unless normal restitution.
     pub theory: Option<f64>,
+    /// a2 of the second Sonine approximation (a2 and a3, linear in both;
+    /// physics.md §8), the reference a2 is judged against; `null` unless normal
+    /// restitution below 1.
+    pub theory_second_order: Option<f64>,
 }
 
 /// E(t_end) = E(t_start) − dissipated (physics.md §8).
@@ -418,9 +450,13 @@ pub struct EnergyBudget {
 }
 
 /// Haff's law T(t) = T0/(1 + t/t0)² with 1/t0 = (1 − e²)(1 + 3a2/16) ω(T0)/4
-/// (physics.md §8), ω(T0) from the measured collision rate scaled as √T.
+/// (physics.md §8), ω(T0) from the measured collision rate scaled as √T: a
+/// self-consistency check (the measured rate already holds the distribution's
+/// (1 − a2/16)); `enskog` is the prediction from first principles.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct HaffReport {
+    /// What the check is, in words.
+    pub check: &'static str,
     /// a2 (van Noije & Ernst) for the run's e.
     pub a2: f64,
     /// ω(T0) (1/time).
@@ -433,4 +469,35 @@ pub struct HaffReport {
     pub kt_final_measured: f64,
     /// measured / predicted (1 in homogeneous cooling; clustering makes it differ).
     pub ratio: f64,
+    /// Haff's law from Enskog's collision frequency over the window; `null` for
+    /// a mixture, walls, or without a measured a2.
+    pub enskog: Option<HaffEnskog>,
+}
+
+/// The cooling rate from first principles (physics.md §8): Enskog's collision
+/// frequency ω_E = 2σ n g(σ) √(π kT/m) with Henderson's g(σ) and the measured
+/// a2, so d(kT^(−1/2))/dt = (1 − e²)(1 + 3a2/16) ω_E/(4√kT), a constant, against
+/// the measured kT(t) over the window.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct HaffEnskog {
+    /// [start, end] of the window compared (time).
+    pub window: [f64; 2],
+    /// Henderson's g(σ) at the run's η.
+    pub g_contact: f64,
+    /// The measured a2 used.
+    pub a2: f64,
+    /// ω_E at the window's start (1/time).
+    pub omega_start: f64,
+    /// Predicted slope of 1/√kT against t (1/(time·√energy)).
+    pub slope_predicted: f64,
+    /// Least-squares slope of the measured 1/√kT against t over the window.
+    pub slope_measured: f64,
+    /// measured / predicted slope.
+    pub ratio: f64,
+    /// kT at the window's end from kT at its start and the predicted slope.
+    pub kt_end_predicted: f64,
+    /// Measured kT at the window's end.
+    pub kt_end_measured: f64,
+    /// |ratio − 1| within [`ENSKOG_COOLING_TOLERANCE`].
+    pub agrees: bool,
 }

@@ -24,6 +24,9 @@ mod driven;
 #[path = "analyze_sections.rs"]
 mod sections;
 
+#[path = "analyze_inelastic.rs"]
+mod inelastic;
+
 use super::report_text::{self, sigmas, Text};
 use sections::{pair_correlation_text, pressure_text, run_text, structure_text, velocity_text};
 
@@ -104,7 +107,6 @@ pub fn text(r: &Report, args: &AnalyzeArgs, complete: bool) -> String {
     }
     let mut s = t.finish();
     s.push('\n');
-    use std::fmt::Write;
     let before = s.len();
     dynamics::dynamics_text(r, &mut s);
     if let Some(t) = &r.transport {
@@ -113,43 +115,12 @@ pub fn text(r: &Report, args: &AnalyzeArgs, complete: bool) -> String {
         }
         transport::transport_text(t, &mut s);
     }
-    if let Some(i) = &r.inelastic {
-        if let Some(e) = &i.energy {
-            let _ = writeln!(
-                s,
-                "energy budget  E0 = {:.6}, E = {:.6}, dissipated = {:.6} ({}), E0 − dissipated − E = {:.3e} (relative {:.3e})",
-                Num(e.initial), Num(e.final_), Num(e.dissipated), e.dissipated_source, e.residual, e.relative_residual
-            );
-        }
-        if let Some(h) = &i.haff {
-            let _ = writeln!(
-                s,
-                "Haff's law  t0 = {:.4}, a2 = {:.4}; final kT measured {:.5}, predicted {:.5} (ratio {:.4})",
-                Num(h.t0), h.a2, Num(h.kt_final_measured), Num(h.kt_final_predicted), h.ratio
-            );
-        }
-        if let Some(a) = &i.sonine {
-            let _ = writeln!(
-                s,
-                "Sonine coefficient  a2 = ⟨(mv²)²⟩/(2⟨mv²⟩²) − 1 = {:.4} ± {:.4} over {} snapshots{}",
-                a.a2,
-                a.std_error,
-                a.snapshots,
-                match a.theory {
-                    Some(th) => format!(
-                        "; van Noije–Ernst {th:.4} ({} apart)",
-                        sigmas(a.a2 - th, a.std_error)
-                    ),
-                    None => String::new(),
-                }
-            );
-        }
-        let series = &r.temperature.series;
-        let step = (series.len() / 10).max(1);
-        let _ = writeln!(s, "temperature vs time:");
-        for p in series.iter().step_by(step) {
-            let _ = writeln!(s, "  t = {:10.4}  kT = {:.6}", p[0], p[1]);
-        }
+    let mut i = Text::default();
+    inelastic::inelastic_text(r, &mut i);
+    let i = i.finish();
+    if !i.is_empty() {
+        s.push('\n');
+        s += &i;
     }
     if !r.not_computed.is_empty() {
         let mut t = Text::default();

@@ -56,19 +56,29 @@ pub(super) fn run_text(r: &Report, args: &AnalyzeArgs, complete: bool, t: &mut T
             "{} of {} used{}",
             w.snapshot_times.len(),
             w.snapshots_seen,
-            match w.every {
-                Some(e) if w.every_from_budget => format!(
+            match (w.every, w.every_collisions) {
+                (Some(e), Some(c)) if w.every_from_budget => format!(
+                    ", ≥ {c} pair collisions per disc apart (counted between them) and ≥ {} in \
+                     time to keep at most {} velocities in memory (--every to change)",
+                    sig(e, 4),
+                    w.max_velocities
+                ),
+                (None, Some(c)) => format!(
+                    ", ≥ {c} pair collisions per disc apart, counted between them (the rate \
+                     changes as the gas cools; --every to change)"
+                ),
+                (Some(e), _) if w.every_from_budget => format!(
                     ", ≥ {} apart to keep at most {} velocities in memory (--every to change)",
                     sig(e, 4),
                     w.max_velocities
                 ),
-                Some(e) if w.every_default => format!(
+                (Some(e), _) if w.every_default => format!(
                     ", ≥ {} apart: {} pair collisions per disc (--every to change)",
                     sig(e, 4),
                     DECORRELATION_COLLISIONS
                 ),
-                Some(e) => format!(", ≥ {} apart", Num(e)),
-                None => String::new(),
+                (Some(e), _) => format!(", ≥ {} apart", Num(e)),
+                (None, _) => String::new(),
             }
         ),
     );
@@ -77,11 +87,20 @@ pub(super) fn run_text(r: &Report, args: &AnalyzeArgs, complete: bool, t: &mut T
         .spacing_collisions
         .filter(|&c| c < CORRELATED_SPACING && rate > 0.0)
     {
+        let cure = if r.elastic {
+            format!(
+                "--every {} or more",
+                sig(DECORRELATION_COLLISIONS / rate, 4)
+            )
+        } else {
+            "leave out --every: the default spaces them by counted collisions, as the rate \
+             changes"
+                .to_string()
+        };
         t.note(&format!(
-            "warning: the snapshots used are only {c:.2} pair collisions per disc apart: their \
-             velocities are correlated and the Maxwell–Boltzmann tests reject too often \
-             (--every {} or more)",
-            sig(DECORRELATION_COLLISIONS / rate, 4)
+            "warning: the snapshots used are only {c:.2} pair collisions per disc apart \
+             (counted between them): their velocities are correlated and the \
+             Maxwell–Boltzmann tests reject too often ({cure})"
         ));
     }
 }
@@ -195,6 +214,7 @@ pub(super) fn pressure_text(r: &Report, t: &mut Text) {
             let state = match (p.converged, p.drift.as_ref().is_some_and(|d| d.drifting)) {
                 (_, true) => "  DRIFTING (below)",
                 (true, false) => "",
+                (false, false) if cooling(r) => "  blocking did not converge",
                 (false, false) => "  blocking did not converge: run longer",
             };
             t.item("Z = βPA/N", &format!("{}{state}", pm(p.z, p.z_std_error)));
@@ -239,13 +259,30 @@ pub(super) fn pressure_text(r: &Report, t: &mut Text) {
     }
     let c = &r.collision_rate;
     t.section("collision rate (physics.md §7)");
-    t.item(
-        "ω",
-        &format!(
-            "{} pair collisions per disc per unit time",
-            pm(c.per_disc, c.std_error)
+    match (&c.start, &c.end) {
+        (Some(a), Some(b)) if cooling(r) => {
+            for (name, p) in [("ω at the start", a), ("ω at the end", b)] {
+                t.item(
+                    name,
+                    &format!(
+                        "{} pair collisions per disc per unit time over t ∈ [{}, {}], kT = {}",
+                        pm(p.per_disc, p.std_error),
+                        sig(p.window[0], 4),
+                        sig(p.window[1], 4),
+                        sig(p.kt, 4)
+                    ),
+                );
+            }
+            t.note("a cooling gas's ω falls as √T: no one mean describes it (JSON: per_disc)");
+        }
+        _ => t.item(
+            "ω",
+            &format!(
+                "{} pair collisions per disc per unit time",
+                pm(c.per_disc, c.std_error)
+            ),
         ),
-    );
+    }
     t.item(
         "counted from",
         &if c.counted_from == "thermo" {
@@ -268,10 +305,15 @@ pub(super) fn pressure_text(r: &Report, t: &mut Text) {
         t.item(
             "drift",
             &format!(
-                "first half {}, second half {} ({:.1} SE apart): equilibrate longer",
+                "first half {}, second half {} ({:.1} SE apart){}",
                 pm(d.first_half, d.first_half_std_error),
                 pm(d.second_half, d.second_half_std_error),
-                d.difference_std_errors
+                d.difference_std_errors,
+                if cooling(r) {
+                    ": the gas is cooling"
+                } else {
+                    ": equilibrate longer"
+                }
             ),
         );
     }
@@ -390,10 +432,15 @@ pub(super) fn structure_text(r: &Report, t: &mut Text) {
                 "drift",
                 &format!(
                     "first half {}, second half {} ({:.1} SE apart): the order is still \
-                     changing; equilibrate longer",
+                     changing{}",
                     pm(d.first_half, d.first_half_std_error),
                     pm(d.second_half, d.second_half_std_error),
-                    d.difference_std_errors
+                    d.difference_std_errors,
+                    if cooling(r) {
+                        " (a cooling gas never settles)"
+                    } else {
+                        "; equilibrate longer"
+                    }
                 ),
             );
         }

@@ -145,7 +145,8 @@ pub struct AnalyzeArgs {
     pub equilibrate: Option<f64>,
     /// Use snapshots at least this far apart (simulated time) for the velocity
     /// distribution; default: 5 pair collisions per disc, from the log's collision
-    /// rate (every snapshot after --equilibrate if the log has no collision counts).
+    /// rate (every snapshot after --equilibrate if the log has no collision counts),
+    /// or for an inelastic run counted between the snapshots.
     /// Closer snapshots hold correlated velocities: the tests then reject too often.
     #[arg(long, value_name = "DT", allow_negative_numbers = true)]
     pub every: Option<f64>,
