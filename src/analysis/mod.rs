@@ -43,6 +43,7 @@ mod origins;
 mod pair_correlation;
 mod pressure;
 mod psi6_estimators;
+mod quadrature;
 mod report;
 mod self_scattering;
 mod series;
