@@ -259,12 +259,18 @@ fn a_snapshot_s_kinetic_energy_weighs_each_disc_by_its_species_mass() {
         (a.mb_kinetic, a.snapshot_kt.clone()),
         (4.8125, vec![2.40625])
     );
-    assert_eq!((a.vx[0].clone(), a.vy[0].clone()), (vec![1.0], vec![0.5]));
-    assert_eq!(
-        (a.vx[1].clone(), a.vy[1].clone()),
-        (vec![-2.0, 0.5], vec![1.0, -3.0])
-    );
-    assert_eq!(a.speeds[1], [5f64.sqrt(), 9.25f64.sqrt()]);
+    // The velocity tests see velocities relative to the centre of mass:
+    // u = (2·1 + 0.5·(−2) + 0.5·0.5, 2·0.5 + 0.5·1 + 0.5·(−3))/3 = (5/12, 0).
+    let u = 5.0 / 12.0;
+    let near = |a: &[f64], b: &[f64]| {
+        a.len() == b.len() && a.iter().zip(b).all(|(x, y)| (x - y).abs() < 1e-15)
+    };
+    assert!(near(&a.vx[0], &[1.0 - u]) && near(&a.vy[0], &[0.5]));
+    assert!(near(&a.vx[1], &[-2.0 - u, 0.5 - u]) && near(&a.vy[1], &[1.0, -3.0]));
+    assert!(near(
+        &a.speeds[1],
+        &[(-2.0 - u).hypot(1.0), (0.5 - u).hypot(-3.0)]
+    ));
     // A second snapshot adds its K (½·2·4 + 0 + 0 = 4) to the sum.
     a.snapshot(2.0, &s, &[0.0, 0.0, 0.0], &[2.0, 0.0, 0.0])
         .unwrap();

@@ -268,10 +268,19 @@ mod tests {
         // a2 does not change with the temperature.
         assert!(close(a.snapshot_a2[0], a.snapshot_a2[1], 1e-14));
         scale_to(&mut a, 10.0);
-        let want_vx = [vec![2.0, -2.0, 2.0, -2.0], vec![4.0, 4.0], vec![]];
-        let want_vy = [vec![2.0, 0.0, 2.0, 0.0], vec![-4.0, -4.0], vec![]];
-        let r8 = 8.0f64.sqrt();
-        let want_speed = [vec![r8, 2.0, r8, 2.0], vec![2.0 * r8; 2], vec![]];
+        // Velocities relative to the centre of mass, u = (2, 2)/9 (masses 2, 0.5,
+        // 2; 3u at the second snapshot), times √(10/2.5) = √(10/22.5)·3 = 2.
+        let (ux, uy) = (2.0 / 9.0, 2.0 / 9.0);
+        let scaled = |k: usize| (2.0 * (vx[k] - ux), 2.0 * (vy[k] - uy));
+        let (d0, d1, d2) = (scaled(0), scaled(1), scaled(2));
+        let want_vx = [vec![d0.0, d2.0, d0.0, d2.0], vec![d1.0, d1.0], vec![]];
+        let want_vy = [vec![d0.1, d2.1, d0.1, d2.1], vec![d1.1, d1.1], vec![]];
+        let sp = |d: (f64, f64)| d.0.hypot(d.1);
+        let want_speed = [
+            vec![sp(d0), sp(d2), sp(d0), sp(d2)],
+            vec![sp(d1), sp(d1)],
+            vec![],
+        ];
         for (got, want) in [(&a.vx, want_vx), (&a.vy, want_vy), (&a.speeds, want_speed)] {
             for s in 0..3 {
                 assert_eq!(got[s].len(), want[s].len());

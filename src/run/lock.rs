@@ -11,6 +11,9 @@ use std::path::Path;
 use super::RunError;
 
 /// A held lock on a log file; released when dropped (or when the process ends).
+/// Tries, 5 ms apart, before a held lock is reported (0.1 s in all).
+const FORK_WAITS: u32 = 20;
+
 #[derive(Debug)]
 pub(super) struct LogLock {
     _file: File,
@@ -26,6 +29,10 @@ pub(super) fn lock_log(path: &Path, create: bool) -> Result<LogLock, RunError> {
         file: path.to_path_buf(),
         source,
     };
+    // A lock can be held for a moment by a child being forked from another
+    // thread of this process (the file's descriptor is shared until the child
+    // execs and closes it): a refusal is only final after a short wait.
+    let mut waits = 0;
     loop {
         let file = OpenOptions::new()
             .read(true)
@@ -36,6 +43,11 @@ pub(super) fn lock_log(path: &Path, create: bool) -> Result<LogLock, RunError> {
             .map_err(io_err)?;
         match file.try_lock() {
             Ok(()) => {}
+            Err(TryLockError::WouldBlock) if waits < FORK_WAITS => {
+                waits += 1;
+                std::thread::sleep(std::time::Duration::from_millis(5));
+                continue;
+            }
             Err(TryLockError::WouldBlock) => {
                 return Err(RunError::Locked {
                     file: path.to_path_buf(),
