@@ -122,8 +122,8 @@ pub struct StructureFactorReport {
     pub vectors: Vec<u64>,
     /// Snapshots used (one per time block).
     pub snapshots: usize,
-    /// Position of the first peak ([`first_peak`]), 1/length; `null` when no
-    /// shell reaches k = π/σ_min (a box too small).
+    /// Position of the first peak (the largest S at k ≥ π/σ_min, physics.md
+    /// §11), 1/length; `null` when no shell reaches k = π/σ_min (a box too small).
     pub peak_k: Option<f64>,
     /// Its height.
     pub peak_s: Option<f64>,
