@@ -8,10 +8,8 @@
 // Prints one JSON object {schemas, messages, per_topic}; exits 1 naming the first
 // schema or message that breaks a rule.
 // Usage: node tests/node/jsonschema.mjs FILE
-import { McapStreamReader } from "@mcap/core";
+import { streamReader } from "./stream_reader.mjs";
 import { readFileSync } from "node:fs";
-import { decompress as unzstd } from "fzstd";
-import lz4 from "lz4js";
 
 const SCALARS = new Set(["boolean", "string", "number", "integer"]);
 
@@ -81,17 +79,7 @@ if (!file) {
   console.error("usage: node jsonschema.mjs FILE");
   process.exit(2);
 }
-const reader = new McapStreamReader({
-  validateCrcs: true,
-  decompressHandlers: {
-    zstd: (data, size) => unzstd(data, new Uint8Array(Number(size))),
-    lz4: (data, size) => {
-      const out = new Uint8Array(Number(size));
-      lz4.decompressFrame(data, out);
-      return out;
-    },
-  },
-});
+const reader = streamReader();
 const schemas = new Map(); // schema id -> {fields, required, name}
 const channels = new Map(); // channel id -> {topic, schema}
 const perTopic = {};

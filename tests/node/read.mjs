@@ -4,27 +4,15 @@
 // Exits 1 with the reader's error on stderr if it rejects the file. zstd and lz4
 // chunks are decompressed with the pure-JS fzstd and lz4js packages.
 // Usage: node tests/node/read.mjs FILE
-import { McapStreamReader } from "@mcap/core";
+import { streamReader } from "./stream_reader.mjs";
 import { openSync, readSync, closeSync } from "node:fs";
-import { decompress as unzstd } from "fzstd";
-import lz4 from "lz4js";
 
 const file = process.argv[2];
 if (!file) {
   console.error("usage: node read.mjs FILE");
   process.exit(2);
 }
-const reader = new McapStreamReader({
-  validateCrcs: true,
-  decompressHandlers: {
-    zstd: (data, size) => unzstd(data, new Uint8Array(Number(size))),
-    lz4: (data, size) => {
-      const out = new Uint8Array(Number(size));
-      lz4.decompressFrame(data, out);
-      return out;
-    },
-  },
-});
+const reader = streamReader();
 const topics = new Map();
 const counts = {};
 let records = 0;

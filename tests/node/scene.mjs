@@ -7,12 +7,10 @@
 // a snapshot, discs checked, the species colours seen. Exits 1 with the first
 // mismatch on stderr.
 // Usage: node tests/node/scene.mjs FILE
-import { McapStreamReader } from "@mcap/core";
+import { streamReader } from "./stream_reader.mjs";
 import { parse } from "@foxglove/rosmsg";
 import { MessageReader } from "@foxglove/rosmsg2-serialization";
 import { readFileSync } from "node:fs";
-import { decompress as unzstd } from "fzstd";
-import lz4 from "lz4js";
 
 const file = process.argv[2];
 if (!file) {
@@ -24,17 +22,7 @@ const fail = (why) => {
   process.exit(1);
 };
 
-const reader = new McapStreamReader({
-  validateCrcs: true,
-  decompressHandlers: {
-    zstd: (data, size) => unzstd(data, new Uint8Array(Number(size))),
-    lz4: (data, size) => {
-      const out = new Uint8Array(Number(size));
-      lz4.decompressFrame(data, out);
-      return out;
-    },
-  },
-});
+const reader = streamReader();
 reader.append(new Uint8Array(readFileSync(file)));
 
 const schemas = new Map();
