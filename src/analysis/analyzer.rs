@@ -411,17 +411,7 @@ impl Analyzer {
         self.snapshot_a2
             .push(inelastic::sonine_a2(&masses, species_of, vx, vy));
         self.mb_kinetic += k;
-        // Velocities relative to the snapshot's centre of mass (physics.md §6):
-        // where momentum is not conserved (a thermostat, walls) the centre of mass
-        // wanders by √(kT/(N m)) and slowly, so pooled snapshots would share its
-        // offset and the tests would reject too often; with momentum conserved
-        // it is 0 and this changes nothing.
-        let (mut px, mut py, mut mass) = (0.0, 0.0, 0.0);
-        for (&s, (&x, &y)) in species_of.iter().zip(vx.iter().zip(vy)) {
-            let m = masses[s as usize];
-            (px, py, mass) = (px + m * x, py + m * y, mass + m);
-        }
-        let (ux, uy) = (px / mass, py / mass);
+        let (ux, uy) = velocity::centre_of_mass_velocity(&masses, species_of, vx, vy);
         for (&s, (&x, &y)) in species_of.iter().zip(vx.iter().zip(vy)) {
             let (s, x, y) = (s as usize, x - ux, y - uy);
             self.speeds[s].push(x.hypot(y));

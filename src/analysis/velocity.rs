@@ -31,6 +31,25 @@ pub const MB_TESTS_PER_SPECIES: usize = 4;
 /// docs/performance.md, 'analyze defaults'.
 pub const MAX_SNAPSHOT_CORRELATION: f64 = 0.05;
 
+/// The centre-of-mass velocity u = Σ m_i v_i / Σ m_i of a snapshot (`masses` per
+/// species). The velocity tests take velocities relative to it (physics.md §6,
+/// "Centre of mass"): where momentum is not conserved (a thermostat, walls) it
+/// wanders slowly by √(kT/(N m)), and pooled snapshots sharing its offset would
+/// make the tests reject too often; with momentum conserved it is 0.
+pub(super) fn centre_of_mass_velocity(
+    masses: &[f64],
+    species_of: &[u16],
+    vx: &[f64],
+    vy: &[f64],
+) -> (f64, f64) {
+    let (mut px, mut py, mut mass) = (0.0, 0.0, 0.0);
+    for (&s, (&x, &y)) in species_of.iter().zip(vx.iter().zip(vy)) {
+        let m = masses[s as usize];
+        (px, py, mass) = (px + m * x, py + m * y, mass + m);
+    }
+    (px / mass, py / mass)
+}
+
 /// The correlation of a species' velocities between consecutive snapshots: `vx`,
 /// `vy` hold `per` discs' components per snapshot, snapshot after snapshot, each
 /// disc at the same place in every snapshot. Components are taken relative to
