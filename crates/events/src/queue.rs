@@ -270,8 +270,8 @@ impl EventQueue {
     /// for fetching their records before they are needed.
     #[inline]
     pub fn ahead(&self, k: u64) -> &[u32; SLOT_DISCS] {
-        // Wrapping: once the current bucket has saturated (see `advance`) the slot
-        // named is any slot, which is harmless for a hint.
+        // Wrapping: near the end of the bucket numbers the slot named is any slot,
+        // which is harmless for a hint.
         &self.slots[(self.cur.wrapping_add(k) & self.mask) as usize].disc
     }
 
@@ -410,24 +410,21 @@ impl EventQueue {
     fn advance<T: EventTimes + ?Sized>(&mut self, times: &T) {
         self.moved = true;
         if self.in_slots == 0 {
-            // Only overflow entries are left: jump straight to the earliest of them.
-            let b = self
-                .overflow
-                .iter()
-                .filter(|item| times.time(item.disc) == item.time)
-                .map(|item| self.bucket(item.time))
-                .min()
-                .unwrap_or(u64::MAX);
-            // Saturating: a time more than 2⁶⁴ bucket widths ahead (a system that
-            // cooled by many orders of magnitude since the width was tuned) lies in
-            // the last bucket, u64::MAX, and from then on every event is filed in
-            // the heap, which orders them exactly.
-            self.cur = b.max(self.cur.saturating_add(1));
+            // Only overflow entries are left: the events have spread out beyond the
+            // calendar since Δ was tuned (a cooling gas): tune it anew, which files
+            // the earliest events in the current bucket.
+            self.rebuild(times);
+            return;
+        }
+        self.cur = self.cur.saturating_add(1);
+        if self.cur & self.mask == 0 {
             self.redistribute_overflow(times);
-        } else {
-            self.cur = self.cur.saturating_add(1);
-            if self.cur & self.mask == 0 {
-                self.redistribute_overflow(times);
+            if 2 * self.overflow.len() > self.finite {
+                // More than half the events lie beyond a turn of the calendar, which
+                // a tuned Δ never leaves (a turn spans at least twice the mean time
+                // ahead; Markov's inequality): the events have spread out.
+                self.rebuild(times);
+                return;
             }
         }
         // The times of the discs four buckets ahead are read when the engine looks

@@ -140,6 +140,38 @@ fn entries_waiting_to_be_filed_are_found() {
     }
 }
 
+/// Events that spread out after Δ was tuned (a cooling gas: each new interval 5 %
+/// longer than the last) still come out in order, and Δ follows them: the
+/// calendar is tuned anew once most events lie beyond it, so the mean time ahead
+/// stays within a bounded number of bucket widths per disc (tuned: 1/2).
+#[test]
+fn the_bucket_width_follows_events_that_spread_out() {
+    let n = 64;
+    let mut q = Q::new(n);
+    for i in 0..n {
+        q.set(i as u32, t(1.0 + i as f64));
+    }
+    q.retune(0.0);
+    let mut scale = 1.0;
+    let mut worst: f64 = 0.0;
+    for k in 0..3000 {
+        let (head, i) = q.peek();
+        let now = head.into_inner();
+        let (min, arg) = q
+            .times
+            .iter()
+            .enumerate()
+            .fold((f64::INFINITY, 0), |a, (j, &x)| if x < a.0 { (x, j) } else { a });
+        assert_eq!((now, i as usize), (min, arg), "pop {k}");
+        let ahead = q.times.iter().map(|&x| x - now).sum::<f64>() / n as f64;
+        worst = worst.max(ahead * q.q.inv_width / n as f64);
+        scale *= 1.05;
+        q.set(i, t(now + scale * (1 + (k * 7) % 13) as f64));
+    }
+    assert!(scale > 1e60, "the events spread out by {scale:e}");
+    assert!(worst < 20.0, "mean time ahead / (N Δ) reached {worst}");
+}
+
 proptest! {
     /// Popping in a simulation-like pattern (the head moves to a later time, others
     /// change anywhere ahead of the head) always yields the (time, index) minimum.
