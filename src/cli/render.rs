@@ -125,18 +125,22 @@ pub(crate) fn check_out(file: &Path, out: &Path, force: bool) -> Result<(), CliE
 /// left as it is. A file created here is removed again unless [`OutLock::keep`]
 /// is called (the command failed).
 pub(crate) struct OutLock {
-    _lock: carom::run::LogLock,
+    _lock: Option<carom::run::LogLock>,
     created: Option<PathBuf>,
 }
 
 impl OutLock {
-    /// Lock `out`, creating it if it does not exist.
+    /// Lock `out`, creating it if it does not exist. A file that cannot be opened
+    /// (no such directory) is left to the writer, which says why.
     pub(crate) fn take(out: &Path) -> Result<OutLock, CliError> {
         let created = (!out.exists()).then(|| out.to_path_buf());
-        let lock = carom::run::lock_log(out, true)?;
+        let lock = match carom::run::lock_log(out, true) {
+            Err(carom::run::RunError::Lock { .. }) => None,
+            lock => Some(lock?),
+        };
         Ok(OutLock {
+            created: created.filter(|_| lock.is_some()),
             _lock: lock,
-            created,
         })
     }
 
