@@ -31,19 +31,16 @@ fn long_run(dir: &Path, out: &str) -> Child {
 
 /// Whether another process holds the lock on `path`.
 fn locked(path: &Path) -> bool {
-    std::fs::File::open(path).is_ok_and(|f| {
-        matches!(
-            f.try_lock_shared(),
-            Err(std::fs::TryLockError::WouldBlock)
-        )
-    })
+    std::fs::File::open(path)
+        .is_ok_and(|f| matches!(f.try_lock_shared(), Err(std::fs::TryLockError::WouldBlock)))
 }
 
 /// Wait (up to a minute) until `name` in `dir` is the locked log of a run that
 /// has started: no temporary file left beside it.
 fn wait_started(dir: &Path, name: &str) {
     let start = Instant::now();
-    while !(locked(&dir.join(name)) && !dir.join(format!("{name}.run-tmp")).exists()) {
+    let started = || locked(&dir.join(name)) && !dir.join(format!("{name}.run-tmp")).exists();
+    while !started() {
         assert!(
             start.elapsed() < Duration::from_secs(60),
             "the run into {name} did not start"
@@ -73,7 +70,14 @@ fn small_log(dir: &Path, name: &str) {
     ok(&carom(
         dir,
         &[
-            "run", "--quiet", "--force", "--out", name, "--set", "species.0.count=64", "--set",
+            "run",
+            "--quiet",
+            "--force",
+            "--out",
+            name,
+            "--set",
+            "species.0.count=64",
+            "--set",
             "stop.duration=2",
         ],
     ));
@@ -112,10 +116,24 @@ fn repair_and_export_onto_a_log_a_run_is_writing_are_refused() {
     let writers: [&[&str]; 3] = [
         &["repair", "small.mcap", "--out", "s.mcap", "--force"],
         &[
-            "export", "small.mcap", "--format", "xyz", "--out", "s.mcap", "--force", "-q",
+            "export",
+            "small.mcap",
+            "--format",
+            "xyz",
+            "--out",
+            "s.mcap",
+            "--force",
+            "-q",
         ],
         &[
-            "export", "small.mcap", "--format", "gsd", "--out", "s.mcap", "--force", "-q",
+            "export",
+            "small.mcap",
+            "--format",
+            "gsd",
+            "--out",
+            "s.mcap",
+            "--force",
+            "-q",
         ],
     ];
     for args in writers {
@@ -255,15 +273,27 @@ fn a_force_run_over_an_older_log_writes_the_same_messages_as_a_fresh_run() {
         ok(&carom(
             &dir,
             &[
-                "run", "-q", "--force", "--out", out, "--set", "species.0.count=400", "--set",
-                "stop.duration=5", "--set", "seed=7",
+                "run",
+                "-q",
+                "--force",
+                "--out",
+                out,
+                "--set",
+                "species.0.count=400",
+                "--set",
+                "stop.duration=5",
+                "--set",
+                "seed=7",
             ],
         ))
     };
     run("fresh.mcap");
     small_log(&dir, "over.mcap");
     run("over.mcap");
-    let (a, b) = (messages(&dir.join("fresh.mcap")), messages(&dir.join("over.mcap")));
+    let (a, b) = (
+        messages(&dir.join("fresh.mcap")),
+        messages(&dir.join("over.mcap")),
+    );
     assert!(a.len() > 10, "{}", a.len());
     assert!(a == b, "{} and {} messages differ", a.len(), b.len());
     assert!(!dir.join("over.mcap.run-tmp").exists());

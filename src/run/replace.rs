@@ -202,7 +202,10 @@ mod tests {
         // Replaced at the start: the name holds the new log, still locked.
         let out = Output::lock(&log).unwrap();
         std::fs::write(out.writing(), b"newer").unwrap();
-        assert_eq!(out.replace_at_start().unwrap().apply().unwrap(), log.canonicalize().unwrap());
+        assert_eq!(
+            out.replace_at_start().unwrap().apply().unwrap(),
+            log.canonicalize().unwrap()
+        );
         assert!(matches!(
             lock_log(&log, false),
             Err(RunError::Locked { .. })
