@@ -9,7 +9,7 @@ use carom::frames::FrameRange;
 use clap::{Args, ValueEnum};
 
 use super::reading::ReadDisplay;
-use super::render::{check_out, default_out};
+use super::render::{check_out, default_out, OutLock};
 use super::{emit, CliError};
 
 /// The export formats.
@@ -60,6 +60,7 @@ pub fn export(args: ExportArgs) -> Result<ExitCode, CliError> {
         .clone()
         .unwrap_or_else(|| default_out(&args.file, format.extension()));
     check_out(&args.file, &out, args.force)?;
+    let lock = OutLock::take(&out)?;
     let range = FrameRange {
         from: args.from,
         to: args.to,
@@ -70,6 +71,7 @@ pub fn export(args: ExportArgs) -> Result<ExitCode, CliError> {
     let result = export_frames(&args.file, &out, format, range, &mut |p| display.update(p));
     display.finish();
     let count = result?;
+    lock.keep();
     let bytes = std::fs::metadata(&out).map(|m| m.len()).unwrap_or(0);
     emit(&format!(
         "wrote {}: {} frames of {} discs, {:.1} MB\n",

@@ -119,6 +119,45 @@ pub(crate) fn check_out(file: &Path, out: &Path, force: bool) -> Result<(), CliE
     Ok(())
 }
 
+/// The lock on a file a command writes ([`carom::run::lock_log`], the lock a run
+/// holds on its log), taken after [`check_out`] and before anything is written:
+/// a file another process writes (a run's log, another export) is refused and
+/// left as it is. A file created here is removed again unless [`OutLock::keep`]
+/// is called (the command failed).
+pub(crate) struct OutLock {
+    _lock: Option<carom::run::LogLock>,
+    created: Option<PathBuf>,
+}
+
+impl OutLock {
+    /// Lock `out`, creating it if it does not exist. A file that cannot be opened
+    /// (no such directory) is left to the writer, which says why.
+    pub(crate) fn take(out: &Path) -> Result<OutLock, CliError> {
+        let created = (!out.exists()).then(|| out.to_path_buf());
+        let lock = match carom::run::lock_log(out, true) {
+            Err(carom::run::RunError::Lock { .. }) => None,
+            lock => Some(lock?),
+        };
+        Ok(OutLock {
+            created: created.filter(|_| lock.is_some()),
+            _lock: lock,
+        })
+    }
+
+    /// The command wrote the file: keep it.
+    pub(crate) fn keep(mut self) {
+        self.created = None;
+    }
+}
+
+impl Drop for OutLock {
+    fn drop(&mut self) {
+        if let Some(out) = &self.created {
+            carom::frames::remove_output(out);
+        }
+    }
+}
+
 fn extension(out: &Path) -> String {
     out.extension()
         .map(|e| e.to_string_lossy().to_lowercase())
@@ -156,15 +195,19 @@ pub fn render(args: RenderArgs) -> Result<ExitCode, CliError> {
             )))
         }
     };
+    let lock = OutLock::take(&out)?;
     let mut display = ReadDisplay::new(args.quiet, &args.file.display().to_string());
     display.pass("reading");
     let Some(format) = format else {
-        return movie(&args, &out, by, &mut display);
+        let done = movie(&args, &out, by, &mut display)?;
+        lock.keep();
+        return Ok(done);
     };
     let snapshot = nearest_snapshot(&args.file, args.time, &mut |p| display.update(p));
     display.finish();
     let s = snapshot?;
     let layout = render_snapshot(&s, &out, format, args.size.unwrap_or(800), by)?;
+    lock.keep();
     emit(&format!(
         "wrote {} ({}×{} px): t = {}, N = {}\n",
         out.display(),

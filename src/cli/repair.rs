@@ -1,5 +1,6 @@
 //! `carom repair`: a complete, indexed log from one cut short (see
-//! [`carom::run::repair`]). Never writes over its input.
+//! [`carom::run::repair`]). Never writes over its input, nor over a file that
+//! another process writes (a run's log).
 
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
@@ -34,7 +35,9 @@ pub fn repair(args: RepairArgs) -> Result<ExitCode, CliError> {
             out.display()
         )));
     }
+    let lock = super::render::OutLock::take(&out)?;
     let r = carom::run::repair(&args.file, &out)?;
+    lock.keep();
     let how = match &r.input_end {
         LogEnd::Complete => "the input was already complete; copied whole".to_string(),
         LogEnd::Truncated { detail } => format!("the input was cut ({detail})"),

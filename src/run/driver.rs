@@ -13,7 +13,7 @@
 //! While discs grow, an extra `/thermo` record follows the first event after each
 //! velocity rescale and after the end of growth (docs/log-format.md, `/thermo`).
 
-use std::path::Path;
+use std::path::{Path, PathBuf};
 use std::sync::atomic::Ordering;
 use std::time::Instant;
 
@@ -24,6 +24,7 @@ use carom_io::{LogOptions, Stop};
 
 use super::disk::{disk_low, free_bytes};
 use super::observation::Observation;
+use super::replace::Replace;
 use super::thermo::thermo;
 use super::watchdog;
 use super::{Control, Progress, RunError, RunSummary};
@@ -85,6 +86,10 @@ pub(super) struct Driver<'a> {
     /// last seen, to tell when a rescale or the end of growth has passed (`None`
     /// otherwise).
     growth_seen: Option<(i64, GrowthEnd)>,
+    /// The rename of the new log over an older one, done after the first
+    /// checkpoint (`replace.rs`), and the log's path, which it changes.
+    pub(super) replace_at_start: Option<Replace>,
+    path: PathBuf,
 }
 
 impl<'a> Driver<'a> {
@@ -98,6 +103,7 @@ impl<'a> Driver<'a> {
         let s = engine.stats();
         let collisions = s.pair_collisions + s.wall_collisions;
         let engine_now = engine.now();
+        let path = writer.path().to_path_buf();
         Driver {
             engine,
             writer,
@@ -118,6 +124,8 @@ impl<'a> Driver<'a> {
             last_collision: engine_now,
             quiet_detail: None,
             growth_seen: None,
+            replace_at_start: None,
+            path,
         }
     }
 
@@ -125,7 +133,7 @@ impl<'a> Driver<'a> {
         RunError::Engine {
             source,
             time: self.engine.now(),
-            log: self.writer.path().to_path_buf(),
+            log: self.path.clone(),
         }
     }
 
@@ -300,7 +308,7 @@ impl<'a> Driver<'a> {
 
     /// The log file's size on disk (bytes; 0 if it cannot be read).
     fn log_bytes(&self) -> u64 {
-        std::fs::metadata(self.writer.path()).map_or(0, |m| m.len())
+        std::fs::metadata(&self.path).map_or(0, |m| m.len())
     }
 
     /// Look at the room left on the log's disk: whether the run must stop now to
@@ -309,7 +317,7 @@ impl<'a> Driver<'a> {
         let bytes = self.log_bytes();
         let growth = bytes.saturating_sub(self.bytes_at_disk_check);
         self.bytes_at_disk_check = bytes;
-        let free = free_bytes(&mut self.control.free_space, self.writer.path());
+        let free = free_bytes(&mut self.control.free_space, &self.path);
         free.is_ok_and(|free| disk_low(free, self.writer.finish_bound(bytes), growth))
     }
 
@@ -388,6 +396,9 @@ impl<'a> Driver<'a> {
                         let interval = self.log.checkpoint_interval;
                         self.schedule_next(Observation::Checkpoint, k, interval)?;
                         self.write_checkpoint()?;
+                        if let Some(r) = self.replace_at_start.take() {
+                            self.path = r.apply()?;
+                        }
                     }
                     Some(Observation::Scene(k)) => {
                         let interval = self.log.scene_interval;

@@ -119,8 +119,22 @@ pub enum RunError {
         /// The operating system's error.
         source: std::io::Error,
     },
-    /// Renaming the finished resumed log over the input failed.
-    #[error("cannot move the resumed log {from} over {to}: {source}")]
+    /// The engine or the writer failed before the run's log started (before its
+    /// first checkpoint): no log was written, and the older log it was to replace
+    /// (`carom run --force`), if any, is as it was.
+    #[error(
+        "{reason}\nno log was written{}",
+        .kept.as_ref().map_or(String::new(), |k| format!("; {} is as it was", k.display()))
+    )]
+    NotStarted {
+        /// What failed.
+        reason: String,
+        /// The older log, left as it was.
+        kept: Option<PathBuf>,
+    },
+    /// Renaming the finished resumed log over the input, or a new run's log over
+    /// the older one, failed.
+    #[error("cannot move the new log {from} over {to}: {source}")]
     Rename {
         /// The finished temporary file.
         from: PathBuf,

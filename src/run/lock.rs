@@ -1,7 +1,8 @@
-//! One writer per log: an exclusive advisory lock (`flock`) on the log a run
-//! writes, on the log a resume reads, and on a resume's `--out`, held until the
-//! run ends. A second writer is refused at once, before it truncates or replaces
-//! anything, and is told which process holds the lock (on Linux, from
+//! One writer per file: an exclusive advisory lock (`flock`) on the log a run
+//! writes, on the log a resume reads, on a resume's `--out`, and on every file a
+//! command writes (`repair --out`, `export --out`, `render --out`), held until
+//! the command ends. A second writer is refused at once, before it truncates or
+//! replaces anything, and is told which process holds the lock (on Linux, from
 //! `/proc/locks`; elsewhere only that one does). The lock is advisory: it keeps
 //! out other carom processes, not other programs.
 
@@ -10,12 +11,12 @@ use std::path::Path;
 
 use super::RunError;
 
-/// A held lock on a log file; released when dropped (or when the process ends).
 /// Tries, 5 ms apart, before a held lock is reported (0.1 s in all).
 const FORK_WAITS: u32 = 20;
 
+/// A held lock on a log file; released when dropped (or when the process ends).
 #[derive(Debug)]
-pub(super) struct LogLock {
+pub struct LogLock {
     _file: File,
 }
 
@@ -23,8 +24,9 @@ pub(super) struct LogLock {
 /// not truncated here, so a refused writer leaves another's log intact), else
 /// open the existing file. Refused with [`RunError::Locked`] when another process
 /// holds the lock. A file replaced by a rename while the lock was taken (a
-/// resume in place finishing) is locked anew.
-pub(super) fn lock_log(path: &Path, create: bool) -> Result<LogLock, RunError> {
+/// resume in place finishing) is locked anew. Every command that writes a file
+/// takes this lock on it first.
+pub fn lock_log(path: &Path, create: bool) -> Result<LogLock, RunError> {
     let io_err = |source| RunError::Lock {
         file: path.to_path_buf(),
         source,

@@ -14,27 +14,53 @@ use carom_io::{
 };
 
 use super::driver::Driver;
-use super::lock::lock_log;
+use super::replace::Output;
 use super::watchdog::check_reachable;
 use super::{Control, RunError, RunSummary};
 
-/// Start a fresh run of `spec`, logging to `out` (created or truncated). Blocks
-/// until the run stops (stop criterion, `control.stop`, or an engine failure, after
-/// which the log is still finished). The log holds what `run/driver.rs` describes.
+/// Start a fresh run of `spec`, logging to `out` (created, or replaced once the
+/// run has started: see `replace.rs`). Blocks until the run stops (stop
+/// criterion, `control.stop`, or an engine failure, after which the log is still
+/// finished). The log holds what `run/driver.rs` describes.
 pub fn run(spec: &RunSpec, out: &Path, mut control: Control<'_>) -> Result<RunSummary, RunError> {
     // Before placement, which can take a minute: a fresh state starts at time 0.
     check_log_options(&spec.log, &spec.stop, 0.0, "stop.time")?;
-    // Locked before placement, so that a second writer is refused at once; the
-    // file is truncated only once the lock is held, by the writer.
-    let existed = out.exists();
-    let _lock = lock_log(out, true)?;
-    // Nothing is written before the writer starts: on an error, leave no empty log.
-    let cleanup = |_: &RunError| {
-        if !existed {
-            let _ = std::fs::remove_file(out);
-        }
+    // Locked before placement, so that a second writer is refused at once; an
+    // older log is replaced only once the new one has started (replace.rs).
+    let output = Output::lock(out)?;
+    let (engine, meta) = match start(spec, out, &mut control) {
+        Ok(started) => started,
+        Err(e) => return Err(output.abandon(e)),
     };
-    let state = place(&spec.system, &mut control).inspect_err(cleanup)?;
+    let writer = LogWriter::create(
+        output.writing(),
+        WriterOptions {
+            collision_normals: WriterOptions::needs_normals(spec.params.restitution),
+            ..WriterOptions::from_log_options(&spec.log)
+        },
+        &meta.to_map(),
+        WriterPosition::default(),
+    );
+    let writer = match writer {
+        Ok(w) => w,
+        Err(e) => return output.finish(Err(e.into())),
+    };
+    let mut d = Driver::new(engine, writer, spec.log.clone(), spec.stop, control);
+    d.run_start_time = d.engine.now();
+    d.max_quiet = spec.max_time_without_collision;
+    d.replace_at_start = output.replace_at_start();
+    let summary = d.schedule_initial().and_then(|()| d.run_loop(out));
+    output.finish(summary)
+}
+
+/// Place the discs and build the engine and the run's metadata: all that can
+/// fail before the log is written.
+fn start(
+    spec: &RunSpec,
+    out: &Path,
+    control: &mut Control<'_>,
+) -> Result<(Engine, RunMetadata), RunError> {
+    let state = place(&spec.system, control)?;
     debug_assert_eq!(state.time, 0.0);
     let n = state.len();
     let facts = RunFacts::new(&state.species, &state.sim_box, &spec.params, &spec.log);
@@ -47,9 +73,8 @@ pub fn run(spec: &RunSpec, out: &Path, mut control: Control<'_>) -> Result<RunSu
             source,
             time: 0.0,
             log: out.to_path_buf(),
-        })
-        .inspect_err(cleanup)?;
-    check_reachable(&engine, spec.stop, &spec.log).inspect_err(cleanup)?;
+        })?;
+    check_reachable(&engine, spec.stop, &spec.log)?;
     let meta = RunMetadata {
         log_format: LOG_FORMAT_VERSION.into(),
         carom_version: env!("CARGO_PKG_VERSION").into(),
@@ -64,20 +89,7 @@ pub fn run(spec: &RunSpec, out: &Path, mut control: Control<'_>) -> Result<RunSu
         resumed_at: None,
         run_facts: Some(facts),
     };
-    let writer = LogWriter::create(
-        out,
-        WriterOptions {
-            collision_normals: WriterOptions::needs_normals(spec.params.restitution),
-            ..WriterOptions::from_log_options(&spec.log)
-        },
-        &meta.to_map(),
-        WriterPosition::default(),
-    )?;
-    let mut d = Driver::new(engine, writer, spec.log.clone(), spec.stop, control);
-    d.run_start_time = d.engine.now();
-    d.max_quiet = spec.max_time_without_collision;
-    d.schedule_initial()?;
-    d.run_loop(out)
+    Ok((engine, meta))
 }
 
 /// Build the initial state of `system`, reporting relaxed placement's progress to
