@@ -17,7 +17,7 @@ use std::path::Path;
 use std::sync::atomic::Ordering;
 use std::time::Instant;
 
-use carom_events::{Engine, EngineError, Event, GrowthEnd, State};
+use carom_events::{Engine, EngineError, Event, GrowthEnd, State, PAUSE_TAG};
 use carom_io::{now_rfc3339, StopReason, SummaryMetadata};
 use carom_io::{GrowthEvent, LogWriter};
 use carom_io::{LogOptions, Stop};
@@ -407,14 +407,18 @@ impl<'a> Driver<'a> {
                     _ => {}
                 },
             }
-            if self.growth_seen.is_some() {
+            // A pause (the engine handing back control during long unobservable
+            // work) marks no instant of the run: the growth's record waits for the
+            // next event.
+            let paused = matches!(ev, Event::Scheduled { tag: PAUSE_TAG, .. });
+            if self.growth_seen.is_some() && !paused {
                 self.growth_record()?;
             }
             if self.collisions >= max_collisions {
                 reason = Some(StopReason::Collisions);
             }
             tick = tick.wrapping_add(1);
-            if tick.is_multiple_of(1024) {
+            if tick.is_multiple_of(1024) || paused {
                 self.writer.maybe_flush()?;
                 if self.last_progress.elapsed() >= self.control.progress_interval {
                     self.progress();

@@ -17,6 +17,7 @@
 //! println!("{} collisions/s", summary.collisions_per_second);
 //! ```
 
+mod bounds;
 mod control;
 mod disk;
 mod driver;
