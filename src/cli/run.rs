@@ -346,6 +346,14 @@ fn report(summary: &RunSummary) -> ExitCode {
             );
             ExitCode::from(130)
         }
+        StopReason::DiskFull if summary.detail.is_some() => {
+            eprintln!(
+                "stopped early: {}; continue with `carom resume {} --ignore-disk-estimate`",
+                summary.detail.as_deref().unwrap_or_default(),
+                summary.log.display()
+            );
+            ExitCode::FAILURE
+        }
         StopReason::DiskFull => {
             eprintln!(
                 "stopped early: the disk of {log} was nearly full (room was kept to finish \
@@ -384,6 +392,7 @@ pub fn run(args: RunArgs) -> Result<ExitCode, CliError> {
             collisions: None,
             force: args.force,
             quiet: args.quiet,
+            ignore_disk_estimate: args.ignore_disk_estimate,
         });
     }
     let spec = load_config(args.config.as_deref(), &args.set)?;
@@ -419,6 +428,7 @@ pub fn run(args: RunArgs) -> Result<ExitCode, CliError> {
     let mut placing = |p: &PlacementProgress| display.borrow_mut().placing(p);
     let control = Control {
         placing: Some(&mut placing),
+        ignore_disk_estimate: args.ignore_disk_estimate,
         ..Control::new(&STOP, &mut progress)
     };
     let summary = carom::run::run(&spec, &out, control);
@@ -489,6 +499,7 @@ pub fn resume(args: ResumeArgs) -> Result<ExitCode, CliError> {
         &ResumeOptions { stop },
         Control {
             reading: Some(&mut reading),
+            ignore_disk_estimate: args.ignore_disk_estimate,
             ..Control::new(&STOP, &mut progress)
         },
     );
