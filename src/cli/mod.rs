@@ -96,6 +96,11 @@ pub struct RunArgs {
     /// No progress display.
     #[arg(short, long)]
     pub quiet: bool,
+    /// Run on when the log, projected from its growth so far, would need more
+    /// than 10 times the room on its disk (by default the run then stops at once,
+    /// with a finished log); it still stops when the disk is nearly full.
+    #[arg(long)]
+    pub ignore_disk_estimate: bool,
 }
 
 /// Arguments of `carom resume`.
@@ -125,6 +130,10 @@ pub struct ResumeArgs {
     /// No progress display.
     #[arg(short, long)]
     pub quiet: bool,
+    /// As for `carom run`: run on when the log would need more than 10 times the
+    /// room on its disk.
+    #[arg(long)]
+    pub ignore_disk_estimate: bool,
 }
 
 /// Arguments of `carom analyze`.

@@ -220,6 +220,12 @@ impl Display {
         if let Some(s) = spinner {
             if p.close == 0 {
                 s.finish_and_clear();
+            } else if let Some(c) = p.compressing {
+                s.set_message(format!(
+                    "placing {} discs (compressed): η = {:.4} of {:.4}, Z = {:.3}",
+                    p.discs, c.packing_fraction, c.target, c.reduced_pressure
+                ));
+                s.tick();
             } else {
                 // Short enough for one line of an 80-column terminal.
                 s.set_message(format!(
@@ -233,7 +239,26 @@ impl Display {
         let due = self.last_plain.is_none_or(|t| t.elapsed() >= PLAIN_EVERY);
         if due || p.close == 0 {
             let seconds = start.elapsed().as_secs_f64();
-            if p.close == 0 {
+            if let Some(c) = p.compressing {
+                if p.close == 0 {
+                    eprintln!(
+                        "[{seconds:7.1} s] placed {} discs (compressed placement) in {} rescale \
+                         intervals",
+                        p.discs, p.steps
+                    );
+                } else {
+                    eprintln!(
+                        "[{seconds:7.1} s] placing {} discs (compressed placement): packing \
+                         fraction {:.4} of {:.4}, Z = {:.3}, rescale interval {} of about {}",
+                        p.discs,
+                        c.packing_fraction,
+                        c.target,
+                        c.reduced_pressure,
+                        p.steps,
+                        p.max_steps
+                    );
+                }
+            } else if p.close == 0 {
                 eprintln!(
                     "[{seconds:7.1} s] placed {} discs (relaxed placement) in {} minimization \
                      steps",
@@ -321,6 +346,14 @@ fn report(summary: &RunSummary) -> ExitCode {
             );
             ExitCode::from(130)
         }
+        StopReason::DiskFull if summary.detail.is_some() => {
+            eprintln!(
+                "stopped early: {}; continue with `carom resume {} --ignore-disk-estimate`",
+                summary.detail.as_deref().unwrap_or_default(),
+                summary.log.display()
+            );
+            ExitCode::FAILURE
+        }
         StopReason::DiskFull => {
             eprintln!(
                 "stopped early: the disk of {log} was nearly full (room was kept to finish \
@@ -359,6 +392,7 @@ pub fn run(args: RunArgs) -> Result<ExitCode, CliError> {
             collisions: None,
             force: args.force,
             quiet: args.quiet,
+            ignore_disk_estimate: args.ignore_disk_estimate,
         });
     }
     let spec = load_config(args.config.as_deref(), &args.set)?;
@@ -381,7 +415,10 @@ pub fn run(args: RunArgs) -> Result<ExitCode, CliError> {
     let display = RefCell::new(Display::new(args.quiet, &out));
     let n: usize = spec.system.species.iter().map(|s| s.count).sum();
     if n >= LARGE_PLACEMENT
-        && spec.system.placement != Placement::Relaxed
+        && !matches!(
+            spec.system.placement,
+            Placement::Relaxed | Placement::Compressed { .. }
+        )
         && !display.borrow().quiet()
     {
         // Relaxed placement shows its own progress; the others take seconds here.
@@ -391,6 +428,7 @@ pub fn run(args: RunArgs) -> Result<ExitCode, CliError> {
     let mut placing = |p: &PlacementProgress| display.borrow_mut().placing(p);
     let control = Control {
         placing: Some(&mut placing),
+        ignore_disk_estimate: args.ignore_disk_estimate,
         ..Control::new(&STOP, &mut progress)
     };
     let summary = carom::run::run(&spec, &out, control);
@@ -461,6 +499,7 @@ pub fn resume(args: ResumeArgs) -> Result<ExitCode, CliError> {
         &ResumeOptions { stop },
         Control {
             reading: Some(&mut reading),
+            ignore_disk_estimate: args.ignore_disk_estimate,
             ..Control::new(&STOP, &mut progress)
         },
     );

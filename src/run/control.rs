@@ -14,7 +14,7 @@ use carom_io::Stop;
 
 use super::disk::FreeSpace;
 #[cfg(doc)]
-use super::{disk_low, free_space_for, resume};
+use super::{disk_low, far_too_small, free_space_for, resume};
 #[cfg(doc)]
 use carom_io::StopReason;
 
@@ -77,6 +77,11 @@ pub struct Control<'a> {
     /// Wall time between progress calls, and between looks at the room left on
     /// the log's disk.
     pub progress_interval: Duration,
+    /// Run on when the log, projected from its growth so far, would need far
+    /// more than its disk's room ([`far_too_small`]); by default such a run
+    /// stops with [`StopReason::DiskFull`] and a finished log as soon as the
+    /// projection says so (`--ignore-disk-estimate` on the command line).
+    pub ignore_disk_estimate: bool,
 }
 
 /// What [`resume`] is doing with its input before the run goes on.
@@ -108,6 +113,7 @@ impl Default for Control<'_> {
             reading: None,
             free_space: None,
             progress_interval: Duration::from_millis(200),
+            ignore_disk_estimate: false,
         }
     }
 }
@@ -122,6 +128,7 @@ impl<'a> Control<'a> {
             reading: None,
             free_space: None,
             progress_interval: Duration::from_millis(200),
+            ignore_disk_estimate: false,
         }
     }
 }
@@ -135,6 +142,7 @@ impl std::fmt::Debug for Control<'_> {
             .field("free_space", &self.free_space.is_some())
             .field("reading", &self.reading.is_some())
             .field("progress_interval", &self.progress_interval)
+            .field("ignore_disk_estimate", &self.ignore_disk_estimate)
             .finish()
     }
 }

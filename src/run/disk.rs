@@ -19,6 +19,19 @@ pub fn disk_low(free: u64, finish: u64, growth: u64) -> bool {
     free <= finish.saturating_add(growth.saturating_mul(2))
 }
 
+/// How many times the free room the rest of a log, projected from its growth so
+/// far, must need before the run is refused ([`far_too_small`]).
+pub const FAR_BEYOND_FREE: f64 = 10.0;
+
+/// Whether a log of `bytes` heading for `projected` bytes at the stop
+/// ([`Progress::projected_log_bytes`](super::Progress::projected_log_bytes))
+/// needs more than [`FAR_BEYOND_FREE`] times the `free` bytes of its disk: the run
+/// is then stopped as soon as the projection says so (seconds after the start),
+/// rather than only when the disk is nearly full.
+pub fn far_too_small(bytes: u64, projected: f64, free: u64) -> bool {
+    projected - bytes as f64 > FAR_BEYOND_FREE * free as f64
+}
+
 /// The bytes free for this user on the disk that holds (or will hold) the file
 /// `path` (`fs4::statvfs` of its directory). A file system that reports a total
 /// size of zero (some FUSE mounts do not report sizes at all) gives an error of

@@ -17,12 +17,12 @@ use std::path::{Path, PathBuf};
 use std::sync::atomic::Ordering;
 use std::time::Instant;
 
-use carom_events::{Engine, EngineError, Event, GrowthEnd, State};
+use carom_events::{Engine, EngineError, Event, GrowthEnd, State, PAUSE_TAG};
 use carom_io::{now_rfc3339, StopReason, SummaryMetadata};
 use carom_io::{GrowthEvent, LogWriter};
 use carom_io::{LogOptions, Stop};
 
-use super::disk::{disk_low, free_bytes};
+use super::disk::{disk_low, far_too_small, free_bytes};
 use super::observation::Observation;
 use super::replace::Replace;
 use super::thermo::thermo;
@@ -80,7 +80,7 @@ pub(super) struct Driver<'a> {
     pub(super) max_quiet: Option<f64>,
     /// The time of the last collision, or of the start of this process's part.
     last_collision: f64,
-    /// Why the watchdog stopped the run, when it did.
+    /// Why the watchdog, or the estimate of the log's size, stopped the run.
     quiet_detail: Option<String>,
     /// While discs grow: the index of the engine's next rescale and its phase as
     /// last seen, to tell when a rescale or the end of growth has passed (`None`
@@ -271,7 +271,7 @@ impl<'a> Driver<'a> {
         Ok(())
     }
 
-    fn progress(&mut self) {
+    fn progress(&mut self) -> Progress {
         let wall = self.started.elapsed().as_secs_f64();
         let done = self.collisions - self.start_collisions;
         let fraction = match self.stop {
@@ -304,6 +304,36 @@ impl<'a> Driver<'a> {
             cb(&p);
         }
         self.last_progress = Instant::now();
+        p
+    }
+
+    /// Whether the log, projected to the stop from its growth so far, needs far
+    /// more than the room on its disk ([`far_too_small`]), unless the caller
+    /// ignores the estimate; if so, say why in the run's detail.
+    fn disk_far_too_small(&mut self, p: &Progress) -> bool {
+        if self.control.ignore_disk_estimate || p.fraction >= 1.0 {
+            return false;
+        }
+        let Some(projected) = p.projected_log_bytes() else {
+            return false;
+        };
+        let Ok(free) = free_bytes(&mut self.control.free_space, self.writer.path()) else {
+            return false;
+        };
+        if !far_too_small(p.log_bytes, projected, free) {
+            return false;
+        }
+        self.quiet_detail = Some(format!(
+            "at the rate it grew over its first {:.3e} time units ({} bytes), the log would \
+             reach about {projected:.3e} bytes by the stop, more than {} times the {free} bytes \
+             free on its disk: stopped at once with a finished log (log fewer collisions or \
+             records, stop sooner, or run with --ignore-disk-estimate to go on until the disk \
+             is nearly full)",
+            p.sim_time - self.run_start_time,
+            p.log_bytes,
+            super::disk::FAR_BEYOND_FREE
+        ));
+        true
     }
 
     /// The log file's size on disk (bytes; 0 if it cannot be read).
@@ -418,18 +448,22 @@ impl<'a> Driver<'a> {
                     _ => {}
                 },
             }
-            if self.growth_seen.is_some() {
+            // A pause (the engine handing back control during long unobservable
+            // work) marks no instant of the run: the growth's record waits for the
+            // next event.
+            let paused = matches!(ev, Event::Scheduled { tag: PAUSE_TAG, .. });
+            if self.growth_seen.is_some() && !paused {
                 self.growth_record()?;
             }
             if self.collisions >= max_collisions {
                 reason = Some(StopReason::Collisions);
             }
             tick = tick.wrapping_add(1);
-            if tick.is_multiple_of(1024) {
+            if tick.is_multiple_of(1024) || paused {
                 self.writer.maybe_flush()?;
                 if self.last_progress.elapsed() >= self.control.progress_interval {
-                    self.progress();
-                    if reason.is_none() && self.disk_low() {
+                    let p = self.progress();
+                    if reason.is_none() && (self.disk_low() || self.disk_far_too_small(&p)) {
                         reason = Some(StopReason::DiskFull);
                     }
                 }

@@ -73,9 +73,9 @@ pub enum RunError {
     Read(#[from] ReadError),
     /// The stop flag was raised while the discs were being placed, before the log
     /// was created: nothing was written.
-    #[error("interrupted while placing the discs (relaxed placement, after {steps} minimization steps); no log was written")]
+    #[error("interrupted while placing the discs (after {steps} minimization steps of relaxed placement, or rescale intervals of compressed placement); no log was written")]
     InterruptedPlacing {
-        /// Minimization steps taken.
+        /// Minimization steps (relaxed) or rescale intervals (compressed) taken.
         steps: usize,
     },
     /// The disk that is to hold the resumed log has too little room for even the

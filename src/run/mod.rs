@@ -17,6 +17,7 @@
 //! println!("{} collisions/s", summary.collisions_per_second);
 //! ```
 
+mod bounds;
 mod control;
 mod disk;
 mod driver;
@@ -37,7 +38,7 @@ use carom_io::Stop;
 use carom_io::StopReason;
 
 pub use control::{Control, Progress, ResumePass};
-pub use disk::{disk_low, free_space_for, FreeSpace};
+pub use disk::{disk_low, far_too_small, free_space_for, FreeSpace, FAR_BEYOND_FREE};
 pub use error::RunError;
 pub use lock::{lock_log, LogLock};
 pub use memory::{check_memory, memory_available, memory_needed, IGNORE_MEMORY_CHECK};

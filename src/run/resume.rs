@@ -18,10 +18,12 @@ use carom_io::Thermo;
 use carom_io::{check_log_options, last_checkpoint_observed, LogReader, ReadProgress};
 use carom_io::{LogWriter, WriterOptions, WriterPosition, CH_THERMO};
 
+use super::bounds::check_scheduled;
 use super::disk::free_bytes;
 use super::driver::Driver;
 use super::lock::lock_log;
 use super::observation::Observation;
+use super::watchdog::check_reachable;
 use super::{Control, ResumeOptions, ResumePass, RunError, RunSummary};
 
 /// Continue the log `input` from its last complete checkpoint into `out` (which may
@@ -87,6 +89,14 @@ pub fn resume(
         file: input.to_path_buf(),
         source,
     })?;
+    // The same refusals as a fresh run's, before anything is written.
+    let stop_field = match opts.stop {
+        Some(Stop::Time(_)) => "--until",
+        Some(Stop::Collisions(_)) => "--collisions",
+        None => "the log's stop",
+    };
+    check_reachable(&engine, stop, &meta.log)?;
+    check_scheduled(&engine, stop, stop_field)?;
     meta.resumed_from = Some(input.display().to_string());
     meta.resumed_at = Some(resumed_at);
     meta.stop = stop;

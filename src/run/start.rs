@@ -1,6 +1,8 @@
-//! A fresh run: check the options, place the discs (reporting relaxed placement's
-//! progress and heeding the stop flag, before any log exists), build the engine,
-//! write the run's metadata and hand over to the [`Driver`].
+//! A fresh run: check the options, place the discs (reporting relaxed or
+//! compressed placement's progress and heeding the stop flag, before any log
+//! exists), build the engine, refuse a stop it could never reach in reasonable
+//! work (`watchdog`, `bounds`), write the run's metadata and hand over to the
+//! [`Driver`].
 
 use std::ops::ControlFlow;
 use std::path::Path;
@@ -13,6 +15,7 @@ use carom_io::{
     WriterPosition, LOG_FORMAT_VERSION,
 };
 
+use super::bounds::check_scheduled;
 use super::driver::Driver;
 use super::replace::Output;
 use super::watchdog::check_reachable;
@@ -75,6 +78,11 @@ fn start(
             log: out.to_path_buf(),
         })?;
     check_reachable(&engine, spec.stop, &spec.log)?;
+    let stop_field = match spec.stop {
+        carom_io::Stop::Time(_) => "stop.duration",
+        carom_io::Stop::Collisions(_) => "stop.collisions",
+    };
+    check_scheduled(&engine, spec.stop, stop_field)?;
     let meta = RunMetadata {
         log_format: LOG_FORMAT_VERSION.into(),
         carom_version: env!("CARGO_PKG_VERSION").into(),
@@ -92,7 +100,8 @@ fn start(
     Ok((engine, meta))
 }
 
-/// Build the initial state of `system`, reporting relaxed placement's progress to
+/// Build the initial state of `system`, reporting relaxed or compressed
+/// placement's progress to
 /// `control.placing` (every `control.progress_interval`, and once at the end) and
 /// stopping it when `control.stop` is raised.
 fn place(system: &SystemSpec, control: &mut Control<'_>) -> Result<State, RunError> {

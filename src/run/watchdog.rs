@@ -62,6 +62,32 @@ pub(super) fn explain(quiet_since: f64, now: f64, bound: f64, user: Option<f64>)
     )
 }
 
+/// The collisions left before the count `target`, kT now and the collision rate
+/// expected from the density and the temperature (physics.md (7.9)).
+fn collisions_to_come(engine: &Engine, target: u64) -> (f64, f64, f64) {
+    let s = engine.stats();
+    let left = target.saturating_sub(s.pair_collisions + s.wall_collisions) as f64;
+    let kt = kt_now(engine);
+    (
+        left,
+        kt,
+        expected_collision_rate(engine.species(), engine.sim_box(), kt),
+    )
+}
+
+/// The simulated time from now to the stop: exact for a time stop; for a
+/// collision stop the collisions left at the rate expected now (physics.md
+/// (7.9)), a lower bound when the gas cools.
+pub(super) fn time_to_stop(engine: &Engine, stop: Stop) -> f64 {
+    match stop {
+        Stop::Time(t) => (t - engine.now()).max(0.0),
+        Stop::Collisions(target) => {
+            let (left, _, rate) = collisions_to_come(engine, target);
+            left / rate
+        }
+    }
+}
+
 /// Refuse a collision stop that, at the collision rate expected from the density
 /// and temperature (physics.md (7.9), a lower bound on the time when the gas
 /// cools), would write more than [`MAX_RECORDS`] snapshots (n + 1 per interval
@@ -75,10 +101,7 @@ pub(super) fn check_reachable(
     let Stop::Collisions(target) = stop else {
         return Ok(());
     };
-    let s = engine.stats();
-    let left = target.saturating_sub(s.pair_collisions + s.wall_collisions) as f64;
-    let kt = kt_now(engine);
-    let rate = expected_collision_rate(engine.species(), engine.sim_box(), kt);
+    let (left, kt, rate) = collisions_to_come(engine, target);
     let time = left / rate;
     // A snapshot schedule writes n + 1 snapshots per snapshot interval.
     let per_snapshot_interval = log.snapshots().map_or(1, |s| s.per_block()) as f64;

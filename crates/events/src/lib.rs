@@ -43,16 +43,24 @@ mod state;
 mod thermostat;
 
 pub use checkpoint::Checkpoint;
-pub use engine::{Engine, EngineParams, Growth, GrowthEnd, GrowthState, Stats};
+pub use engine::{Engine, EngineParams, Growth, GrowthEnd, GrowthState, Stats, PAUSE_TAG};
 pub use error::{EngineError, InitError};
 pub use event::{Event, PairCollision, WallCollision};
 pub use init::{
-    box_size_for, largest_radius, Placement, PlacementProgress, SystemSpec, Velocities,
-    COMPRESSED_MAX_REDUCED_PRESSURE,
+    box_size_for, largest_radius, Compressing, Placement, PlacementProgress, SystemSpec,
+    Velocities, COMPRESSED_MAX_REDUCED_PRESSURE,
 };
 pub use invariants::{InvariantChecker, Violation};
 pub use state::State;
 pub use thermostat::{Thermostat, ThermostatState, ThermostatStats, THERMOSTAT_TAG};
+
+/// The most records of one kind (snapshots, thermo, checkpoints or scenes) a run
+/// may ask for through its log interval, and the most events of one kind its
+/// parameters schedule in advance (Andersen redraws, driving kicks, growth
+/// rescales, floor periods): far more than any analysis reads (10⁹ thermo
+/// records are about 100 GB) or any sensible run takes, so only a mistyped
+/// interval, rate or stop time meets it.
+pub const MAX_RECORDS: f64 = 1e9;
 
 /// "No disc": the end of a cell's list, an empty place in the event calendar, a
 /// disc without a pair candidate; in a [`Checkpoint`] too.

@@ -156,10 +156,9 @@ pub struct RunSpec {
     pub thermostat: Option<carom_events::Thermostat>,
 }
 
-/// The most records of one kind (snapshots, thermo, checkpoints or scenes) a run may ask
-/// for through its log interval: far more than any analysis reads (10⁹ thermo
-/// records are about 100 GB), so only a mistyped interval or stop time meets it.
-pub const MAX_RECORDS: f64 = 1e9;
+/// The most records of one kind a run may ask for through its log interval
+/// (defined with the engine's scheduled events, `carom_events::MAX_RECORDS`).
+pub use carom_events::MAX_RECORDS;
 
 /// A log option, or the stop, out of range (see [`check_log_options`]).
 #[derive(Debug, Clone, PartialEq, Eq, Error)]

@@ -300,6 +300,7 @@ impl Engine {
             thermostat,
             growth: cp.growth,
             floor_origin: cp.floor_origin,
+            quiet_work: 0,
         })
     }
 }

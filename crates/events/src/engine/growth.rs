@@ -20,6 +20,7 @@ use crate::event::Event;
 use carom_core::growth::{growing_wall_impulse, wall_time_growing};
 use carom_core::observables::{degrees_of_freedom, temperature, virial_z};
 use carom_core::{Boundary, DVec2, Restitution, SimBox, Species};
+use std::ops::ControlFlow;
 
 /// How the discs grow (physics.md §17); part of [`crate::EngineParams`].
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -256,9 +257,10 @@ impl Engine {
     /// rescale the velocities to the target kT, and end the growth at the target
     /// scale or when Z over the interval past exceeds the jamming bound (17.7);
     /// then predict every disc again (all paths changed, or the radii stopped).
+    /// Returns whether a pause is due (`engine::pause`).
     #[cold]
     #[inline(never)]
-    pub(super) fn growth_event(&mut self) {
+    pub(super) fn growth_event(&mut self) -> bool {
         let g = self.params.growth;
         let now = self.clock;
         let n = self.len();
@@ -293,23 +295,37 @@ impl Engine {
         for i in 0..n {
             self.predict::<false, true>(i);
         }
+        self.quiet_work(n.max(1))
     }
 
     /// [`Engine::run_until`] `t_end` for an engine with growth configured, through
     /// the growing copy of the event loop only (for compressed placement): a call
     /// of [`Engine::next_event`] from the placement changed how the whole-program
     /// optimiser inlines the plain loop, +3 % instructions for the plain engine
-    /// (docs/performance.md, "growth off").
-    pub(crate) fn run_growing_until(&mut self, t_end: f64) -> Result<(), EngineError> {
+    /// (docs/performance.md, "growth off"). `observe` is called every 4096 events
+    /// and at every pause (`engine::pause`); when it breaks, the run stops there.
+    pub(crate) fn run_growing_until(
+        &mut self,
+        t_end: f64,
+        observe: &mut dyn FnMut(&Engine) -> ControlFlow<()>,
+    ) -> Result<ControlFlow<()>, EngineError> {
         const STOP_TAG: u64 = u64::MAX;
         debug_assert!(self.params.growth.rate != 0.0);
         self.schedule(t_end, STOP_TAG)?;
+        let mut events: u32 = 0;
         while let Some(ev) = self.next_event_growing()? {
-            if let Event::Scheduled { tag: STOP_TAG, .. } = ev {
-                break;
+            let tag = match ev {
+                Event::Scheduled { tag: STOP_TAG, .. } => break,
+                Event::Scheduled { tag, .. } => tag,
+                _ => 0,
+            };
+            events = events.wrapping_add(1);
+            if (events.is_multiple_of(4096) || tag == super::PAUSE_TAG) && observe(self).is_break()
+            {
+                return Ok(ControlFlow::Break(()));
             }
         }
-        Ok(())
+        Ok(ControlFlow::Continue(()))
     }
 
     /// Stop growing now, keeping the size (and say why).

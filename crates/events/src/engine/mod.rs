@@ -25,6 +25,7 @@ mod floor;
 mod gravity;
 mod growth;
 mod lookahead;
+mod pause;
 mod predict;
 mod resolve;
 mod thermostat;
@@ -43,6 +44,7 @@ use carom_core::{DVec2, Restitution, SimBox, Species};
 use clock::{origin_limit, reorder_interval};
 pub use growth::{Growth, GrowthEnd, GrowthState};
 use ordered_float::NotNan;
+pub use pause::PAUSE_TAG;
 use std::cmp::Reverse;
 use std::collections::BinaryHeap;
 
@@ -157,6 +159,8 @@ pub struct Engine {
     growth: GrowthState,
     /// Time (as reported) at which the vibrating floor was set, its phase origin.
     floor_origin: f64,
+    /// Disc updates of unobservable work so far (`engine::pause`).
+    quiet_work: u64,
 }
 
 #[inline]
@@ -254,6 +258,7 @@ impl Engine {
             thermostat: None,
             growth: GrowthState::start(&params.growth),
             floor_origin: state.time,
+            quiet_work: 0,
         };
         engine.reorder();
         for i in 0..n {
@@ -439,9 +444,10 @@ impl Engine {
                 now: self.reported,
             });
         }
-        if tag == crate::THERMOSTAT_TAG {
+        if tag == crate::THERMOSTAT_TAG || tag == PAUSE_TAG {
             return Err(EngineError::BadThermostat(format!(
-                "tag {tag} is the thermostat's own (allowed: any other tag)"
+                "tag {tag} is the engine's own (allowed: any tag but the thermostat's and \
+                 the pause's)"
             )));
         }
         self.push_scheduled(time, tag);
@@ -450,6 +456,9 @@ impl Engine {
 
     /// Process events until the next observable one and return it; `None` when
     /// nothing will ever happen again (all discs at rest and nothing scheduled).
+    /// After long unobservable work (thermostat events, growth rescales) it returns
+    /// a pause, an [`Event::Scheduled`] with tag [`PAUSE_TAG`], so that the caller
+    /// can stop or report progress (`engine::pause`); just call again.
     ///
     /// Cell crossings are not observable, so in a system whose discs move but never
     /// collide again (a lone disc in a periodic box) this call returns only at the
@@ -523,7 +532,9 @@ impl Engine {
                     .is_some_and(|r| (r.0 .0.into_inner() - self.epoch).max(self.clock) <= due);
                 if due <= t.into_inner() && !scheduled_first {
                     self.move_clock(due);
-                    self.growth_event();
+                    if self.growth_event() {
+                        return Ok(self.pause());
+                    }
                     continue;
                 }
             }
@@ -537,7 +548,9 @@ impl Engine {
                     self.move_clock(internal);
                     self.reported = self.reported.max(ts);
                     if tag == crate::THERMOSTAT_TAG {
-                        self.thermostat_event()?;
+                        if self.thermostat_event()? {
+                            return Ok(self.pause());
+                        }
                         continue;
                     }
                     return Ok(Some(Event::Scheduled {

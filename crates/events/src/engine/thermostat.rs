@@ -142,13 +142,14 @@ impl Engine {
     }
 
     /// The thermostat's event due now (the clock stands at its time): change the
-    /// velocities, predict again, and schedule the next event.
+    /// velocities, predict again, and schedule the next event. Returns whether a
+    /// pause is due (`engine::pause`).
     #[cold]
     #[inline(never)]
-    pub(super) fn thermostat_event(&mut self) -> Result<(), EngineError> {
+    pub(super) fn thermostat_event(&mut self) -> Result<bool, EngineError> {
         let Some(mut r) = self.thermostat.take() else {
             // A checkpoint's stray tag without a thermostat: nothing to do.
-            return Ok(());
+            return Ok(false);
         };
         let n = self.len();
         // In a field a disc's stored path velocity runs ahead of its true velocity
@@ -186,10 +187,14 @@ impl Engine {
                 }
             }
         }
+        let touched = match r.thermostat {
+            Thermostat::Andersen { .. } => 1,
+            Thermostat::Driven { .. } => n,
+        };
         r.stats.events += 1;
         self.thermostat = Some(r);
         self.schedule_thermostat();
-        Ok(())
+        Ok(self.quiet_work(touched.max(1)))
     }
 
     /// Schedule the thermostat's next event, one wait from now (none if the wait

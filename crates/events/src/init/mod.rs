@@ -25,5 +25,5 @@ mod velocities;
 
 pub use compressed::COMPRESSED_MAX_REDUCED_PRESSURE;
 pub use spec::{
-    box_size_for, largest_radius, Placement, PlacementProgress, SystemSpec, Velocities,
+    box_size_for, largest_radius, Compressing, Placement, PlacementProgress, SystemSpec, Velocities,
 };

@@ -78,6 +78,7 @@ pub(super) fn relaxed(
             steps,
             max_steps: RELAX_STEPS,
             close,
+            compressing: None,
         })
     };
     let relaxed = relax(&spec.sim_box, &radii, start, RELAX_STEPS, &mut report);

@@ -23,9 +23,11 @@ use rand::SeedableRng;
 use rand_pcg::Pcg64;
 use std::ops::ControlFlow;
 
-/// How far relaxed placement has got, reported to the observer of
-/// [`SystemSpec::build_observed`] before every minimization step.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+/// How far relaxed or compressed placement has got, reported to the observer of
+/// [`SystemSpec::build_observed`]: before every minimization step of relaxed
+/// placement; after every rescale interval of compressed placement, and every
+/// few thousand events within one (`compressing` then says how dense it is).
+#[derive(Debug, Clone, Copy, PartialEq)]
 pub struct PlacementProgress {
     /// Discs being placed.
     pub discs: usize,
@@ -35,7 +37,23 @@ pub struct PlacementProgress {
     pub max_steps: usize,
     /// Pairs and wall contacts still closer than the minimizer's margin
     /// (`init::relax::MARGIN`) allows; placement is done when none is left.
+    /// Compressed placement: 1 while it grows the discs, 0 once done.
     pub close: usize,
+    /// Compressed placement only: the packing fraction reached and the target.
+    /// `steps` then counts rescale intervals and `max_steps` those the growth law
+    /// needs to reach the target (physics.md §17), if it does not jam first.
+    pub compressing: Option<Compressing>,
+}
+
+/// How dense compressed placement has got ([`PlacementProgress::compressing`]).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Compressing {
+    /// Packing fraction now.
+    pub packing_fraction: f64,
+    /// Packing fraction asked for.
+    pub target: f64,
+    /// Reduced pressure Z = βPA/N over the last rescale interval (physics.md (17.7)).
+    pub reduced_pressure: f64,
 }
 
 /// How the discs are placed.
@@ -201,10 +219,11 @@ impl SystemSpec {
         Ok(state.expect("an observer that never stops"))
     }
 
-    /// [`SystemSpec::build`], reporting the progress of relaxed placement (the one
-    /// placement that can take long: about a minute for 10⁶ discs, more near
-    /// jamming) to `observe` before every minimization step. When `observe` breaks,
-    /// building stops and returns `Ok(None)`. Other placements never call it.
+    /// [`SystemSpec::build`], reporting the progress of relaxed placement (about a
+    /// minute for 10⁶ discs, more near jamming) before every minimization step,
+    /// and of compressed placement (as long as the growth law makes it) during
+    /// the growth, to `observe`. When `observe` breaks, building stops and
+    /// returns `Ok(None)`. Other placements never call it.
     pub fn build_observed(
         &self,
         observe: &mut dyn FnMut(&PlacementProgress) -> ControlFlow<()>,
@@ -224,7 +243,10 @@ impl SystemSpec {
                 None => return Ok(None),
             },
             Placement::Compressed { rate, start } => {
-                compressed(self, &species_of, &mut rng, *rate, *start)?
+                match compressed(self, &species_of, &mut rng, *rate, *start, observe)? {
+                    Some(p) => p,
+                    None => return Ok(None),
+                }
             }
             Placement::Explicit(p) => {
                 check_explicit(self, &species_of, p)?;
