@@ -155,7 +155,11 @@ struct FactsJson {
     collision_every: Option<u64>,
     #[serde(with = "super::number::float")]
     accessible_area: f64,
-    #[serde(default, skip_serializing_if = "is_zero", with = "super::number::float")]
+    #[serde(
+        default,
+        skip_serializing_if = "is_zero",
+        with = "super::number::float"
+    )]
     gravity: f64,
 }
 
@@ -276,4 +280,3 @@ mod tests {
         assert!(RunFacts::from_json(&bad).is_err());
     }
 }
-

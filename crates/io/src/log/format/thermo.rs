@@ -7,7 +7,7 @@ use serde::{Deserialize, Serialize};
 pub const THERMO_JSON_SCHEMA: &str = r#"{
   "$schema": "https://json-schema.org/draft/2020-12/schema",
   "title": "carom.Thermo",
-  "description": "Thermodynamics of a carom run at one simulated time. Running quantities average over the run so far (from run_start_time).",
+  "description": "Thermodynamics of a carom run at one simulated time. Running quantities average over the run so far (from run_start_time). A value that is not finite (a run that broke down) is the string NaN, Infinity or -Infinity.",
   "type": "object",
   "properties": {
     "time": {"type": "number", "description": "simulated time (time)"},
