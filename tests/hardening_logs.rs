@@ -167,7 +167,9 @@ fn a_flipped_bit_loses_at_most_its_chunk_and_verify_names_it() {
         assert!(String::from_utf8_lossy(&out.stderr).contains("damaged"));
         ok(&carom(
             &dir,
-            &["export", "f.mcap", "--format", "xyz", "--out", "f.xyz", "--force"],
+            &[
+                "export", "f.mcap", "--format", "xyz", "--out", "f.xyz", "--force",
+            ],
         ));
         ok(&carom(
             &dir,

@@ -119,6 +119,8 @@ pub struct LogReader<R: Read + Seek = BufReader<File>> {
     summary: Option<BTreeMap<String, String>>,
     /// Why the `carom.summary` record, when reached, could not be read.
     summary_damage: Option<String>,
+    /// Whether the last low-level failure was the file ending inside a record.
+    cut: bool,
     has_end_magic: bool,
     in_summary_section: bool,
     strict: bool,
@@ -237,6 +239,7 @@ impl<R: Read + Seek> LogReader<R> {
             run_map: BTreeMap::new(),
             summary: None,
             summary_damage: None,
+            cut: false,
             has_end_magic,
             in_summary_section: false,
             strict: opts.strict,
@@ -303,7 +306,10 @@ impl<R: Read + Seek> LogReader<R> {
         loop {
             let event = match self.linear.next_event() {
                 None => return Ok(false),
-                Some(Err(e)) => return Err(e.to_string()),
+                Some(Err(e)) => {
+                    self.cut = matches!(e, mcap::McapError::UnexpectedEof);
+                    return Err(e.to_string());
+                }
                 Some(Ok(e)) => e,
             };
             match event {
@@ -333,9 +339,14 @@ impl<R: Read + Seek> LogReader<R> {
     /// Turn a low-level failure into the end of reading. Damage after the last
     /// chunk (once the `carom.summary` record, written after it, or the summary
     /// section has been reached) loses no message: the end is
-    /// [`LogEnd::Damaged`], a warning.
+    /// [`LogEnd::Damaged`], a warning. (A log without that record, as a repaired
+    /// cut log, cannot tell and fails as before.)
     fn fail(&mut self, detail: String) -> Result<Found, ReadError> {
-        if self.summary.is_some() || self.summary_damage.is_some() || self.in_summary_section {
+        // (A file that simply ends there was cut while being finished: truncated.)
+        let cut = self.cut && !self.has_end_magic;
+        // Only the `carom.summary` record proves that the last chunk was read: a
+        // data-end record can be misread out of damaged bytes.
+        if !cut && (self.summary.is_some() || self.summary_damage.is_some()) {
             let detail = match &self.summary_damage {
                 Some(d) => format!("{d}; {detail}"),
                 None => detail,
