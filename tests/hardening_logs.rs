@@ -127,7 +127,7 @@ fn a_flipped_bit_loses_at_most_its_chunk_and_verify_names_it() {
         chunks.len()
     );
     let data_end = recs.iter().find(|r| r.1 == 0x0F).unwrap().0;
-    let summary = recs.iter().filter(|r| r.1 == 0x0C).last().unwrap();
+    let summary = recs.iter().rfind(|r| r.1 == 0x0C).unwrap();
     // The reference: what every message of the intact log is.
     let all = |path: &Path| {
         let mut r = LogReader::open(path).unwrap();
