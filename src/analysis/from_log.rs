@@ -199,7 +199,14 @@ fn decode_ahead(
         let progress = reader.progress_since(&mut shown);
         let item = match reader.next_message() {
             Ok(Some(m)) => Ok((m, progress)),
-            Ok(None) => return,
+            Ok(None) => {
+                // Damage after the last chunk shows only to this full read.
+                if let (LogEnd::Damaged { .. }, Some(w)) = (reader.end(), reader.end().warning()) {
+                    use std::io::Write as _;
+                    let _ = writeln!(std::io::stderr(), "warning: {w}");
+                }
+                return;
+            }
             Err(e) => Err(e),
         };
         let failed = item.is_err();

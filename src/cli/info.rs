@@ -7,6 +7,7 @@ use std::process::ExitCode;
 use carom::io::CH_SCENE;
 use carom::io::{scan_indexed, scan_observed, LogEnd, LogInfo, Stop, TOPICS};
 use std::fmt::Write;
+use std::io::Write as _;
 
 use serde_json::{json, Value};
 
@@ -24,6 +25,7 @@ fn end_text(e: &LogEnd) -> (bool, String) {
     match e {
         LogEnd::Complete => (true, "complete".into()),
         LogEnd::Truncated { detail } => (false, format!("cut off ({detail})")),
+        LogEnd::Damaged { detail } => (false, format!("damaged after its last chunk ({detail})")),
         LogEnd::Reading | LogEnd::Failed => (false, "unreadable end".into()),
     }
 }
@@ -121,11 +123,20 @@ pub fn info(args: InfoArgs) -> Result<ExitCode, CliError> {
         }
     };
     let path = args.file.display().to_string();
+    if let Some(w) = i.end.warning() {
+        let _ = writeln!(std::io::stderr(), "warning: {w}");
+    }
+    // --verify checks every CRC and the footer: anything but an intact end fails.
+    let status = if args.verify && i.end != LogEnd::Complete {
+        ExitCode::FAILURE
+    } else {
+        ExitCode::SUCCESS
+    };
     if args.json {
         let mut v = info_json(&path, &i);
         v["verified"] = Value::Bool(verified);
         super::emit(&format!("{v}\n"))?;
-        return Ok(ExitCode::SUCCESS);
+        return Ok(status);
     }
     let mut s = String::new();
     let (_, end) = end_text(&i.end);
@@ -191,7 +202,11 @@ pub fn info(args: InfoArgs) -> Result<ExitCode, CliError> {
                 Num(sm.kinetic_energy), Num(u), Num(sm.kinetic_energy + u)),
             None => Ok(()),
         }),
-        None => writeln!(s, "  summary: none (the run did not finish; `carom resume` continues it)"),
+        None => match (&i.end, i.last_checkpoint_time) {
+            (LogEnd::Damaged { .. }, _) => writeln!(s, "  summary: none readable"),
+            (_, Some(_)) => writeln!(s, "  summary: none (the run did not finish; `carom resume` continues it)"),
+            (_, None) => writeln!(s, "  summary: none (the run did not finish, and no checkpoint to resume from)"),
+        },
     };
     let _ = writeln!(
         s,
@@ -203,5 +218,5 @@ pub fn info(args: InfoArgs) -> Result<ExitCode, CliError> {
         let _ = writeln!(s, "    {line}");
     }
     super::emit(&s)?;
-    Ok(ExitCode::SUCCESS)
+    Ok(status)
 }

@@ -2,6 +2,7 @@
 //! [`carom::run::repair`]). Never writes over its input, nor over a file that
 //! another process writes (a run's log).
 
+use std::io::Write;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
@@ -41,8 +42,33 @@ pub fn repair(args: RepairArgs) -> Result<ExitCode, CliError> {
     let how = match &r.input_end {
         LogEnd::Complete => "the input was already complete; copied whole".to_string(),
         LogEnd::Truncated { detail } => format!("the input was cut ({detail})"),
+        LogEnd::Damaged { detail } => {
+            format!("every message was read; the input's index or footer was damaged ({detail})")
+        }
+        _ if !r.lost.is_empty() => format!(
+            "the input is damaged: {} part(s) lost, every chunk whose CRC holds copied",
+            r.lost.len()
+        ),
         _ => "the input ended unreadably".to_string(),
     };
+    for l in &r.lost {
+        let _ = writeln!(
+            std::io::stderr(),
+            "lost: bytes {}..{} of {} ({})",
+            l.offset,
+            l.offset + l.length,
+            args.file.display(),
+            l.what
+        );
+    }
+    if r.dropped_batches > 0 {
+        let _ =
+            writeln!(std::io::stderr(),
+            "left out {} compact /collisions batches after a lost part, up to the next snapshot \
+             (their velocities replay from the snapshot before the gap)",
+            r.dropped_batches
+        );
+    }
     emit(&format!(
         "wrote {}: {} messages, {} bytes, complete and indexed; {how}\n",
         r.out.display(),

@@ -6,12 +6,18 @@
 //! `carom.run` record and every readable message, copied byte for byte (same
 //! channel, sequence number, times and bytes). A cut log has no `carom.summary`
 //! record and the repaired one has none either: the run did not end. A complete
-//! input is copied whole, its `carom.summary` included. Like `mcap recover`; to
-//! continue the run instead, use `resume`.
+//! input is copied whole, its `carom.summary` included. A log damaged inside its
+//! chunks (a flipped bit) is read around the damage: every chunk whose CRC holds
+//! is copied and the lost ones are named. Like `mcap recover`; to continue the run
+//! instead, use `resume`.
 
+use std::io::{Read, Seek};
 use std::path::{Path, PathBuf};
 
-use carom_io::{LogEnd, LogReader, LogWriter, WriterOptions, WriterPosition};
+use carom_io::{
+    salvage, LogEnd, LogReader, LogWriter, LostPart, ReadError, WriterOptions, WriterPosition,
+    CH_CHECKPOINT, CH_COLLISIONS, CH_SNAPSHOT,
+};
 
 use super::RunError;
 
@@ -24,14 +30,59 @@ pub struct Repaired {
     pub messages: u64,
     /// Its size in bytes.
     pub bytes: u64,
-    /// How the input ended (`Complete`, or `Truncated` with where it was cut).
+    /// How the input ended (`Complete`, `Truncated` with where it was cut,
+    /// `Damaged` after its last chunk, or `Failed` when chunks were lost).
     pub input_end: LogEnd,
+    /// The parts of the input that could not be read (damaged chunks), empty
+    /// unless the input was damaged before its end.
+    pub lost: Vec<LostPart>,
+    /// Compact `/collisions` batches left out after a lost part, up to the next
+    /// snapshot or checkpoint (they replay velocities from the last one, which a
+    /// gap would make wrong).
+    pub dropped_batches: u64,
 }
 
 /// Write the readable part of the log `input` as a complete log `out` (which must
-/// be another file; it is created or truncated).
+/// be another file). The new log is written beside `out` and renamed over it only
+/// once it is finished, so a failed repair leaves `out` as it was. A log damaged
+/// inside its chunks is read around the damage ([`carom_io::salvage`]): every
+/// chunk whose CRC holds is copied, and [`Repaired::lost`] names the others.
 pub fn repair(input: &Path, out: &Path) -> Result<Repaired, RunError> {
-    let mut reader = LogReader::open(input)?;
+    let mut name = out.file_name().unwrap_or_default().to_os_string();
+    name.push(".repair-tmp");
+    let tmp = out.with_file_name(name);
+    let result = match copy(LogReader::open(input)?, &tmp, Vec::new()) {
+        Err(RunError::Read(ReadError::Corrupt { .. })) => {
+            let s = salvage(input)?;
+            copy(s.reader, &tmp, s.lost)
+        }
+        other => other,
+    };
+    match result {
+        Ok(mut r) => {
+            std::fs::rename(&tmp, out).map_err(|source| {
+                let _ = std::fs::remove_file(&tmp);
+                carom_io::WriteError::Io {
+                    path: out.to_path_buf(),
+                    source,
+                }
+            })?;
+            r.out = out.to_path_buf();
+            Ok(r)
+        }
+        Err(e) => {
+            let _ = std::fs::remove_file(&tmp);
+            Err(e)
+        }
+    }
+}
+
+/// Copy every message `reader` reads into a new log `out`.
+fn copy<R: Read + Seek>(
+    mut reader: LogReader<R>,
+    out: &Path,
+    lost: Vec<LostPart>,
+) -> Result<Repaired, RunError> {
     let run_map = reader.run_map().clone();
     let mut writer = LogWriter::create(
         out,
@@ -39,8 +90,23 @@ pub fn repair(input: &Path, out: &Path) -> Result<Repaired, RunError> {
         &run_map,
         WriterPosition::default(),
     )?;
-    let mut messages = 0u64;
+    let (mut messages, mut dropped_batches) = (0u64, 0u64);
+    let mut next_collisions: Option<u32> = None;
+    let mut gap = false;
+    let compact_log = reader.run().log.collision_record() == carom_io::CollisionDetail::Compact;
     while let Some(m) = reader.next_raw()? {
+        if m.channel == CH_SNAPSHOT || m.channel == CH_CHECKPOINT {
+            gap = false;
+        }
+        if m.channel == CH_COLLISIONS {
+            gap |= next_collisions.is_some_and(|s| s != m.sequence);
+            next_collisions = Some(m.sequence.wrapping_add(1));
+        }
+        let compact = m.channel == CH_COLLISIONS && compact_log;
+        if gap && compact {
+            dropped_batches += 1;
+            continue;
+        }
         writer.copy_message(m.channel, m.sequence, m.log_time, m.publish_time, m.data)?;
         messages += 1;
         writer.maybe_flush()?;
@@ -53,6 +119,12 @@ pub fn repair(input: &Path, out: &Path) -> Result<Repaired, RunError> {
         out: out.to_path_buf(),
         messages,
         bytes,
-        input_end: reader.end().clone(),
+        input_end: if lost.is_empty() {
+            reader.end().clone()
+        } else {
+            LogEnd::Failed
+        },
+        lost,
+        dropped_batches,
     })
 }

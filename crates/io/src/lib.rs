@@ -42,8 +42,8 @@ pub use log::format::{
     READABLE_MAJOR_VERSIONS, WALL_CODE_BASE,
 };
 pub use log::read::{
-    last_checkpoint, last_checkpoint_observed, scan, scan_indexed, scan_observed, Collisions,
-    Events, Filtered, LogEnd, LogEvent, LogInfo, LogMessage, LogReader, RawMessage, ReadError,
-    ReadOptions, ReadProgress,
+    last_checkpoint, last_checkpoint_observed, salvage, scan, scan_indexed, scan_observed,
+    Collisions, Events, Filtered, LogEnd, LogEvent, LogInfo, LogMessage, LogReader, LostPart,
+    RawMessage, ReadError, ReadOptions, ReadProgress, Salvaged,
 };
 pub use log::write::{LogWriter, WriteError, WriterOptions, WriterPosition, WriterStats};

@@ -153,8 +153,13 @@ struct FactsJson {
     collision: CollisionJson,
     n_discs: u64,
     collision_every: Option<u64>,
+    #[serde(with = "super::number::float")]
     accessible_area: f64,
-    #[serde(default, skip_serializing_if = "is_zero")]
+    #[serde(
+        default,
+        skip_serializing_if = "is_zero",
+        with = "super::number::float"
+    )]
     gravity: f64,
 }
 
@@ -167,15 +172,19 @@ fn is_zero(x: &f64) -> bool {
 #[serde(deny_unknown_fields)]
 struct SpeciesJson {
     count: u64,
+    #[serde(with = "super::number::float")]
     radius: f64,
+    #[serde(with = "super::number::float")]
     mass: f64,
 }
 
 #[derive(Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 struct BoxJson {
+    #[serde(with = "float_pair")]
     size: [f64; 2],
     boundary: [AxisJson; 2],
+    #[serde(with = "opt_float_pair")]
     wall_restitution: [Option<f64>; 2],
 }
 
@@ -190,7 +199,9 @@ enum AxisJson {
 #[serde(deny_unknown_fields)]
 struct CollisionJson {
     model: ModelJson,
+    #[serde(with = "super::number::float")]
     coefficient: f64,
+    #[serde(with = "super::number::float")]
     tc: f64,
 }
 
@@ -200,6 +211,40 @@ enum ModelJson {
     Elastic,
     Normal,
     CentreOfMass,
+}
+
+/// `[f64; 2]` under the log's rule for numbers (`super::number`).
+mod float_pair {
+    use serde::{Deserialize, Deserializer, Serialize, Serializer};
+
+    #[derive(Serialize, Deserialize)]
+    struct F(#[serde(with = "super::super::number::float")] f64);
+
+    pub fn serialize<S: Serializer>(x: &[f64; 2], s: S) -> Result<S::Ok, S::Error> {
+        [F(x[0]), F(x[1])].serialize(s)
+    }
+
+    pub fn deserialize<'de, D: Deserializer<'de>>(d: D) -> Result<[f64; 2], D::Error> {
+        let [F(a), F(b)] = <[F; 2]>::deserialize(d)?;
+        Ok([a, b])
+    }
+}
+
+/// `[Option<f64>; 2]` under the log's rule for numbers (`null`: `None`).
+mod opt_float_pair {
+    use serde::{Deserialize, Deserializer, Serialize, Serializer};
+
+    #[derive(Serialize, Deserialize)]
+    struct F(#[serde(with = "super::super::number::float")] f64);
+
+    pub fn serialize<S: Serializer>(x: &[Option<f64>; 2], s: S) -> Result<S::Ok, S::Error> {
+        [x[0].map(F), x[1].map(F)].serialize(s)
+    }
+
+    pub fn deserialize<'de, D: Deserializer<'de>>(d: D) -> Result<[Option<f64>; 2], D::Error> {
+        let [a, b] = <[Option<F>; 2]>::deserialize(d)?;
+        Ok([a.map(|F(x)| x), b.map(|F(x)| x)])
+    }
 }
 
 #[cfg(test)]

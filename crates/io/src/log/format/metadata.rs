@@ -3,6 +3,7 @@
 //! of strings to strings; this module is their typed form.
 
 use super::facts::RunFacts;
+use super::number::{f64_from_json, f64_from_text, f64_to_json, f64_to_text};
 use super::{LOG_FORMAT_VERSION, READABLE_MAJOR_VERSIONS};
 use crate::options::{CollisionDetail, Compression, LogOptions, Stop};
 use crate::schedule::SchedulePoints;
@@ -81,17 +82,43 @@ fn parse<T: std::str::FromStr>(
     })
 }
 
+/// A float metadata value (see `number`: decimals, `NaN`, `Infinity`, `-Infinity`).
+fn parse_f64(
+    m: &BTreeMap<String, String>,
+    record: &'static str,
+    key: &'static str,
+) -> Result<f64, MetadataError> {
+    let s = get(m, record, key)?;
+    f64_from_text(s).ok_or_else(|| MetadataError {
+        record,
+        key,
+        problem: format!("cannot parse {s:?}"),
+    })
+}
+
+/// An optional float metadata value.
+fn parse_opt_f64(
+    m: &BTreeMap<String, String>,
+    record: &'static str,
+    key: &'static str,
+) -> Result<Option<f64>, MetadataError> {
+    match m.get(key) {
+        Some(_) => parse_f64(m, record, key).map(Some),
+        None => Ok(None),
+    }
+}
+
 /// `stop` as JSON.
 pub fn stop_to_json(s: &Stop) -> Value {
     match *s {
-        Stop::Time(t) => json!({ "time": t }),
+        Stop::Time(t) => json!({ "time": f64_to_json(t) }),
         Stop::Collisions(n) => json!({ "collisions": n }),
     }
 }
 
 /// `stop` from JSON.
 pub fn stop_from_json(v: &Value) -> Option<Stop> {
-    if let Some(t) = v.get("time").and_then(Value::as_f64) {
+    if let Some(t) = v.get("time").and_then(f64_from_json) {
         return Some(Stop::Time(t));
     }
     v.get("collisions")
@@ -118,15 +145,15 @@ pub fn log_options_to_json(o: &LogOptions) -> Value {
         "collisions": o.collisions,
         "collision_every": o.collision_every,
         "collision_detail": o.collision_record().name(),
-        "snapshot_interval": o.snapshot_interval,
-        "thermo_interval": o.thermo_interval,
-        "checkpoint_interval": o.checkpoint_interval,
-        "scene_interval": o.scene_interval,
+        "snapshot_interval": o.snapshot_interval.map(f64_to_json),
+        "thermo_interval": o.thermo_interval.map(f64_to_json),
+        "checkpoint_interval": o.checkpoint_interval.map(f64_to_json),
+        "scene_interval": o.scene_interval.map(f64_to_json),
         "compression": compression_name(o.compression),
-        "flush_seconds": o.flush_seconds,
+        "flush_seconds": f64_to_json(o.flush_seconds),
     });
     if let Some(p) = &o.snapshot_schedule {
-        v["snapshot_schedule"] = json!({ "points": p.points, "first": p.first });
+        v["snapshot_schedule"] = json!({ "points": p.points, "first": f64_to_json(p.first) });
     }
     v
 }
@@ -138,7 +165,7 @@ pub fn log_options_from_json(v: &Value) -> Option<LogOptions> {
     let interval = |k: &str, def: Option<f64>| match v.get(k) {
         None => Some(def),
         Some(Value::Null) => Some(None),
-        Some(x) => x.as_f64().map(Some),
+        Some(x) => f64_from_json(x).map(Some),
     };
     Some(LogOptions {
         collisions: v
@@ -156,7 +183,7 @@ pub fn log_options_from_json(v: &Value) -> Option<LogOptions> {
             None | Some(Value::Null) => None,
             Some(s) => Some(SchedulePoints {
                 points: s.get("points")?.as_u64()?,
-                first: s.get("first")?.as_f64()?,
+                first: f64_from_json(s.get("first")?)?,
             }),
         },
         thermo_interval: interval("thermo_interval", d.thermo_interval)?,
@@ -171,7 +198,7 @@ pub fn log_options_from_json(v: &Value) -> Option<LogOptions> {
         },
         flush_seconds: v
             .get("flush_seconds")
-            .map_or(Some(d.flush_seconds), Value::as_f64)?,
+            .map_or(Some(d.flush_seconds), f64_from_json)?,
     })
 }
 
@@ -187,7 +214,7 @@ impl RunMetadata {
         m.insert("n_discs".into(), self.n_discs.to_string());
         m.insert("stop".into(), stop_to_json(&self.stop).to_string());
         if let Some(t) = self.max_time_without_collision {
-            m.insert("max_time_without_collision".into(), json!(t).to_string());
+            m.insert("max_time_without_collision".into(), f64_to_text(t));
         }
         m.insert(
             "log_options".into(),
@@ -197,7 +224,7 @@ impl RunMetadata {
             m.insert("resumed_from".into(), r.clone());
         }
         if let Some(t) = self.resumed_at {
-            m.insert("resumed_at".into(), json!(t).to_string());
+            m.insert("resumed_at".into(), f64_to_text(t));
         }
         if let Some(f) = &self.run_facts {
             m.insert("run_facts".into(), f.to_json().to_string());
@@ -245,16 +272,10 @@ impl RunMetadata {
             start_time: get(m, R, "start_time")?.to_string(),
             n_discs: parse(m, R, "n_discs")?,
             stop,
-            max_time_without_collision: match m.get("max_time_without_collision") {
-                Some(_) => Some(parse(m, R, "max_time_without_collision")?),
-                None => None,
-            },
+            max_time_without_collision: parse_opt_f64(m, R, "max_time_without_collision")?,
             log,
             resumed_from: m.get("resumed_from").cloned(),
-            resumed_at: match m.get("resumed_at") {
-                Some(_) => Some(parse(m, R, "resumed_at")?),
-                None => None,
-            },
+            resumed_at: parse_opt_f64(m, R, "resumed_at")?,
             run_facts: match m.get("run_facts") {
                 Some(_) => Some(RunFacts::from_json(&json_of("run_facts")?).map_err(
                     |problem| MetadataError {
@@ -354,10 +375,11 @@ pub struct SummaryMetadata {
 }
 
 impl SummaryMetadata {
-    /// The record as an MCAP metadata map (floats in shortest round-trip form).
+    /// The record as an MCAP metadata map (floats in shortest round-trip form,
+    /// non-finite ones as `NaN`, `Infinity`, `-Infinity`).
     pub fn to_map(&self) -> BTreeMap<String, String> {
         let mut m = BTreeMap::new();
-        let f = |x: f64| json!(x).to_string();
+        let f = f64_to_text;
         m.insert("end_time".into(), self.end_time.clone());
         m.insert("stop_reason".into(), self.stop_reason.as_str().into());
         if let Some(e) = &self.error {
@@ -396,19 +418,16 @@ impl SummaryMetadata {
                 problem: format!("unknown reason {reason:?}"),
             })?,
             error: m.get("error").cloned(),
-            sim_time: parse(m, R, "sim_time")?,
+            sim_time: parse_f64(m, R, "sim_time")?,
             pair_collisions: parse(m, R, "pair_collisions")?,
             wall_collisions: parse(m, R, "wall_collisions")?,
             logged_collisions: parse(m, R, "logged_collisions")?,
-            kinetic_energy: parse(m, R, "kinetic_energy")?,
-            energy_lost: parse(m, R, "energy_lost")?,
-            virial_sum: parse(m, R, "virial_sum")?,
-            wall_seconds: parse(m, R, "wall_seconds")?,
-            collisions_per_second: parse(m, R, "collisions_per_second")?,
-            potential_energy: match m.get("potential_energy") {
-                Some(_) => Some(parse(m, R, "potential_energy")?),
-                None => None,
-            },
+            kinetic_energy: parse_f64(m, R, "kinetic_energy")?,
+            energy_lost: parse_f64(m, R, "energy_lost")?,
+            virial_sum: parse_f64(m, R, "virial_sum")?,
+            wall_seconds: parse_f64(m, R, "wall_seconds")?,
+            collisions_per_second: parse_f64(m, R, "collisions_per_second")?,
+            potential_energy: parse_opt_f64(m, R, "potential_energy")?,
         })
     }
 }

@@ -19,6 +19,7 @@ mod collisions;
 mod compact;
 mod facts;
 mod metadata;
+mod number;
 mod scene;
 #[cfg(test)]
 mod schema_layout;

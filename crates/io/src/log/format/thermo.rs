@@ -7,7 +7,7 @@ use serde::{Deserialize, Serialize};
 pub const THERMO_JSON_SCHEMA: &str = r#"{
   "$schema": "https://json-schema.org/draft/2020-12/schema",
   "title": "carom.Thermo",
-  "description": "Thermodynamics of a carom run at one simulated time. Running quantities average over the run so far (from run_start_time).",
+  "description": "Thermodynamics of a carom run at one simulated time. Running quantities average over the run so far (from run_start_time). A value that is not finite (a run that broke down) is the string NaN, Infinity or -Infinity.",
   "type": "object",
   "properties": {
     "time": {"type": "number", "description": "simulated time (time)"},
@@ -34,14 +34,19 @@ pub const THERMO_JSON_SCHEMA: &str = r#"{
 }"#;
 
 /// A `/thermo` record (JSON, schema [`THERMO_JSON_SCHEMA`]). Running quantities
-/// average over the run so far, from its start time.
+/// average over the run so far, from its start time. A non-finite value is the
+/// string `"NaN"`, `"Infinity"` or `"-Infinity"` (the log's rule for numbers,
+/// `super::number`).
 #[derive(Debug, Clone, Copy, PartialEq, Default, Serialize, Deserialize)]
 pub struct Thermo {
     /// Simulated time (time).
+    #[serde(with = "super::number::float")]
     pub time: f64,
     /// K = Σ m v²/2 (energy).
+    #[serde(with = "super::number::float")]
     pub kinetic_energy: f64,
     /// kT = 2K/f, f = 2N − (periodic axes) (energy; physics.md §5).
+    #[serde(with = "super::number::float")]
     pub temperature: f64,
     /// Pair + wall collisions since the start of the run.
     pub collisions: u64,
@@ -50,40 +55,75 @@ pub struct Thermo {
     /// Wall collisions since the start of the run.
     pub wall_collisions: u64,
     /// Kinetic energy dissipated since the start (energy).
+    #[serde(with = "super::number::float")]
     pub energy_lost: f64,
     /// Σ r_ij·Δp_i over pair collisions since the start (length·momentum).
+    #[serde(with = "super::number::float")]
     pub virial_sum: f64,
     /// Momentum given to all walls since the start (momentum).
+    #[serde(with = "super::number::float")]
     pub wall_impulse: f64,
     /// Running pressure estimate P (energy/length²), see [`THERMO_JSON_SCHEMA`];
     /// absent (`None`) while no simulated time has passed or kT = 0.
-    #[serde(default, skip_serializing_if = "Option::is_none")]
+    #[serde(
+        default,
+        skip_serializing_if = "Option::is_none",
+        with = "super::number::opt_float"
+    )]
     pub pressure: Option<f64>,
     /// Running compressibility factor βPA/N (dimensionless); absent like `pressure`.
-    #[serde(default, skip_serializing_if = "Option::is_none")]
+    #[serde(
+        default,
+        skip_serializing_if = "Option::is_none",
+        with = "super::number::opt_float"
+    )]
     pub z: Option<f64>,
     /// Pair collisions per disc per unit time, 2 N_pair/(N t) (1/time); absent
     /// while no simulated time has passed.
-    #[serde(default, skip_serializing_if = "Option::is_none")]
+    #[serde(
+        default,
+        skip_serializing_if = "Option::is_none",
+        with = "super::number::opt_float"
+    )]
     pub collision_rate: Option<f64>,
     /// Runs in a field only: potential energy U = Σ m g y (energy; physics.md §15).
-    #[serde(default, skip_serializing_if = "Option::is_none")]
+    #[serde(
+        default,
+        skip_serializing_if = "Option::is_none",
+        with = "super::number::opt_float"
+    )]
     pub potential_energy: Option<f64>,
     /// Runs in a field only: K + U (energy).
-    #[serde(default, skip_serializing_if = "Option::is_none")]
+    #[serde(
+        default,
+        skip_serializing_if = "Option::is_none",
+        with = "super::number::opt_float"
+    )]
     pub total_energy: Option<f64>,
     /// Runs with growing discs only: radii now / configured radii (physics.md §17).
-    #[serde(default, skip_serializing_if = "Option::is_none")]
+    #[serde(
+        default,
+        skip_serializing_if = "Option::is_none",
+        with = "super::number::opt_float"
+    )]
     pub radius_scale: Option<f64>,
     /// Runs with growing discs only: the packing fraction of the radii now.
-    #[serde(default, skip_serializing_if = "Option::is_none")]
+    #[serde(
+        default,
+        skip_serializing_if = "Option::is_none",
+        with = "super::number::opt_float"
+    )]
     pub packing_fraction: Option<f64>,
     /// Runs with growing discs only: growing, or why growth ended.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub growth: Option<GrowthPhase>,
     /// Runs with growing discs only: the virial Z over the last interval between
     /// rescales (0 before the first).
-    #[serde(default, skip_serializing_if = "Option::is_none")]
+    #[serde(
+        default,
+        skip_serializing_if = "Option::is_none",
+        with = "super::number::opt_float"
+    )]
     pub growth_z: Option<f64>,
     /// Set only in the extra record written at the first event after a rescale
     /// or after the end of growth.

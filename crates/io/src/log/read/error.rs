@@ -118,6 +118,15 @@ pub enum LogEnd {
         /// What the MCAP reader found at the cut.
         detail: String,
     },
+    /// Every message was read (each chunk's CRC holds, and the `carom.summary`
+    /// record, written after the last chunk, was reached), but what follows the
+    /// messages is damaged: the data-section CRC, the index (MCAP summary
+    /// section), the footer or the end magic. A warning, not an error: the index
+    /// only repeats what the chunks hold, and readers read the chunks in order.
+    Damaged {
+        /// What is damaged.
+        detail: String,
+    },
     /// Reading stopped at an error (see the error returned).
     Failed,
 }
@@ -129,6 +138,10 @@ impl LogEnd {
             LogEnd::Truncated { detail } => Some(format!(
                 "the log is truncated (the run was killed or is still being written); \
                  read everything up to the last flush ({detail})"
+            )),
+            LogEnd::Damaged { detail } => Some(format!(
+                "the log's index or footer is damaged ({detail}); every message was read from \
+                 the chunks in order, each chunk's CRC holding (`carom repair` writes an intact copy)"
             )),
             _ => None,
         }

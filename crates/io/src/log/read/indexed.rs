@@ -34,7 +34,7 @@ pub fn scan_indexed(path: &Path) -> Result<Option<LogInfo>, ReadError> {
     let head = LogReader::open(path)?;
     let mut file = File::open(path).map_err(io)?;
     let file_bytes = file.metadata().map_err(io)?.len();
-    if !head.has_end_magic {
+    if !head.has_end_magic || !summary_crc_holds(&mut file, file_bytes).map_err(io)? {
         return Ok(None);
     }
     // Knowing the file's size, the summary reader never asks for more bytes than
@@ -197,6 +197,43 @@ pub fn scan_indexed(path: &Path) -> Result<Option<LogInfo>, ReadError> {
         thermo_counts,
         file_bytes,
     }))
+}
+
+/// Whether the index (the MCAP summary section) is intact: the footer is where it
+/// belongs and the CRC it stores matches the summary section and the footer's
+/// first 16 bytes (MCAP's rule; a CRC of 0 means none was written).
+fn summary_crc_holds(file: &mut File, file_bytes: u64) -> std::io::Result<bool> {
+    const FOOTER: usize = 1 + 8 + 20; // opcode, length, body
+    let Some(footer_start) = file_bytes.checked_sub((8 + FOOTER) as u64) else {
+        return Ok(false);
+    };
+    let mut footer = [0u8; FOOTER];
+    file.seek(SeekFrom::Start(footer_start))?;
+    file.read_exact(&mut footer)?;
+    let word = |a: usize| u64::from_le_bytes(footer[a..a + 8].try_into().unwrap());
+    if footer[0] != mcap::records::op::FOOTER || word(1) != 20 {
+        return Ok(false);
+    }
+    let summary_start = word(9);
+    let saved = u32::from_le_bytes(footer[25..29].try_into().unwrap());
+    if summary_start < 8 || summary_start > footer_start {
+        return Ok(false);
+    }
+    if saved == 0 {
+        return Ok(true);
+    }
+    let mut hasher = crc32fast::Hasher::new();
+    file.seek(SeekFrom::Start(summary_start))?;
+    let mut rest = footer_start - summary_start;
+    let mut buf = vec![0u8; 1 << 16];
+    while rest > 0 {
+        let n = rest.min(buf.len() as u64) as usize;
+        file.read_exact(&mut buf[..n])?;
+        hasher.update(&buf[..n]);
+        rest -= n as u64;
+    }
+    hasher.update(&footer[..25]);
+    Ok(hasher.finalize() == saved)
 }
 
 /// A message copied out of its chunk (see [`scan_indexed`]).

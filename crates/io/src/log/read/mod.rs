@@ -8,8 +8,11 @@
 //! A file cut short (a killed run) reads up to its last complete chunk; the iterators
 //! then end normally and [`LogReader::end`] says [`LogEnd::Truncated`] (with
 //! [`ReadOptions::strict`] the cut is an error instead). Damage inside a file that
-//! was finished properly is always a [`ReadError::Corrupt`] error, returned after
-//! everything before the damage. Nothing here panics on bad input.
+//! was finished properly is a [`ReadError::Corrupt`] error, returned after
+//! everything before the damage, unless it comes after the last chunk (the index,
+//! the footer, the data-section CRC): then every message has been read and the end
+//! is [`LogEnd::Damaged`], a warning. [`salvage`] reads around damaged chunks
+//! (for `carom repair`). Nothing here panics on bad input.
 //!
 //! ```no_run
 //! use carom_io::{LogEvent, LogReader};
@@ -27,11 +30,13 @@ mod error;
 mod indexed;
 mod iter;
 mod replay;
+mod salvage;
 mod scan;
 
 pub use error::{LogEnd, ReadError};
 pub use indexed::scan_indexed;
 pub use iter::{Collisions, Events, Filtered, LogEvent, LogMessage};
+pub use salvage::{salvage, LostPart, Salvaged};
 pub use scan::{last_checkpoint, last_checkpoint_observed, scan, scan_observed, LogInfo};
 
 use crate::log::format::N_CHANNELS;
@@ -112,6 +117,10 @@ pub struct LogReader<R: Read + Seek = BufReader<File>> {
     run: RunMetadata,
     run_map: BTreeMap<String, String>,
     summary: Option<BTreeMap<String, String>>,
+    /// Why the `carom.summary` record, when reached, could not be read.
+    summary_damage: Option<String>,
+    /// Whether the last low-level failure was the file ending inside a record.
+    cut: bool,
     has_end_magic: bool,
     in_summary_section: bool,
     strict: bool,
@@ -229,6 +238,8 @@ impl<R: Read + Seek> LogReader<R> {
             },
             run_map: BTreeMap::new(),
             summary: None,
+            summary_damage: None,
+            cut: false,
             has_end_magic,
             in_summary_section: false,
             strict: opts.strict,
@@ -295,7 +306,10 @@ impl<R: Read + Seek> LogReader<R> {
         loop {
             let event = match self.linear.next_event() {
                 None => return Ok(false),
-                Some(Err(e)) => return Err(e.to_string()),
+                Some(Err(e)) => {
+                    self.cut = matches!(e, mcap::McapError::UnexpectedEof);
+                    return Err(e.to_string());
+                }
                 Some(Ok(e)) => e,
             };
             match event {
@@ -322,8 +336,24 @@ impl<R: Read + Seek> LogReader<R> {
         }
     }
 
-    /// Turn a low-level failure into the end of reading.
+    /// Turn a low-level failure into the end of reading. Damage after the last
+    /// chunk (once the `carom.summary` record, written after it, or the summary
+    /// section has been reached) loses no message: the end is
+    /// [`LogEnd::Damaged`], a warning. (A log without that record, as a repaired
+    /// cut log, cannot tell and fails as before.)
     fn fail(&mut self, detail: String) -> Result<Found, ReadError> {
+        // (A file that simply ends there was cut while being finished: truncated.)
+        let cut = self.cut && !self.has_end_magic;
+        // Only the `carom.summary` record proves that the last chunk was read: a
+        // data-end record can be misread out of damaged bytes.
+        if !cut && (self.summary.is_some() || self.summary_damage.is_some()) {
+            let detail = match &self.summary_damage {
+                Some(d) => format!("{d}; {detail}"),
+                None => detail,
+            };
+            self.end = LogEnd::Damaged { detail };
+            return Ok(Found::End);
+        }
         if !self.has_end_magic && !self.strict {
             self.end = LogEnd::Truncated { detail };
             return Ok(Found::End);
@@ -352,7 +382,10 @@ impl<R: Read + Seek> LogReader<R> {
             match self.next_record() {
                 Ok(true) => {}
                 Ok(false) => {
-                    self.end = LogEnd::Complete;
+                    self.end = match self.summary_damage.take() {
+                        Some(detail) => LogEnd::Damaged { detail },
+                        None => LogEnd::Complete,
+                    };
                     return Ok(Found::End);
                 }
                 Err(detail) => return self.fail(detail),
@@ -426,7 +459,15 @@ impl<R: Read + Seek> LogReader<R> {
                     }
                 },
                 Record::Metadata(m) if m.name == METADATA_SUMMARY => {
-                    self.summary = Some(m.metadata);
+                    // A damaged summary is left out (with a warning at the end),
+                    // not an error: the messages are all there.
+                    match SummaryMetadata::from_map(&m.metadata) {
+                        Ok(_) => self.summary = Some(m.metadata),
+                        Err(e) => {
+                            self.summary_damage =
+                                Some(format!("the carom.summary record is unreadable: {e}"))
+                        }
+                    }
                 }
                 Record::DataEnd(_) => self.in_summary_section = true,
                 _ => {}
