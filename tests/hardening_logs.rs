@@ -145,11 +145,41 @@ fn a_flipped_bit_loses_at_most_its_chunk_and_verify_names_it() {
         std::fs::write(dir.join("f.mcap"), &b).unwrap();
     };
     let mut cases = 0;
-    // After the last chunk: the summary record's values, the index, the footer,
-    // the end magic. Every reader reads everything, and says the end is damaged.
-    let tail: Vec<usize> = (data_end..src.len())
-        .step_by((src.len() - data_end) / 12 + 1)
-        .chain([summary.2 - 3, src.len() - 30, src.len() - 12, src.len() - 3])
+    // In the data section after the last chunk (the summary record's values, the
+    // data-end record's CRC): the data section's CRC fails, which cannot tell
+    // whether the run's configuration was hit: readers refuse, naming it, and
+    // `repair` copies every chunk (all of them hold).
+    for at in [summary.2 - 3, data_end + 10] {
+        flip(at, 2);
+        let mut r = LogReader::open(&dir.join("f.mcap")).unwrap();
+        let err = loop {
+            match r.next_raw() {
+                Ok(Some(_)) => {}
+                Ok(None) => panic!("flip at {at}: read to the end ({:?})", r.end()),
+                Err(e) => break e.to_string(),
+            }
+        };
+        assert!(err.contains("Data section CRC failed"), "flip at {at}: {err}");
+        let out = carom(&dir, &["info", "--verify", "f.mcap"]);
+        assert!(!out.status.success(), "flip at {at}: --verify passed");
+        ok(&carom(
+            &dir,
+            &["repair", "f.mcap", "--out", "r.mcap", "--force"],
+        ));
+        let (repaired, end) = all(&dir.join("r.mcap"));
+        assert_eq!(
+            (repaired == reference, end),
+            (true, LogEnd::Complete),
+            "flip at {at}"
+        );
+        cases += 1;
+    }
+    // After the data section: the index, the footer, the end magic. Every reader
+    // reads everything, and says the end is damaged.
+    let after = data_end + 13;
+    let tail: Vec<usize> = (after..src.len())
+        .step_by((src.len() - after) / 12 + 1)
+        .chain([src.len() - 30, src.len() - 12, src.len() - 3])
         .collect();
     for (k, &at) in tail.iter().enumerate() {
         flip(at, (k % 8) as u8);

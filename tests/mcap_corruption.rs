@@ -82,11 +82,13 @@ fn mutate(rng: &mut Rng, src: &[u8]) -> (Vec<u8>, String) {
     let what = match rng.below(6) {
         0 => {
             let flips = 1 + rng.below(8);
+            let mut at = Vec::new();
             for _ in 0..flips {
                 let k = rng.below(n);
                 b[k] ^= 1 << rng.below(8);
+                at.push(k);
             }
-            format!("{flips} bit flips")
+            format!("{flips} bit flips at {at:?} of {n} bytes")
         }
         1 => {
             let len = (1 + rng.below(16)).min(n - at);

@@ -186,6 +186,9 @@ pub(crate) fn parse_record(opcode: u8, data: &[u8]) -> Result<Record<'_>, String
     }
 }
 
+/// How the mcap crate's error for a failed data-section CRC begins.
+const DATA_CRC_FAILED: &str = "Data section CRC failed";
+
 impl<R: Read + Seek> LogReader<R> {
     /// Read a log from any seekable source; `label` names it in errors.
     pub fn new(mut source: R, label: String, opts: ReadOptions) -> Result<Self, ReadError> {
@@ -346,7 +349,11 @@ impl<R: Read + Seek> LogReader<R> {
         let cut = self.cut && !self.has_end_magic;
         // Only the `carom.summary` record proves that the last chunk was read: a
         // data-end record can be misread out of damaged bytes.
-        if !cut && (self.summary.is_some() || self.summary_damage.is_some()) {
+        // A failed data-section CRC proves nothing about where the damage is: it
+        // covers the records outside the chunks too (the run's configuration, which
+        // decoding uses), so it stays an error (`carom repair` copies the chunks).
+        let data_crc = detail.starts_with(DATA_CRC_FAILED);
+        if !cut && !data_crc && (self.summary.is_some() || self.summary_damage.is_some()) {
             let detail = match &self.summary_damage {
                 Some(d) => format!("{d}; {detail}"),
                 None => detail,
@@ -470,6 +477,13 @@ impl<R: Read + Seek> LogReader<R> {
                     }
                 }
                 Record::DataEnd(_) => self.in_summary_section = true,
+                // carom writes no such record: damaged bytes (a chunk whose opcode
+                // was hit would otherwise be skipped, and its messages lost unseen).
+                Record::Unknown { opcode, .. } => {
+                    return self.fail(format!(
+                        "a record of unknown opcode {opcode:#04x} in the data section"
+                    ))
+                }
                 _ => {}
             }
         }
