@@ -147,10 +147,9 @@ pub fn collect(
                             })
                             .map_err(|e| (format!("analysis failed: {e}"), true))
                     }
-                    s @ (PointState::Mismatch { .. } | PointState::Unreadable { .. }) => Err((
-                        format!("{} log: {}", s.word(), status_detail(&s)),
-                        true,
-                    )),
+                    PointState::Mismatch { detail } | PointState::Unreadable { detail } => {
+                        Err((detail, true))
+                    }
                     s => Err((format!("not finished ({})", s.word()), false)),
                 };
                 done(&points[i].name);
@@ -205,14 +204,6 @@ pub fn collect(
         out.points.push(cp);
     }
     Ok(out)
-}
-
-/// What a mismatched or unreadable log's state says.
-fn status_detail(s: &PointState) -> &str {
-    match s {
-        PointState::Mismatch { detail } | PointState::Unreadable { detail } => detail,
-        _ => "",
-    }
 }
 
 /// The quantities of one report (those it has, finite).

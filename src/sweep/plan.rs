@@ -195,16 +195,20 @@ impl Plan {
         if count > u128::from(MAX_POINTS) {
             let sizes: Vec<String> = axes.iter().map(|a| a.values.len().to_string()).collect();
             return Err(bad(
-                "vary",
+                if axes.is_empty() { "replicas" } else { "vary" },
                 format!(
-                    "the plan has {} points ({} values × {} replicas), more than the {MAX_POINTS} \
-                     a sweep may have",
+                    "the plan has {} points (values per axis: {}; replicas: {}), more than the \
+                     {MAX_POINTS} a sweep may have",
                     if count == u128::MAX {
                         "more than 10^38".to_owned()
                     } else {
                         count.to_string()
                     },
-                    if sizes.is_empty() { "1".into() } else { sizes.join(" × ") },
+                    if sizes.is_empty() {
+                        "no axis".into()
+                    } else {
+                        sizes.join(" × ")
+                    },
                     file.replicas
                 ),
                 &format!("at most {MAX_POINTS} points: split the plan into several sweeps"),
@@ -474,6 +478,65 @@ mod tests {
             .unwrap_err()
             .to_string();
         assert!(e.contains("temperature=1"), "{e}");
+    }
+
+    /// Points are counted before any is made: a billion replicas, or a grid of
+    /// 10¹⁰, is refused at once naming the count, and the limit itself passes.
+    #[test]
+    fn plans_past_the_point_limit_are_refused_naming_their_count() {
+        let base = r#"{"species": [{"count": 20}], "stop": {"duration": 1}}"#;
+        let e = plan(&format!(r#"{{"base": {base}, "replicas": 1000000000}}"#))
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("1000000000 points") && e.contains("100000"), "{e}");
+        let e = plan(&format!(
+            r#"{{"base": {base}, "vary": {{
+                "temperature": {{"from": 1, "to": 2, "count": 100000}},
+                "box.packing_fraction": {{"from": 0.1, "to": 0.2, "count": 100000}}}}}}"#
+        ))
+        .unwrap_err()
+        .to_string();
+        assert!(e.contains("10000000000 points"), "{e}");
+        let at_limit = plan(&format!(
+            r#"{{"base": {base}, "vary": {{"temperature": {{"from": 1, "to": 2, "count": 1000}}}},
+                "replicas": 100}}"#
+        ))
+        .unwrap();
+        assert_eq!(at_limit.points.len() as u64, MAX_POINTS);
+        assert_eq!(at_limit.points[99_999].name, "temperature=2.0,seed=100");
+        assert_eq!(at_limit.config(99_999)["seed"], 100);
+    }
+
+    /// Replica r has seed `seed` + r: a first seed whose replicas would pass
+    /// 2⁶⁴ − 1 is refused naming it; the largest that fits is accepted.
+    #[test]
+    fn replica_seeds_never_wrap_round() {
+        let e = plan(r#"{"base": {}, "replicas": 2, "seed": 18446744073709551615}"#)
+            .unwrap_err()
+            .to_string();
+        assert!(
+            e.contains("seed") && e.contains("18446744073709551615") && e.contains("18446744073709551614"),
+            "{e}"
+        );
+        let p = plan(r#"{"base": {}, "replicas": 2, "seed": 18446744073709551614}"#).unwrap();
+        let seeds: Vec<u64> = p.points.iter().map(|p| p.seed).collect();
+        assert_eq!(seeds, [u64::MAX - 1, u64::MAX]);
+    }
+
+    /// A point whose name cannot be a directory is refused when the plan is read.
+    #[test]
+    fn points_whose_names_cannot_be_directories_are_refused() {
+        let long = "a".repeat(300);
+        let e = plan(&format!(
+            r#"{{"base": {{}}, "vary": {{"description": ["{long}"]}}}}"#
+        ))
+        .unwrap_err()
+        .to_string();
+        assert!(e.contains("312 bytes"), "{e}");
+        let e = plan(r#"{"base": {}, "vary": {"description": ["a\u0000b"]}}"#)
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("U+0000"), "{e}");
     }
 
     /// The schema names exactly the fields the plan reader accepts, and the

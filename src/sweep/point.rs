@@ -119,8 +119,12 @@ pub(super) fn start_point(
     let set_aside = match &state {
         PointState::Mismatch { detail } | PointState::Unreadable { detail } => {
             let to = set_aside(sweep, i)?;
+            let what = match state {
+                PointState::Mismatch { .. } => "is not this point's run",
+                _ => "cannot be read",
+            };
             Some(format!(
-                "its log was not this point's ({detail}): moved aside to {}",
+                "the log there {what} ({detail}); moved it aside to {}",
                 to.display()
             ))
         }

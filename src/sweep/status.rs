@@ -177,25 +177,36 @@ fn mismatch(run: &RunMetadata, expected: &RunSpec) -> Option<String> {
         return None;
     }
     let parse = |s: &str| serde_json::from_str::<Value>(s).unwrap_or(Value::Null);
-    Some(
-        match first_difference(&parse(&logged.config_json), &parse(&expected.config_json)) {
-            Some((path, a, b)) => format!(
-                "another run's log: {path} is {} in it, {} in this point's configuration",
-                short(&a),
-                short(&b)
-            ),
-            None => "another run's log (its run differs from this point's)".into(),
-        },
-    )
+    let mut found = Vec::new();
+    differences(
+        &parse(&logged.config_json),
+        &parse(&expected.config_json),
+        "",
+        &mut found,
+    );
+    let mut told: Vec<String> = found
+        .iter()
+        .take(3)
+        .map(|(path, a, b)| format!("{path} is {} in it, {} here", short(a), short(b)))
+        .collect();
+    if found.len() > 3 {
+        told.push(format!("and {} more", found.len() - 3));
+    }
+    Some(if told.is_empty() {
+        "another run's log (its run differs from this point's)".into()
+    } else {
+        format!("another run's log: {}", told.join("; "))
+    })
 }
 
-/// The first place (dotted path) where `a` and `b` differ, with both values.
-fn first_difference(a: &Value, b: &Value) -> Option<(String, Value, Value)> {
-    let join = |k: &str, rest: String| {
-        if rest.is_empty() {
+/// Every place (dotted path) where `a` and `b` differ, with both values, in
+/// the order of the keys.
+fn differences(a: &Value, b: &Value, at: &str, found: &mut Vec<(String, Value, Value)>) {
+    let join = |k: &str| {
+        if at.is_empty() {
             k.to_owned()
         } else {
-            format!("{k}.{rest}")
+            format!("{at}.{k}")
         }
     };
     match (a, b) {
@@ -203,21 +214,21 @@ fn first_difference(a: &Value, b: &Value) -> Option<(String, Value, Value)> {
             let mut keys: Vec<&String> = x.keys().chain(y.keys()).collect();
             keys.sort_unstable();
             keys.dedup();
-            keys.into_iter().find_map(|k| {
+            for k in keys {
                 let (u, v) = (
                     x.get(k).unwrap_or(&Value::Null),
                     y.get(k).unwrap_or(&Value::Null),
                 );
-                first_difference(u, v).map(|(p, u, v)| (join(k, p), u, v))
-            })
+                differences(u, v, &join(k), found);
+            }
         }
         (Value::Array(x), Value::Array(y)) if x.len() == y.len() => {
-            x.iter().zip(y).enumerate().find_map(|(k, (u, v))| {
-                first_difference(u, v).map(|(p, u, v)| (join(&k.to_string(), p), u, v))
-            })
+            for (k, (u, v)) in x.iter().zip(y).enumerate() {
+                differences(u, v, &join(&k.to_string()), found);
+            }
         }
-        _ if a == b => None,
-        _ => Some((String::new(), a.clone(), b.clone())),
+        _ if a == b => {}
+        _ => found.push((at.to_owned(), a.clone(), b.clone())),
     }
 }
 
