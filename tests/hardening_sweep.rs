@@ -141,7 +141,11 @@ fn a_log_that_is_not_the_points_run_is_named_left_out_and_moved_aside() {
     let c: Value = serde_json::from_slice(&c.stdout).unwrap();
     assert_eq!(c["points"].as_array().unwrap().len(), 1, "{c}");
     assert_eq!(z_of(&c, 0.4), Some(z04));
-    assert_eq!(z_of(&c, 0.3), None, "the copied log is not counted for η = 0.3");
+    assert_eq!(
+        z_of(&c, 0.3),
+        None,
+        "the copied log is not counted for η = 0.3"
+    );
 
     // A log that cannot be read is not overwritten either.
     let garbage = b"not a log at all".to_vec();
@@ -250,7 +254,10 @@ fn jobs_are_capped_at_the_cores() {
             "vary": {"box.packing_fraction": [0.2, 0.3, 0.4]}}"#,
     );
     let cores = std::thread::available_parallelism().unwrap().get();
-    let out = carom(&dir, &["sweep", "plan.json", "--out", "out", "--jobs", "1000"]);
+    let out = carom(
+        &dir,
+        &["sweep", "plan.json", "--out", "out", "--jobs", "1000"],
+    );
     ok(&out);
     let stderr = String::from_utf8_lossy(&out.stderr);
     assert!(
@@ -324,7 +331,10 @@ fn points_outlive_a_killed_sweep_and_finish_their_logs() {
     // A sweep started now leaves the running points to themselves.
     let again = carom(&dir, &["sweep", "plan.json", "--out", "out"]);
     let stderr = String::from_utf8_lossy(&again.stderr);
-    assert!(stderr.contains("skipped  temperature=1 (running)"), "{stderr}");
+    assert!(
+        stderr.contains("skipped  temperature=1 (running)"),
+        "{stderr}"
+    );
     wait_for("both points ended", || {
         states(&dir, "out").iter().all(|s| s.1 != "running")
     });
@@ -347,7 +357,9 @@ fn a_second_sweep_into_a_running_ones_directory_is_refused() {
     ];
     let mut ended = None;
     wait_for("one sweep ended", || {
-        ended = sweeps.iter_mut().position(|c| c.try_wait().unwrap().is_some());
+        ended = sweeps
+            .iter_mut()
+            .position(|c| c.try_wait().unwrap().is_some());
         ended.is_some()
     });
     let refused = sweeps.remove(ended.unwrap()).wait_with_output().unwrap();

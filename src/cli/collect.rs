@@ -10,7 +10,9 @@ use std::process::ExitCode;
 use std::sync::atomic::{AtomicUsize, Ordering};
 
 use carom::analysis::AnalysisOptions;
-use carom::sweep::{collect as collect_sweep, cores, jobs_at_once, CollectOptions, Collected, SweepDir};
+use carom::sweep::{
+    collect as collect_sweep, cores, jobs_at_once, CollectOptions, Collected, SweepDir,
+};
 use clap::Args;
 
 use super::sweep::say;

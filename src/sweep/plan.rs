@@ -172,7 +172,10 @@ impl Plan {
             Some(s) => s,
             None => base.get("seed").and_then(Value::as_u64).unwrap_or(1),
         };
-        if first_seed.checked_add(u64::from(file.replicas) - 1).is_none() {
+        if first_seed
+            .checked_add(u64::from(file.replicas) - 1)
+            .is_none()
+        {
             return Err(bad(
                 "seed",
                 format!(
@@ -187,11 +190,9 @@ impl Plan {
                 ),
             ));
         }
-        let count = axes
-            .iter()
-            .fold(u128::from(file.replicas), |n, a| {
-                n.saturating_mul(a.values.len() as u128)
-            });
+        let count = axes.iter().fold(u128::from(file.replicas), |n, a| {
+            n.saturating_mul(a.values.len() as u128)
+        });
         if count > u128::from(MAX_POINTS) {
             let sizes: Vec<String> = axes.iter().map(|a| a.values.len().to_string()).collect();
             return Err(bad(
@@ -488,7 +489,10 @@ mod tests {
         let e = plan(&format!(r#"{{"base": {base}, "replicas": 1000000000}}"#))
             .unwrap_err()
             .to_string();
-        assert!(e.contains("1000000000 points") && e.contains("100000"), "{e}");
+        assert!(
+            e.contains("1000000000 points") && e.contains("100000"),
+            "{e}"
+        );
         let e = plan(&format!(
             r#"{{"base": {base}, "vary": {{
                 "temperature": {{"from": 1, "to": 2, "count": 100000}},
@@ -515,7 +519,9 @@ mod tests {
             .unwrap_err()
             .to_string();
         assert!(
-            e.contains("seed") && e.contains("18446744073709551615") && e.contains("18446744073709551614"),
+            e.contains("seed")
+                && e.contains("18446744073709551615")
+                && e.contains("18446744073709551614"),
             "{e}"
         );
         let p = plan(r#"{"base": {}, "replicas": 2, "seed": 18446744073709551614}"#).unwrap();

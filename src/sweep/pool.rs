@@ -120,7 +120,10 @@ pub fn run_pool(
                 }
             }
             on_event(PoolEvent::Tick(
-                running.iter().map(|(i, _, _)| (*i, fractions[*i])).collect(),
+                running
+                    .iter()
+                    .map(|(i, _, _)| (*i, fractions[*i]))
+                    .collect(),
             ));
             last_tick = Instant::now();
         }
