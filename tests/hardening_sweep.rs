@@ -364,6 +364,9 @@ fn a_second_sweep_into_a_running_ones_directory_is_refused() {
     });
     let refused = sweeps.remove(ended.unwrap()).wait_with_output().unwrap();
     let running = sweeps.pop().unwrap();
+    wait_for("the other sweep's points running", || {
+        try_states(&dir, "out").is_some_and(|s| s.iter().all(|s| s.1 == "running"))
+    });
     kill("-TERM", running.id());
     let running = running.wait_with_output().unwrap();
     let stderr = String::from_utf8_lossy(&refused.stderr);
