@@ -2,16 +2,20 @@
 //! print one table, a row per grid point with its replicas combined (mean ± the
 //! standard error from their spread), as text, JSON or CSV; `--plot` draws Z(η)
 //! over the published equation of state when the sweep varies the packing
-//! fraction.
+//! fraction. A point whose log is not its own run, cannot be read or fails to
+//! analyse is named and left out, and the command then exits with status 1.
 
 use std::path::PathBuf;
 use std::process::ExitCode;
 use std::sync::atomic::{AtomicUsize, Ordering};
 
 use carom::analysis::AnalysisOptions;
-use carom::sweep::{collect as collect_sweep, CollectOptions, Collected, SweepDir};
+use carom::sweep::{
+    collect as collect_sweep, cores, jobs_at_once, CollectOptions, Collected, SweepDir,
+};
 use clap::Args;
 
+use super::sweep::say;
 use super::CliError;
 
 /// Arguments of `carom collect`.
@@ -31,7 +35,7 @@ pub struct CollectArgs {
     /// fraction with the reference equation of state, when the sweep varies it.
     #[arg(long, value_name = "DIR")]
     pub plot: Option<PathBuf>,
-    /// Logs analysed at once (default: one per core).
+    /// Logs analysed at once (default: one per core; never more than the cores).
     #[arg(short, long, value_name = "N", value_parser = clap::value_parser!(u32).range(1..))]
     pub jobs: Option<u32>,
     /// Ignore everything before this simulated time in every log; default: the
@@ -49,11 +53,10 @@ pub struct CollectArgs {
 /// `carom collect`.
 pub fn collect(args: CollectArgs) -> Result<ExitCode, CliError> {
     let sweep = SweepDir::open(&args.dir)?;
-    let jobs = args.jobs.map(|j| j as usize).unwrap_or_else(|| {
-        std::thread::available_parallelism()
-            .map(|n| n.get())
-            .unwrap_or(1)
-    });
+    let (jobs, capped) = jobs_at_once(args.jobs, cores());
+    if let Some(note) = capped {
+        say(&format!("note: {note}"));
+    }
     let opts = CollectOptions {
         jobs,
         analysis: AnalysisOptions {
@@ -68,15 +71,15 @@ pub fn collect(args: CollectArgs) -> Result<ExitCode, CliError> {
     let c = collect_sweep(&sweep, &opts, &|name| {
         let k = seen.fetch_add(1, Ordering::SeqCst) + 1;
         if !quiet {
-            eprintln!("[{k}/{n}] {name}");
+            say(&format!("[{k}/{n}] {name}"));
         }
     })?;
-    for (name, why) in &c.missing {
-        eprintln!("left out {name}: {why}");
+    for (name, why) in c.missing.iter().chain(&c.rejected) {
+        say(&format!("left out {name}: {why}"));
     }
     if let Some(dir) = &args.plot {
         let k = super::plot::write_sweep(&c, dir)?;
-        eprintln!("wrote {k} figures to {}", dir.display());
+        say(&format!("wrote {k} figures to {}", dir.display()));
     }
     let text = if args.json {
         serde_json::to_string_pretty(&c).expect("serialises") + "\n"
@@ -87,7 +90,18 @@ pub fn collect(args: CollectArgs) -> Result<ExitCode, CliError> {
     };
     super::emit(&text)?;
     Ok(if c.points.is_empty() {
-        eprintln!("no finished point to collect in {}", args.dir.display());
+        say(&format!(
+            "no finished point to collect in {}",
+            args.dir.display()
+        ));
+        ExitCode::from(1)
+    } else if !c.rejected.is_empty() {
+        say(&format!(
+            "{} finished point{} left out (above): their logs are not theirs, cannot be \
+             read, or failed to analyse",
+            c.rejected.len(),
+            if c.rejected.len() == 1 { "" } else { "s" }
+        ));
         ExitCode::from(1)
     } else {
         ExitCode::SUCCESS

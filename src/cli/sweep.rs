@@ -1,17 +1,21 @@
 //! `carom sweep`: lay out a plan's points, then run the unfinished ones in a local
 //! pool with one combined progress display, or submit them to Slurm as a job
 //! array; `carom sweep status` tells each point's state from its log; `carom
-//! sweep point` is what a Slurm task runs.
+//! sweep point` is what a Slurm task runs. One sweep at a time per directory
+//! (`DIR/sweep.lock`). What the sweep prints goes to standard error; when that
+//! cannot be written (a closed pipe, a full disk) it is dropped and the sweep and
+//! its points go on — the points write into their own `carom.log`, never into the
+//! sweep's streams, so they also outlive a sweep that is killed.
 
-use std::io::IsTerminal;
+use std::io::{IsTerminal, Write};
 use std::path::PathBuf;
 use std::process::ExitCode;
 use std::sync::atomic::{AtomicBool, Ordering};
 
 use carom::sweep::slurm::{submit, SlurmOptions};
 use carom::sweep::{
-    point_command, point_state, run_point, run_pool, Plan, PointOutcome, PointState, PoolEvent,
-    SweepDir,
+    cores, jobs_at_once, point_command, point_state, run_point, run_pool, Plan, PointOutcome,
+    PointState, PoolEvent, SweepDir, SweepLock,
 };
 use clap::{Args, Subcommand};
 use indicatif::{ProgressBar, ProgressStyle};
@@ -34,7 +38,7 @@ pub struct SweepArgs {
     /// ones.
     #[arg(short, long, value_name = "DIR", required = true)]
     out: Option<PathBuf>,
-    /// Points run at once (default: one per core).
+    /// Points run at once (default: one per core; never more than the cores).
     #[arg(short, long, value_name = "N", value_parser = clap::value_parser!(u32).range(1..))]
     jobs: Option<u32>,
     /// List the points and what each needs, run nothing.
@@ -95,6 +99,12 @@ enum SweepAction {
 
 static STOP: AtomicBool = AtomicBool::new(false);
 
+/// Write `line` to standard error, or drop it if standard error cannot be
+/// written (closed pipe, full disk): a sweep's messages are never worth its points.
+pub(super) fn say(line: &str) {
+    let _ = writeln!(std::io::stderr().lock(), "{line}");
+}
+
 fn carom_exe() -> Result<PathBuf, CliError> {
     std::env::current_exe().map_err(|source| CliError::Io {
         context: "cannot find the carom executable to run the points with".into(),
@@ -140,6 +150,8 @@ pub fn sweep(args: SweepArgs) -> Result<ExitCode, CliError> {
         super::emit(&s)?;
         return Ok(ExitCode::SUCCESS);
     }
+    // Held until the sweep ends: a second sweep into `out` is refused meanwhile.
+    let _lock = SweepLock::take(&out)?;
     let sweep = SweepDir::create(&out, plan)?;
     let exe = carom_exe()?;
     if args.slurm {
@@ -147,7 +159,10 @@ pub fn sweep(args: SweepArgs) -> Result<ExitCode, CliError> {
             .filter(|&i| point_state(&sweep, i).unfinished())
             .collect();
         if todo.is_empty() {
-            eprintln!("every point of {} is finished or running", out.display());
+            say(&format!(
+                "every point of {} is finished or running",
+                out.display()
+            ));
             return Ok(ExitCode::SUCCESS);
         }
         let opts = SlurmOptions {
@@ -159,24 +174,23 @@ pub fn sweep(args: SweepArgs) -> Result<ExitCode, CliError> {
             wait: args.wait,
         };
         let job = submit(&sweep, &exe, &todo, &opts)?;
-        eprintln!(
+        say(&format!(
             "submitted job array {job}: {} of {} points ({})",
             todo.len(),
             sweep.plan.points.len(),
             out.join("slurm/sweep.sbatch").display()
-        );
+        ));
         if !args.wait {
-            println!("{job}");
+            super::emit(&format!("{job}\n"))?;
             return Ok(ExitCode::SUCCESS);
         }
         return status(&out, false);
     }
     install_stop();
-    let jobs = args.jobs.map(|j| j as usize).unwrap_or_else(|| {
-        std::thread::available_parallelism()
-            .map(|n| n.get())
-            .unwrap_or(1)
-    });
+    let (jobs, capped) = jobs_at_once(args.jobs, cores());
+    if let Some(note) = capped {
+        say(&format!("note: {note}"));
+    }
     let n = sweep.plan.points.len();
     let mut display = Display::new(args.quiet, n);
     let report = run_pool(&exe, &sweep, jobs, &STOP, |e| display.event(&sweep, e))?;
@@ -191,11 +205,11 @@ pub fn sweep(args: SweepArgs) -> Result<ExitCode, CliError> {
     });
     let failed = count(|o| matches!(o, PointOutcome::Failed(_)));
     let interrupted = n - done - failed;
-    eprintln!(
+    say(&format!(
         "sweep {}: {done} of {n} points done, {failed} failed, {interrupted} not finished, in {:.1} s with {jobs} at a time",
         out.display(),
         report.wall_seconds
-    );
+    ));
     Ok(if STOP.load(Ordering::SeqCst) {
         ExitCode::from(130)
     } else if failed > 0 || interrupted > 0 {
@@ -231,7 +245,15 @@ fn status(dir: &std::path::Path, as_json: bool) -> Result<ExitCode, CliError> {
         for (i, (p, st)) in sweep.plan.points.iter().zip(&states).enumerate() {
             s += &format!("{i:4}  {:<11} {}  {}\n", st.word(), p.name, detail(st));
         }
-        for w in ["done", "running", "interrupted", "failed", "pending"] {
+        for w in [
+            "done",
+            "running",
+            "interrupted",
+            "failed",
+            "mismatch",
+            "unreadable",
+            "pending",
+        ] {
             let k = states.iter().filter(|s| s.word() == w).count();
             if k > 0 {
                 s += &format!("{w}: {k}  ");
@@ -251,6 +273,9 @@ fn detail(s: &PointState) -> String {
         } => format!("{} at t = {sim_time}", stop_reason.as_str()),
         PointState::Interrupted { detail, .. } => detail.clone(),
         PointState::Failed { error } => error.clone(),
+        PointState::Mismatch { detail } | PointState::Unreadable { detail } => {
+            format!("{detail} (not collected; the next sweep moves it aside and runs the point)")
+        }
         PointState::Pending | PointState::Running => String::new(),
     }
 }
@@ -268,7 +293,7 @@ fn point(dir: &std::path::Path, index: usize) -> Result<ExitCode, CliError> {
     }
     let name = &sweep.plan.points[index].name;
     let outcome = run_point(&carom_exe()?, &sweep, index)?;
-    eprintln!("point {index} ({name}): {outcome:?}");
+    say(&format!("point {index} ({name}): {outcome:?}"));
     Ok(match outcome {
         PointOutcome::Done | PointOutcome::Skipped(_) => ExitCode::SUCCESS,
         PointOutcome::Interrupted => ExitCode::from(130),
@@ -280,13 +305,13 @@ fn point(dir: &std::path::Path, index: usize) -> Result<ExitCode, CliError> {
 fn install_stop() {
     let r = ctrlc::set_handler(|| {
         if !STOP.swap(true, Ordering::SeqCst) {
-            eprintln!("\ninterrupt: stopping the running points cleanly (re-run the sweep to resume them)");
+            say("\ninterrupt: stopping the running points cleanly (re-run the sweep to resume them)");
         }
     });
     if let Err(e) = r {
-        eprintln!(
+        say(&format!(
             "warning: cannot handle Ctrl-C ({e}); an interrupt will cut the points' logs short"
-        );
+        ));
     }
 }
 
@@ -328,8 +353,8 @@ impl Display {
             return;
         }
         match &self.bar {
-            Some(b) => b.suspend(|| eprintln!("{line}")),
-            None => eprintln!("{line}"),
+            Some(b) => b.suspend(|| say(line)),
+            None => say(line),
         }
     }
 
@@ -337,6 +362,14 @@ impl Display {
         let name = |i: usize| sweep.plan.points[i].name.clone();
         match e {
             PoolEvent::Started(i) => self.say(&format!("started  {}", name(i))),
+            // Said even with --quiet: a file was moved.
+            PoolEvent::SetAside(i, note) => {
+                let line = format!("warning: {}: {note}", name(i));
+                match &self.bar {
+                    Some(b) => b.suspend(|| say(&line)),
+                    None => say(&line),
+                }
+            }
             PoolEvent::Ended(i, o) => {
                 self.ended += 1;
                 match &o {
@@ -374,10 +407,10 @@ impl Display {
                         .last_plain
                         .is_none_or(|t| t.elapsed() >= super::PLAIN_EVERY)
                 {
-                    eprintln!(
+                    say(&format!(
                         "{:5.1}% {msg}",
                         100.0 * (self.ended as f64 + part) / self.n as f64
-                    );
+                    ));
                     self.last_plain = Some(std::time::Instant::now());
                 }
             }

@@ -4,7 +4,10 @@
 //! mean x̄ of the k replicas, their spread s (sample standard deviation), and the
 //! standard error s/√k (k ≥ 2; one replica keeps its run's own error). The runs'
 //! own errors combined, √(Σ σ_r²)/k, are kept beside it: the two should agree
-//! when the runs' error bars are honest.
+//! when the runs' error bars are honest. Only a point's own log is analysed:
+//! one whose configuration is not the point's (a `mismatch`, see
+//! [`super::status`]), one that cannot be read, or one whose analysis fails is
+//! left out and listed in [`Collected::rejected`] (the command then fails).
 
 use std::collections::BTreeMap;
 
@@ -57,7 +60,7 @@ pub const QUANTITIES: [(&str, &str, &str); 12] = [
 /// Options of [`collect`].
 #[derive(Debug, Clone)]
 pub struct CollectOptions {
-    /// Logs analysed at once.
+    /// Logs analysed at once (at most the cores, [`super::cores`]).
     pub jobs: usize,
     /// The analysis options (equilibration, structure on or off).
     pub analysis: AnalysisOptions,
@@ -100,8 +103,11 @@ pub struct Collected {
     pub axes: Vec<String>,
     /// One entry per grid point with at least one analysed replica.
     pub points: Vec<CollectedPoint>,
-    /// Points left out: (name, why).
+    /// Points left out because they have not finished: (name, why).
     pub missing: Vec<(String, String)>,
+    /// Points left out although their log is there: it is not the point's run,
+    /// cannot be read, or its analysis failed (name, why).
+    pub rejected: Vec<(String, String)>,
 }
 
 /// One run's quantities: name → (value, its standard error).
@@ -122,13 +128,14 @@ pub fn collect(
 ) -> Result<Collected, SweepError> {
     let points = &sweep.plan.points;
     let pool = rayon::ThreadPoolBuilder::new()
-        .num_threads(opts.jobs.max(1))
+        .num_threads(opts.jobs.clamp(1, super::cores()))
         .build()
         .map_err(|e| SweepError::Directory {
             dir: sweep.dir.clone(),
             problem: format!("cannot start the analysis threads: {e}"),
         })?;
-    let analysed: Vec<Result<Values, String>> = pool.install(|| {
+    // Per point: its values, or why it is left out and whether its log was there.
+    let analysed: Vec<Result<Values, (String, bool)>> = pool.install(|| {
         (0..points.len())
             .into_par_iter()
             .map(|i| {
@@ -138,9 +145,12 @@ pub fn collect(
                             .map(|(report, _)| {
                                 pick(&serde_json::to_value(report).expect("a Report serialises"))
                             })
-                            .map_err(|e| format!("analysis failed: {e}"))
+                            .map_err(|e| (format!("analysis failed: {e}"), true))
                     }
-                    s => Err(format!("not finished ({})", s.word())),
+                    PointState::Mismatch { detail } | PointState::Unreadable { detail } => {
+                        Err((detail, true))
+                    }
+                    s => Err((format!("not finished ({})", s.word()), false)),
                 };
                 done(&points[i].name);
                 r
@@ -151,6 +161,7 @@ pub fn collect(
         axes: sweep.plan.axes.iter().map(|a| a.path.clone()).collect(),
         points: Vec::new(),
         missing: Vec::new(),
+        rejected: Vec::new(),
     };
     let replicas = sweep.plan.replicas as usize;
     for (g, chunk) in points.chunks(replicas).enumerate() {
@@ -173,7 +184,8 @@ pub fn collect(
                     cp.seeds.push(p.seed);
                     cp.replicas.push(values.clone());
                 }
-                Err(why) => out.missing.push((p.name.clone(), why.clone())),
+                Err((why, false)) => out.missing.push((p.name.clone(), why.clone())),
+                Err((why, true)) => out.rejected.push((p.name.clone(), why.clone())),
             }
         }
         if cp.replicas.is_empty() {

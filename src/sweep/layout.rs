@@ -30,12 +30,11 @@ impl SweepDir {
         let stored = dir.join("plan.json");
         if stored.exists() {
             let old = Plan::load(&stored)?;
+            // Point by point, one configuration at a time.
             let same = old.points.len() == plan.points.len()
-                && old
-                    .points
-                    .iter()
-                    .zip(&plan.points)
-                    .all(|(a, b)| a.name == b.name && a.config == b.config);
+                && (0..plan.points.len()).all(|i| {
+                    old.points[i].name == plan.points[i].name && old.config(i) == plan.config(i)
+                });
             if !same {
                 return Err(SweepError::Directory {
                     dir: dir.to_path_buf(),
@@ -47,34 +46,19 @@ impl SweepDir {
         } else {
             write(&stored, &plan_text(&plan))?;
         }
-        let list: Vec<Value> = plan
-            .points
-            .iter()
-            .enumerate()
-            .map(|(i, p)| {
-                let values: serde_json::Map<String, Value> = plan
-                    .axes
-                    .iter()
-                    .zip(&p.values)
-                    .map(|(a, v)| (a.path.clone(), v.clone()))
-                    .collect();
-                json!({"index": i, "name": p.name, "seed": p.seed, "values": values})
-            })
-            .collect();
-        write(
-            &dir.join("points.json"),
-            &(serde_json::to_string_pretty(&list).expect("JSON") + "\n"),
-        )?;
-        let s = SweepDir {
+        write(&dir.join("points.json"), &points_text(&plan))?;
+        Ok(SweepDir {
             dir: dir.to_path_buf(),
             plan,
-        };
-        for i in 0..s.plan.points.len() {
-            std::fs::create_dir_all(s.point_dir(i)).map_err(io(s.point_dir(i)))?;
-            let text = serde_json::to_string_pretty(&s.plan.points[i].config).expect("JSON") + "\n";
-            write(&s.config_path(i), &text)?;
-        }
-        Ok(s)
+        })
+    }
+
+    /// Make point `i`'s directory and write its `config.json` (again, if it is
+    /// there: the plan's configuration is the one that runs).
+    pub fn prepare_point(&self, i: usize) -> Result<(), SweepError> {
+        std::fs::create_dir_all(self.point_dir(i)).map_err(io(self.point_dir(i)))?;
+        let text = serde_json::to_string_pretty(&self.plan.config(i)).expect("JSON") + "\n";
+        write(&self.config_path(i), &text)
     }
 
     /// The sweep laid out in `dir` by [`SweepDir::create`].
@@ -142,6 +126,24 @@ fn plan_text(plan: &Plan) -> String {
         "  \"replicas\": {},\n  \"seed\": {}\n}}\n",
         plan.replicas, plan.first_seed
     );
+    s
+}
+
+/// `points.json`: one object per point, `{"index", "name", "seed", "values"}`,
+/// written one point at a time.
+fn points_text(plan: &Plan) -> String {
+    let mut s = String::from("[");
+    for (i, p) in plan.points.iter().enumerate() {
+        let values: serde_json::Map<String, Value> = plan
+            .axes
+            .iter()
+            .zip(&p.values)
+            .map(|(a, v)| (a.path.clone(), v.clone()))
+            .collect();
+        s += if i == 0 { "\n  " } else { ",\n  " };
+        s += &json!({"index": i, "name": p.name, "seed": p.seed, "values": values}).to_string();
+    }
+    s += "\n]\n";
     s
 }
 

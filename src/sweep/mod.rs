@@ -8,10 +8,14 @@
 //! Points run as `carom run` / `carom resume` processes: locally in a pool of
 //! [`run_pool`] (one per core), or as the tasks of a Slurm job array written by
 //! [`slurm`]. [`collect()`] analyses every finished log and combines replicas.
+//! Only one `carom sweep` works in a directory at a time ([`SweepLock`]).
 
 mod collect;
 mod error;
+mod jobs;
 mod layout;
+mod lock;
+mod names;
 mod plan;
 mod point;
 mod pool;
@@ -20,8 +24,11 @@ mod status;
 
 pub use collect::{collect, CollectOptions, Collected, CollectedPoint, Combined, QUANTITIES};
 pub use error::SweepError;
+pub use jobs::{cores, jobs_at_once};
 pub use layout::SweepDir;
-pub use plan::{Axis, Plan, Point};
+pub use lock::SweepLock;
+pub use names::MAX_NAME_BYTES;
+pub use plan::{Axis, Plan, Point, MAX_POINTS};
 pub use point::{point_command, run_point, PointOutcome};
 pub use pool::{run_pool, PoolEvent, PoolReport};
 pub use status::{point_state, PointState};

@@ -4,16 +4,25 @@
 //! replicas). Each point's configuration is the base with `--set path=value`
 //! applied for each varied path and the seed set, checked as `carom run` would
 //! check it, so a bad value is reported before anything runs. Point names are
-//! readable and unique: `packing_fraction=0.3,seed=2`.
+//! readable and unique: `packing_fraction=0.3,seed=2` (see [`super::names`]).
+//! The number of points, Π (values per axis) × replicas, is counted before any
+//! is made and refused above [`MAX_POINTS`]; each point's configuration is built
+//! when it is needed ([`Plan::config`]), not held for all points at once.
 
 use std::path::{Path, PathBuf};
 
-use carom_io::{apply_set, Config};
+use carom_io::{apply_set, Config, RunSpec};
 use serde::de::{MapAccess, Visitor};
 use serde::{Deserialize, Deserializer};
 use serde_json::Value;
 
+use super::names::{labels, shown, unusable, value_text};
 use super::SweepError;
+
+/// The most points a plan may expand to (documented in docs/sweeps.md): far more
+/// than a cluster's job array takes (Slurm's default `MaxArraySize` is 1001),
+/// and few enough that a plan is read, checked and laid out in seconds.
+pub const MAX_POINTS: u64 = 100_000;
 
 /// A plan as written (`data/sweeps/*.json`; its schema is `data/sweep.schema.json`).
 #[derive(Debug, Clone, Deserialize)]
@@ -90,6 +99,8 @@ pub struct Plan {
     pub first_seed: u64,
     /// Every point, grid order (the last axis fastest), replicas innermost.
     pub points: Vec<Point>,
+    /// Where the plan came from, for errors.
+    origin: String,
 }
 
 /// One run of a sweep.
@@ -101,8 +112,6 @@ pub struct Point {
     pub values: Vec<Value>,
     /// Its seed.
     pub seed: u64,
-    /// Its full configuration (the base with the values and the seed set).
-    pub config: Value,
 }
 
 impl Plan {
@@ -163,15 +172,145 @@ impl Plan {
             Some(s) => s,
             None => base.get("seed").and_then(Value::as_u64).unwrap_or(1),
         };
-        let points = expand(&base, &axes, file.replicas, first_seed, origin)?;
-        Ok(Plan {
+        if first_seed
+            .checked_add(u64::from(file.replicas) - 1)
+            .is_none()
+        {
+            return Err(bad(
+                "seed",
+                format!(
+                    "{first_seed} with {} replicas: their seeds {first_seed} + r would pass \
+                     2^64 - 1 = {} (seeds do not wrap round to 0)",
+                    file.replicas,
+                    u64::MAX
+                ),
+                &format!(
+                    "a first seed of at most {}",
+                    u64::MAX - (u64::from(file.replicas) - 1)
+                ),
+            ));
+        }
+        let count = axes.iter().fold(u128::from(file.replicas), |n, a| {
+            n.saturating_mul(a.values.len() as u128)
+        });
+        if count > u128::from(MAX_POINTS) {
+            let sizes: Vec<String> = axes.iter().map(|a| a.values.len().to_string()).collect();
+            return Err(bad(
+                if axes.is_empty() { "replicas" } else { "vary" },
+                format!(
+                    "the plan has {} points (values per axis: {}; replicas: {}), more than the \
+                     {MAX_POINTS} a sweep may have",
+                    if count == u128::MAX {
+                        "more than 10^38".to_owned()
+                    } else {
+                        count.to_string()
+                    },
+                    if sizes.is_empty() {
+                        "no axis".into()
+                    } else {
+                        sizes.join(" × ")
+                    },
+                    file.replicas
+                ),
+                &format!("at most {MAX_POINTS} points: split the plan into several sweeps"),
+            ));
+        }
+        let mut plan = Plan {
             description: file.description,
             base,
             axes,
             replicas: file.replicas,
             first_seed,
-            points,
-        })
+            points: Vec::new(),
+            origin: origin.to_owned(),
+        };
+        plan.points = plan.expand(count as usize)?;
+        Ok(plan)
+    }
+
+    /// Point `i`'s full configuration: the base with its values and its seed set.
+    pub fn config(&self, i: usize) -> Value {
+        self.build(&self.points[i])
+            .expect("every point's configuration was built when the plan was read")
+    }
+
+    /// Point `i`'s run as `carom run` would make it from [`Plan::config`].
+    pub fn run_spec(&self, i: usize) -> RunSpec {
+        Config::from_value(self.config(i))
+            .and_then(|c| c.to_run_spec())
+            .expect("every point's configuration was checked when the plan was read")
+    }
+
+    /// `point`'s configuration: the base with its values and its seed set.
+    fn build(&self, point: &Point) -> Result<Value, SweepError> {
+        let mut config = self.base.clone();
+        for (axis, v) in self.axes.iter().zip(&point.values) {
+            apply_set(&mut config, &format!("{}={v}", axis.path)).map_err(|e| {
+                SweepError::Point {
+                    plan: self.origin.clone(),
+                    point: format!("{}={v}", axis.path),
+                    problem: e.to_string(),
+                }
+            })?;
+        }
+        config["seed"] = Value::from(point.seed);
+        Ok(config)
+    }
+
+    /// The `count` points of the grid, each checked (its name usable, its
+    /// configuration one `carom run` accepts): the last axis fastest, replicas
+    /// innermost.
+    fn expand(&self, count: usize) -> Result<Vec<Point>, SweepError> {
+        let labels = labels(&self.axes);
+        let replicas = self.replicas as usize;
+        let mut points = Vec::with_capacity(count);
+        for k in 0..count {
+            // Grid point g = k / replicas, its value index along each axis by
+            // mixed radix, the last axis fastest.
+            let (mut g, r) = (k / replicas, (k % replicas) as u64);
+            let mut values = vec![Value::Null; self.axes.len()];
+            for (a, axis) in self.axes.iter().enumerate().rev() {
+                values[a] = axis.values[g % axis.values.len()].clone();
+                g /= axis.values.len();
+            }
+            let seed = self.first_seed + r;
+            let mut parts: Vec<String> = labels
+                .iter()
+                .zip(&values)
+                .map(|(label, v)| format!("{label}={}", value_text(v)))
+                .collect();
+            if self.replicas > 1 || parts.is_empty() {
+                parts.push(format!("seed={seed}"));
+            }
+            let point = Point {
+                name: parts.join(","),
+                values,
+                seed,
+            };
+            let refuse = |problem: String| SweepError::Point {
+                plan: self.origin.clone(),
+                point: shown(&point.name),
+                problem,
+            };
+            if let Some(why) = unusable(&point.name) {
+                return Err(refuse(format!("its name, the directory it runs in, {why}")));
+            }
+            Config::from_value(self.build(&point)?)
+                .and_then(|c| c.to_run_spec().map(|_| ()))
+                .map_err(|e| refuse(e.to_string()))?;
+            points.push(point);
+        }
+        let mut names: Vec<&str> = points.iter().map(|p| p.name.as_str()).collect();
+        names.sort_unstable();
+        if let Some(w) = names.windows(2).find(|w| w[0] == w[1]) {
+            return Err(SweepError::Plan {
+                plan: self.origin.clone(),
+                field: "vary".into(),
+                problem: format!("two points are both named {}", w[0]),
+                allowed: "distinct values along each path".into(),
+            });
+        }
+        Ok(points)
     }
 }
 
@@ -245,112 +384,6 @@ fn round12(x: f64) -> f64 {
     format!("{x:.11e}").parse().expect("a formatted f64 parses")
 }
 
-/// Every point of the grid: the last axis fastest, replicas innermost.
-fn expand(
-    base: &Value,
-    axes: &[Axis],
-    replicas: u32,
-    first_seed: u64,
-    origin: &str,
-) -> Result<Vec<Point>, SweepError> {
-    let labels = labels(axes);
-    let mut grid: Vec<Vec<Value>> = vec![vec![]];
-    for axis in axes {
-        grid = grid
-            .into_iter()
-            .flat_map(|head| {
-                axis.values.iter().map(move |v| {
-                    let mut h = head.clone();
-                    h.push(v.clone());
-                    h
-                })
-            })
-            .collect();
-    }
-    let mut points = Vec::new();
-    for values in grid {
-        for r in 0..replicas as u64 {
-            let seed = first_seed + r;
-            let mut config = base.clone();
-            let mut parts = Vec::new();
-            for ((axis, v), label) in axes.iter().zip(&values).zip(&labels) {
-                apply_set(&mut config, &format!("{}={v}", axis.path)).map_err(|e| {
-                    SweepError::Point {
-                        plan: origin.to_owned(),
-                        point: format!("{}={v}", axis.path),
-                        problem: e.to_string(),
-                    }
-                })?;
-                parts.push(format!("{label}={}", value_text(v)));
-            }
-            config["seed"] = Value::from(seed);
-            if replicas > 1 || parts.is_empty() {
-                parts.push(format!("seed={seed}"));
-            }
-            let name = parts.join(",");
-            Config::from_value(config.clone())
-                .and_then(|c| c.to_run_spec().map(|_| ()))
-                .map_err(|e| SweepError::Point {
-                    plan: origin.to_owned(),
-                    point: name.clone(),
-                    problem: e.to_string(),
-                })?;
-            points.push(Point {
-                name,
-                values: values.clone(),
-                seed,
-                config,
-            });
-        }
-    }
-    let mut names: Vec<&str> = points.iter().map(|p| p.name.as_str()).collect();
-    names.sort_unstable();
-    if let Some(w) = names.windows(2).find(|w| w[0] == w[1]) {
-        return Err(SweepError::Plan {
-            plan: origin.to_owned(),
-            field: "vary".into(),
-            problem: format!("two points are both named {}", w[0]),
-            allowed: "distinct values along each path".into(),
-        });
-    }
-    Ok(points)
-}
-
-/// Each axis's label in point names: the last segment of its path, or the whole
-/// path where two axes share a last segment.
-fn labels(axes: &[Axis]) -> Vec<String> {
-    let last = |p: &str| p.rsplit('.').next().unwrap_or(p).to_owned();
-    axes.iter()
-        .map(|a| {
-            let l = last(&a.path);
-            let shared = axes.iter().filter(|b| last(&b.path) == l).count() > 1;
-            if shared {
-                a.path.clone()
-            } else {
-                l
-            }
-        })
-        .collect()
-}
-
-/// A value as it appears in a point's name: strings bare, `/` and whitespace
-/// replaced, anything else as compact JSON.
-fn value_text(v: &Value) -> String {
-    let s = match v {
-        Value::String(s) => s.clone(),
-        other => other.to_string(),
-    };
-    s.chars()
-        .map(|c| {
-            if c == '/' || c.is_whitespace() || c == '"' {
-                '_'
-            } else {
-                c
-            }
-        })
-        .collect()
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -373,7 +406,7 @@ mod tests {
         assert_eq!(names[1], "packing_fraction=0.2,temperature=1,seed=8");
         assert_eq!(names[2], "packing_fraction=0.2,temperature=2,seed=7");
         assert_eq!(names[7], "packing_fraction=0.3,temperature=2,seed=8");
-        let last = &p.points[7].config;
+        let last = &p.config(7);
         assert_eq!(last["box"]["packing_fraction"], 0.3);
         assert_eq!(last["temperature"], 2);
         assert_eq!(last["seed"], 8);
@@ -448,6 +481,70 @@ mod tests {
         assert!(e.contains("temperature=1"), "{e}");
     }
 
+    /// Points are counted before any is made: a billion replicas, or a grid of
+    /// 10¹⁰, is refused at once naming the count, and the limit itself passes.
+    #[test]
+    fn plans_past_the_point_limit_are_refused_naming_their_count() {
+        let base = r#"{"species": [{"count": 20}], "stop": {"duration": 1}}"#;
+        let e = plan(&format!(r#"{{"base": {base}, "replicas": 1000000000}}"#))
+            .unwrap_err()
+            .to_string();
+        assert!(
+            e.contains("1000000000 points") && e.contains("100000"),
+            "{e}"
+        );
+        let e = plan(&format!(
+            r#"{{"base": {base}, "vary": {{
+                "temperature": {{"from": 1, "to": 2, "count": 100000}},
+                "box.packing_fraction": {{"from": 0.1, "to": 0.2, "count": 100000}}}}}}"#
+        ))
+        .unwrap_err()
+        .to_string();
+        assert!(e.contains("10000000000 points"), "{e}");
+        let at_limit = plan(&format!(
+            r#"{{"base": {base}, "vary": {{"temperature": {{"from": 1, "to": 2, "count": 1000}}}},
+                "replicas": 100}}"#
+        ))
+        .unwrap();
+        assert_eq!(at_limit.points.len() as u64, MAX_POINTS);
+        assert_eq!(at_limit.points[99_999].name, "temperature=2.0,seed=100");
+        assert_eq!(at_limit.config(99_999)["seed"], 100);
+    }
+
+    /// Replica r has seed `seed` + r: a first seed whose replicas would pass
+    /// 2⁶⁴ − 1 is refused naming it; the largest that fits is accepted.
+    #[test]
+    fn replica_seeds_never_wrap_round() {
+        let e = plan(r#"{"base": {}, "replicas": 2, "seed": 18446744073709551615}"#)
+            .unwrap_err()
+            .to_string();
+        assert!(
+            e.contains("seed")
+                && e.contains("18446744073709551615")
+                && e.contains("18446744073709551614"),
+            "{e}"
+        );
+        let p = plan(r#"{"base": {}, "replicas": 2, "seed": 18446744073709551614}"#).unwrap();
+        let seeds: Vec<u64> = p.points.iter().map(|p| p.seed).collect();
+        assert_eq!(seeds, [u64::MAX - 1, u64::MAX]);
+    }
+
+    /// A point whose name cannot be a directory is refused when the plan is read.
+    #[test]
+    fn points_whose_names_cannot_be_directories_are_refused() {
+        let long = "a".repeat(300);
+        let e = plan(&format!(
+            r#"{{"base": {{}}, "vary": {{"description": ["{long}"]}}}}"#
+        ))
+        .unwrap_err()
+        .to_string();
+        assert!(e.contains("312 bytes"), "{e}");
+        let e = plan(r#"{"base": {}, "vary": {"description": ["a\u0000b"]}}"#)
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("U+0000"), "{e}");
+    }
+
     /// The schema names exactly the fields the plan reader accepts, and the
     /// shipped example expands into its eight packing fractions × two replicas.
     #[test]
@@ -473,8 +570,9 @@ mod tests {
         let etas: Vec<f64> = eos
             .points
             .iter()
+            .enumerate()
             .step_by(2)
-            .map(|p| p.config["box"]["packing_fraction"].as_f64().unwrap())
+            .map(|(i, _)| eos.config(i)["box"]["packing_fraction"].as_f64().unwrap())
             .collect();
         assert_eq!(etas, [0.1, 0.2, 0.3, 0.4, 0.5, 0.55, 0.6, 0.68]);
         assert_eq!(eos.points[1].name, "packing_fraction=0.1,seed=2");

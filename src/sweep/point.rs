@@ -1,13 +1,23 @@
 //! Running one point: the `carom` command its state calls for (a fresh
 //! `carom run`, or `carom resume` from the log's last checkpoint), run as a child
 //! process in its own process group (a terminal's Ctrl-C reaches the sweep, which
-//! passes it on once), its output kept in the point's `carom.log`, its progress
-//! read from the plain progress lines `carom run` prints when not on a terminal
-//! (`[   12.3 s]  45.2% t = …`), and a failure recorded in `failed.txt`.
+//! passes it on once), and a failure recorded in `failed.txt`. A log in the
+//! point's directory that is not the point's own readable run (a `mismatch` or
+//! `unreadable`, see [`super::status`]) is never overwritten: it is renamed to
+//! `run.set-aside-K.mcap` beside it first, and the sweep says so.
+//!
+//! The child writes its output (stdout and stderr) straight into the point's
+//! `carom.log`, not into pipes to the sweep: a sweep that dies (killed, or its own
+//! output closed as in `carom sweep … | head`) takes nothing of its points with it —
+//! they run on to their end and finish their logs; a sweep started meanwhile finds
+//! them `running` and skips them. The sweep follows a point's progress by reading
+//! the plain progress lines `carom run` prints when not on a terminal
+//! (`[   12.3 s]  45.2% t = …`) from that file.
 
-use std::io::{BufRead, BufReader, Write};
+use std::fs::File;
+use std::io::{Read, Seek, SeekFrom, Write};
 use std::os::unix::process::CommandExt;
-use std::path::Path;
+use std::path::{Path, PathBuf};
 use std::process::{Child, Command, ExitStatus, Stdio};
 
 use super::error::io;
@@ -42,7 +52,9 @@ pub fn point_command(sweep: &SweepDir, i: usize) -> Option<Vec<String>> {
     };
     match state {
         PointState::Done { .. } | PointState::Running => None,
-        PointState::Pending => Some(fresh()),
+        PointState::Pending | PointState::Mismatch { .. } | PointState::Unreadable { .. } => {
+            Some(fresh())
+        }
         PointState::Interrupted { resumable, .. } => Some(if resumable {
             vec!["resume".into(), s(&sweep.log_path(i))]
         } else {
@@ -52,7 +64,7 @@ pub fn point_command(sweep: &SweepDir, i: usize) -> Option<Vec<String>> {
             // A failed run is tried again, from its checkpoint if it has one.
             let resumable = sweep.log_path(i).exists()
                 && matches!(
-                    log_state(&sweep.log_path(i)),
+                    log_state(&sweep.log_path(i), &sweep.plan.run_spec(i)),
                     PointState::Interrupted {
                         resumable: true,
                         ..
@@ -71,66 +83,108 @@ pub fn point_command(sweep: &SweepDir, i: usize) -> Option<Vec<String>> {
 pub(super) struct Running {
     /// The child, until a waiter takes it.
     pub child: Option<Child>,
-    reader: std::thread::JoinHandle<Vec<String>>,
+    /// Its `carom.log`, where the child's output starts in it, and how far the
+    /// progress has been read.
+    output: PathBuf,
+    start: u64,
+    read: u64,
+    /// The start of a line not yet complete.
+    partial: Vec<u8>,
+    /// Where a log that was not the point's was moved, and why.
+    pub set_aside: Option<String>,
 }
 
-/// Start point `i` with `exe` (the `carom` binary), calling `progress` with the
-/// fraction done whenever the child reports it. `None` if it needs nothing.
+/// Move point `i`'s log aside to the first free `run.set-aside-K.mcap`; where it went.
+fn set_aside(sweep: &SweepDir, i: usize) -> Result<PathBuf, SweepError> {
+    let log = sweep.log_path(i);
+    let to = (1..)
+        .map(|k| sweep.point_dir(i).join(format!("run.set-aside-{k}.mcap")))
+        .find(|p| !p.exists())
+        .expect("a free name");
+    std::fs::rename(&log, &to).map_err(io(&log))?;
+    Ok(to)
+}
+
+/// Start point `i` with `exe` (the `carom` binary). `Err(state)` if it needs nothing.
 pub(super) fn start_point(
     exe: &Path,
     sweep: &SweepDir,
     i: usize,
-    progress: impl Fn(f64) + Send + 'static,
 ) -> Result<Result<Running, PointState>, SweepError> {
+    let state = point_state(sweep, i);
     let Some(args) = point_command(sweep, i) else {
-        return Ok(Err(point_state(sweep, i)));
+        return Ok(Err(state));
+    };
+    sweep.prepare_point(i)?;
+    let set_aside = match &state {
+        PointState::Mismatch { detail } | PointState::Unreadable { detail } => {
+            let to = set_aside(sweep, i)?;
+            let what = match state {
+                PointState::Mismatch { .. } => "is not this point's run",
+                _ => "cannot be read",
+            };
+            Some(format!(
+                "the log there {what} ({detail}); moved it aside to {}",
+                to.display()
+            ))
+        }
+        _ => None,
     };
     let _ = std::fs::remove_file(sweep.failure_path(i));
     let out_path = sweep.output_path(i);
-    let mut out = std::fs::File::create(&out_path).map_err(io(&out_path))?;
+    let mut out = File::create(&out_path).map_err(io(&out_path))?;
+    if let Some(note) = &set_aside {
+        let _ = writeln!(out, "carom sweep: {note}");
+    }
     let _ = writeln!(out, "$ carom {}", args.join(" "));
-    let mut child = Command::new(exe)
+    let read = out.stream_position().unwrap_or(0);
+    // Both streams append to the one file (the summary on stdout, progress and
+    // warnings on stderr), in the order written.
+    let append = || {
+        File::options()
+            .append(true)
+            .open(&out_path)
+            .map_err(io(&out_path))
+    };
+    let child = Command::new(exe)
         .args(&args)
         .stdin(Stdio::null())
-        .stdout(Stdio::piped())
-        .stderr(Stdio::piped())
+        .stdout(append()?)
+        .stderr(append()?)
         .process_group(0)
         .spawn()
         .map_err(io(exe))?;
-    let stdout = child.stdout.take().expect("piped");
-    let stderr = child.stderr.take().expect("piped");
-    // The run's summary goes to stdout, its progress and warnings to stderr: both
-    // into carom.log, stdout by a thread of its own so neither pipe fills up.
-    let mut out2 = out.try_clone().map_err(io(&out_path))?;
-    std::thread::spawn(move || {
-        for line in BufReader::new(stdout).lines().map_while(Result::ok) {
-            let _ = writeln!(out2, "{line}");
-        }
-    });
-    let reader = std::thread::spawn(move || {
-        let mut tail = Vec::new();
-        for line in BufReader::new(stderr).lines().map_while(Result::ok) {
-            let _ = writeln!(out, "{line}");
-            if let Some(f) = progress_fraction(&line) {
-                progress(f);
-            }
-            tail.push(line);
-            if tail.len() > 8 {
-                tail.remove(0);
-            }
-        }
-        tail
-    });
     Ok(Ok(Running {
         child: Some(child),
-        reader,
+        output: out_path,
+        start: read,
+        read,
+        partial: Vec::new(),
+        set_aside,
     }))
 }
 
 impl Running {
-    /// Wait for the child and record how it ended.
+    /// The fraction done in the last progress line the child wrote since the
+    /// last call, if any.
+    pub(super) fn progress(&mut self) -> Option<f64> {
+        let mut f = File::open(&self.output).ok()?;
+        f.seek(SeekFrom::Start(self.read)).ok()?;
+        let mut new = Vec::new();
+        // At most 1 MiB at a time: progress lines are short and few.
+        f.take(1 << 20).read_to_end(&mut new).ok()?;
+        self.read += new.len() as u64;
+        self.partial.extend_from_slice(&new);
+        let end = self.partial.iter().rposition(|&b| b == b'\n')?;
+        let lines: Vec<u8> = self.partial.drain(..=end).collect();
+        String::from_utf8_lossy(&lines)
+            .lines()
+            .filter_map(progress_fraction)
+            .next_back()
+    }
+
+    /// Record how the child ended (with `status`).
     pub(super) fn finish(self, sweep: &SweepDir, i: usize, status: ExitStatus) -> PointOutcome {
-        let tail = self.reader.join().unwrap_or_default();
         match status.code() {
             Some(0) => PointOutcome::Done,
             Some(130) => PointOutcome::Interrupted,
@@ -139,18 +193,7 @@ impl Running {
                     Some(c) => format!("exit status {c}"),
                     None => format!("killed ({status})"),
                 };
-                let last: Vec<&String> = tail
-                    .iter()
-                    .filter(|l| progress_fraction(l).is_none())
-                    .collect();
-                let words = last
-                    .iter()
-                    .rev()
-                    .take(3)
-                    .rev()
-                    .map(|s| s.as_str())
-                    .collect::<Vec<_>>()
-                    .join(" | ");
+                let words = last_words(&self.output, self.start);
                 let text = format!("{how}: {words}");
                 let _ = std::fs::write(sweep.failure_path(i), format!("{text}\n"));
                 PointOutcome::Failed(text)
@@ -159,11 +202,27 @@ impl Running {
     }
 }
 
+/// The last three lines of `path` after byte `from` that are not progress lines,
+/// joined by ` | `.
+fn last_words(path: &Path, from: u64) -> String {
+    let text = std::fs::read(path).unwrap_or_default();
+    let text = String::from_utf8_lossy(&text[(from as usize).min(text.len())..]).into_owned();
+    let last: Vec<&str> = text
+        .lines()
+        .filter(|l| progress_fraction(l).is_none() && !l.trim().is_empty())
+        .collect();
+    last[last.len().saturating_sub(3)..].join(" | ")
+}
+
 /// Run point `i` to its end with `exe`, in the foreground (a Slurm task).
 pub fn run_point(exe: &Path, sweep: &SweepDir, i: usize) -> Result<PointOutcome, SweepError> {
-    match start_point(exe, sweep, i, |_| {})? {
+    match start_point(exe, sweep, i)? {
         Err(state) => Ok(PointOutcome::Skipped(state)),
         Ok(mut r) => {
+            if let Some(note) = &r.set_aside {
+                let name = &sweep.plan.points[i].name;
+                let _ = writeln!(std::io::stderr(), "point {i} ({name}): {note}");
+            }
             let mut child = r.child.take().expect("a started point has its child");
             let status = child.wait().map_err(io(exe))?;
             Ok(r.finish(sweep, i, status))

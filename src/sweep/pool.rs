@@ -2,12 +2,15 @@
 //! next starting as one ends, until every point has had its attempt. A failing
 //! point does not stop the others. A stop request (Ctrl-C) starts nothing more
 //! and asks each running point to stop cleanly (SIGTERM: it finishes its log,
-//! which the next sweep resumes).
+//! which the next sweep resumes). The pool asks for no more than `jobs` and the
+//! caller caps `jobs` at the cores ([`super::jobs`]). The points are separate
+//! processes writing to their own files (see [`super::point`]): the pool only
+//! starts them, reads their progress from their `carom.log`, and waits for them.
 
 use std::path::Path;
 use std::process::ExitStatus;
 use std::sync::atomic::{AtomicBool, Ordering};
-use std::sync::{mpsc, Arc, Mutex};
+use std::sync::mpsc;
 use std::time::{Duration, Instant};
 
 use super::error::io;
@@ -19,6 +22,8 @@ use super::{PointOutcome, SweepDir, SweepError};
 pub enum PoolEvent {
     /// Point `i` started.
     Started(usize),
+    /// Point `i`'s log was not its own and was moved aside (where, and why).
+    SetAside(usize, String),
     /// Point `i` ended (or had nothing to do).
     Ended(usize, PointOutcome),
     /// About once a second: (point, fraction done) of those running.
@@ -45,7 +50,7 @@ pub fn run_pool(
     let start = Instant::now();
     let n = sweep.plan.points.len();
     let jobs = jobs.max(1);
-    let fractions = Arc::new(Mutex::new(vec![0.0f64; n]));
+    let mut fractions = vec![0.0f64; n];
     let mut outcomes: Vec<Option<PointOutcome>> = vec![None; n];
     // Running points: index, PID, and the rest of the child; a waiter thread per
     // child reports its exit on `ended`, so the next point starts at once.
@@ -59,11 +64,11 @@ pub fn run_pool(
         while !stopping && running.len() < jobs && next < n {
             let i = next;
             next += 1;
-            let f = Arc::clone(&fractions);
-            match start_point(exe, sweep, i, move |x| {
-                f.lock().expect("not poisoned")[i] = x
-            })? {
+            match start_point(exe, sweep, i)? {
                 Ok(mut r) => {
+                    if let Some(note) = r.set_aside.take() {
+                        on_event(PoolEvent::SetAside(i, note));
+                    }
                     let mut child = r.child.take().expect("a started point has its child");
                     let pid = child.id();
                     let tx = ended_tx.clone();
@@ -101,7 +106,7 @@ pub fn run_pool(
                 let (_, _, r) = running.swap_remove(k);
                 let status = status.map_err(io(exe))?;
                 let o = r.finish(sweep, i, status);
-                fractions.lock().expect("not poisoned")[i] = 1.0;
+                fractions[i] = 1.0;
                 on_event(PoolEvent::Ended(i, o.clone()));
                 outcomes[i] = Some(o);
             }
@@ -109,9 +114,16 @@ pub fn run_pool(
             Err(mpsc::RecvTimeoutError::Disconnected) => unreachable!("the pool holds a sender"),
         }
         if last_tick.elapsed() >= Duration::from_secs(1) {
-            let f = fractions.lock().expect("not poisoned");
+            for (i, _, r) in running.iter_mut() {
+                if let Some(f) = r.progress() {
+                    fractions[*i] = f;
+                }
+            }
             on_event(PoolEvent::Tick(
-                running.iter().map(|(i, _, _)| (*i, f[*i])).collect(),
+                running
+                    .iter()
+                    .map(|(i, _, _)| (*i, fractions[*i]))
+                    .collect(),
             ));
             last_tick = Instant::now();
         }
