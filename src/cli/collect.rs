@@ -12,6 +12,7 @@ use carom::analysis::AnalysisOptions;
 use carom::sweep::{collect as collect_sweep, CollectOptions, Collected, SweepDir};
 use clap::Args;
 
+use super::output::say;
 use super::CliError;
 
 /// Arguments of `carom collect`.
@@ -68,15 +69,15 @@ pub fn collect(args: CollectArgs) -> Result<ExitCode, CliError> {
     let c = collect_sweep(&sweep, &opts, &|name| {
         let k = seen.fetch_add(1, Ordering::SeqCst) + 1;
         if !quiet {
-            eprintln!("[{k}/{n}] {name}");
+            say!("[{k}/{n}] {name}");
         }
     })?;
     for (name, why) in &c.missing {
-        eprintln!("left out {name}: {why}");
+        say!("left out {name}: {why}");
     }
     if let Some(dir) = &args.plot {
         let k = super::plot::write_sweep(&c, dir)?;
-        eprintln!("wrote {k} figures to {}", dir.display());
+        say!("wrote {k} figures to {}", dir.display());
     }
     let text = if args.json {
         serde_json::to_string_pretty(&c).expect("serialises") + "\n"
@@ -87,7 +88,7 @@ pub fn collect(args: CollectArgs) -> Result<ExitCode, CliError> {
     };
     super::emit(&text)?;
     Ok(if c.points.is_empty() {
-        eprintln!("no finished point to collect in {}", args.dir.display());
+        say!("no finished point to collect in {}", args.dir.display());
         ExitCode::from(1)
     } else {
         ExitCode::SUCCESS

@@ -17,6 +17,7 @@ use clap::{Args, Subcommand};
 use indicatif::{ProgressBar, ProgressStyle};
 use serde_json::json;
 
+use super::output::say;
 use super::CliError;
 
 /// Arguments of `carom sweep`.
@@ -147,7 +148,7 @@ pub fn sweep(args: SweepArgs) -> Result<ExitCode, CliError> {
             .filter(|&i| point_state(&sweep, i).unfinished())
             .collect();
         if todo.is_empty() {
-            eprintln!("every point of {} is finished or running", out.display());
+            say!("every point of {} is finished or running", out.display());
             return Ok(ExitCode::SUCCESS);
         }
         let opts = SlurmOptions {
@@ -159,14 +160,14 @@ pub fn sweep(args: SweepArgs) -> Result<ExitCode, CliError> {
             wait: args.wait,
         };
         let job = submit(&sweep, &exe, &todo, &opts)?;
-        eprintln!(
+        say!(
             "submitted job array {job}: {} of {} points ({})",
             todo.len(),
             sweep.plan.points.len(),
             out.join("slurm/sweep.sbatch").display()
         );
         if !args.wait {
-            println!("{job}");
+            super::emit(&format!("{job}\n"))?;
             return Ok(ExitCode::SUCCESS);
         }
         return status(&out, false);
@@ -191,7 +192,7 @@ pub fn sweep(args: SweepArgs) -> Result<ExitCode, CliError> {
     });
     let failed = count(|o| matches!(o, PointOutcome::Failed(_)));
     let interrupted = n - done - failed;
-    eprintln!(
+    say!(
         "sweep {}: {done} of {n} points done, {failed} failed, {interrupted} not finished, in {:.1} s with {jobs} at a time",
         out.display(),
         report.wall_seconds
@@ -268,7 +269,7 @@ fn point(dir: &std::path::Path, index: usize) -> Result<ExitCode, CliError> {
     }
     let name = &sweep.plan.points[index].name;
     let outcome = run_point(&carom_exe()?, &sweep, index)?;
-    eprintln!("point {index} ({name}): {outcome:?}");
+    say!("point {index} ({name}): {outcome:?}");
     Ok(match outcome {
         PointOutcome::Done | PointOutcome::Skipped(_) => ExitCode::SUCCESS,
         PointOutcome::Interrupted => ExitCode::from(130),
@@ -280,13 +281,11 @@ fn point(dir: &std::path::Path, index: usize) -> Result<ExitCode, CliError> {
 fn install_stop() {
     let r = ctrlc::set_handler(|| {
         if !STOP.swap(true, Ordering::SeqCst) {
-            eprintln!("\ninterrupt: stopping the running points cleanly (re-run the sweep to resume them)");
+            say!("\ninterrupt: stopping the running points cleanly (re-run the sweep to resume them)");
         }
     });
     if let Err(e) = r {
-        eprintln!(
-            "warning: cannot handle Ctrl-C ({e}); an interrupt will cut the points' logs short"
-        );
+        say!("warning: cannot handle Ctrl-C ({e}); an interrupt will cut the points' logs short");
     }
 }
 
@@ -328,8 +327,8 @@ impl Display {
             return;
         }
         match &self.bar {
-            Some(b) => b.suspend(|| eprintln!("{line}")),
-            None => eprintln!("{line}"),
+            Some(b) => b.suspend(|| say!("{line}")),
+            None => say!("{line}"),
         }
     }
 
@@ -374,7 +373,7 @@ impl Display {
                         .last_plain
                         .is_none_or(|t| t.elapsed() >= super::PLAIN_EVERY)
                 {
-                    eprintln!(
+                    say!(
                         "{:5.1}% {msg}",
                         100.0 * (self.ended as f64 + part) / self.n as f64
                     );
