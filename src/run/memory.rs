@@ -21,9 +21,11 @@ const PLACEMENT: u64 = 34 + 32 + 16;
 /// Bytes per disc of the writer at a snapshot (34 B per disc: the state copied out
 /// of the engine, its encoded message and the chunk it goes into).
 const SNAPSHOT: u64 = 3 * 34;
-/// Bytes per disc of the writer at a checkpoint (about 106 B per disc: the engine's
-/// arrays copied out, their encoded message and the compressed chunk).
-const CHECKPOINT: u64 = 3 * 106;
+/// Bytes per disc of a `/checkpoint` message (the engine's arrays, encoded).
+pub(super) const CHECKPOINT_MESSAGE: u64 = 106;
+/// Bytes per disc of the writer at a checkpoint: the engine's arrays copied out,
+/// their encoded message and the compressed chunk.
+const CHECKPOINT: u64 = 3 * CHECKPOINT_MESSAGE;
 
 /// Bytes per disc of the writer at a `/scene` frame, when scenes are logged (128 B
 /// per disc: the encoded message, the buffer recycled for the next one, and the
