@@ -150,11 +150,27 @@ mod tests {
         assert!(w.due(2 * mb));
         assert!(!w.look(2 * mb, Ok(9 * mb), 5 * mb));
         assert!(!w.due(3 * mb - 1) && w.due(3 * mb));
-        // 1 MB later the disk has 8 MB: 5 MB + 2 × 1 MB still fit ...
-        assert!(!w.look(3 * mb, Ok(8 * mb), 5 * mb));
-        // ... 0.75 MB later 7.25 MB do not: stop with room to finish.
-        assert!(w.due(3 * mb + 750_000));
-        assert!(w.look(3 * mb + 750_000, Ok(7_250_000), 5 * mb));
+        // A 16 MB disk and a log growing by 300 kB between two chances to look (a
+        // log of every collision, 1024 events), with no look by the clock: the run
+        // stops while the room left still holds the finish.
+        let (disk, finish, step) = (16 * mb, 5 * mb, 300_000);
+        let mut w = DiskWatch::new(0);
+        let mut bytes = 0;
+        loop {
+            assert!(
+                bytes + finish <= disk,
+                "the log outgrew its disk at {bytes} bytes"
+            );
+            if w.due(bytes) && w.look(bytes, Ok(disk - bytes), finish) {
+                break;
+            }
+            bytes += step;
+        }
+        // ... and not long before it must: within a few steps of the reserve.
+        assert!(
+            disk - bytes - finish <= 4 * step,
+            "stopped at {bytes} bytes"
+        );
         // A large disk is looked at by the clock only, and one whose room cannot
         // be told never stops the run.
         let mut big = DiskWatch::new(0);
