@@ -108,7 +108,7 @@ pub struct Point {
 impl Plan {
     /// Read and expand the plan file at `path`.
     pub fn load(path: &Path) -> Result<Plan, SweepError> {
-        let text = std::fs::read_to_string(path).map_err(|source| SweepError::Io {
+        let text = carom_io::read_config_text(path).map_err(|source| SweepError::Io {
             path: path.to_path_buf(),
             source,
         })?;
@@ -176,7 +176,7 @@ impl Plan {
 }
 
 fn read_base(path: &PathBuf, origin: &str) -> Result<Value, SweepError> {
-    let text = std::fs::read_to_string(path).map_err(|e| SweepError::Plan {
+    let text = carom_io::read_config_text(path).map_err(|e| SweepError::Plan {
         plan: origin.to_owned(),
         field: "base".into(),
         problem: format!("cannot read {}: {e}", path.display()),
