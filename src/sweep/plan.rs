@@ -6,7 +6,7 @@
 //! check it, so a bad value is reported before anything runs. Point names are
 //! readable and unique: `packing_fraction=0.3,seed=2`.
 
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
 use carom_io::{apply_set, Config};
 use serde::de::{MapAccess, Visitor};
@@ -175,7 +175,7 @@ impl Plan {
     }
 }
 
-fn read_base(path: &PathBuf, origin: &str) -> Result<Value, SweepError> {
+fn read_base(path: &Path, origin: &str) -> Result<Value, SweepError> {
     let text = carom_io::read_config_text(path).map_err(|e| SweepError::Plan {
         plan: origin.to_owned(),
         field: "base".into(),
