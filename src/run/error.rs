@@ -72,8 +72,8 @@ pub enum RunError {
     /// continuation is lost, and the log is as it was before the resume.
     #[error(
         "{source}\nthe resume stopped at simulated time {}; its continuation is lost, and \
-         {log} is as it was before the resume; free some space and resume again, or resume \
-         with --out on another disk",
+         {log} is as it was before the resume; remove the cause (a full disk: free some \
+         space) and run `carom resume {log}` again, or resume with --out on another disk",
         *.time as f32
     )]
     ResumeCut {
