@@ -159,7 +159,10 @@ fn a_flipped_bit_loses_at_most_its_chunk_and_verify_names_it() {
                 Err(e) => break e.to_string(),
             }
         };
-        assert!(err.contains("Data section CRC failed"), "flip at {at}: {err}");
+        assert!(
+            err.contains("Data section CRC failed"),
+            "flip at {at}: {err}"
+        );
         let out = carom(&dir, &["info", "--verify", "f.mcap"]);
         assert!(!out.status.success(), "flip at {at}: --verify passed");
         ok(&carom(

@@ -12,6 +12,7 @@ use carom::io::ReadProgress;
 #[path = "analyze_dynamics.rs"]
 mod dynamics;
 
+use super::output::say;
 use super::reading::ReadDisplay;
 use super::{AnalyzeArgs, CliError, Num};
 
@@ -63,9 +64,9 @@ pub fn analyze(args: AnalyzeArgs) -> Result<ExitCode, CliError> {
     let (report, complete) = read_report(&args)?;
     if let Some(dir) = &args.plot {
         let written = super::plot::write_all(&report, dir)?;
-        eprintln!("wrote {} figures to {}", written.figures, dir.display());
+        say!("wrote {} figures to {}", written.figures, dir.display());
         for (name, why) in &written.skipped {
-            eprintln!("skipped {name}: {why}");
+            say!("skipped {name}: {why}");
         }
     }
     if args.json {

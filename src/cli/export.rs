@@ -60,6 +60,15 @@ pub fn export(args: ExportArgs) -> Result<ExitCode, CliError> {
         .clone()
         .unwrap_or_else(|| default_out(&args.file, format.extension()));
     check_out(&args.file, &out, args.force)?;
+    // GSD seeks back to write its index: it needs a regular file, not a device or
+    // a pipe (/dev/null, /dev/stdout), which XYZ, written straight through, takes.
+    if format == ExportFormat::Gsd && std::fs::metadata(&out).is_ok_and(|m| !m.is_file()) {
+        return Err(CliError::Usage(format!(
+            "--out {}: not a regular file, and GSD needs one (it goes back to write its \
+             index); choose a file, or --format xyz, which can also go to a device or a pipe",
+            out.display()
+        )));
+    }
     let lock = OutLock::take(&out)?;
     let range = FrameRange {
         from: args.from,
@@ -72,13 +81,18 @@ pub fn export(args: ExportArgs) -> Result<ExitCode, CliError> {
     display.finish();
     let count = result?;
     lock.keep();
-    let bytes = std::fs::metadata(&out).map(|m| m.len()).unwrap_or(0);
+    // The size of a regular file; a device or a pipe has none to tell.
+    let size = std::fs::metadata(&out)
+        .ok()
+        .filter(|m| m.is_file())
+        .map_or(String::new(), |m| {
+            format!(", {:.1} MB", m.len() as f64 / 1e6)
+        });
     emit(&format!(
-        "wrote {}: {} frames of {} discs, {:.1} MB\n",
+        "wrote {}: {} frames of {} discs{size}\n",
         out.display(),
         count.frames,
         count.discs,
-        bytes as f64 / 1e6
     ))?;
     Ok(ExitCode::SUCCESS)
 }

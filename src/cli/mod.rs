@@ -9,6 +9,7 @@ mod analyze;
 mod collect;
 mod export;
 mod info;
+mod output;
 mod plot;
 mod reading;
 mod render;
@@ -300,19 +301,7 @@ impl CliError {
     }
 }
 
-/// Write `text` to standard output; a closed pipe (`carom info x | head`) is not
-/// an error.
-pub(crate) fn emit(text: &str) -> Result<(), CliError> {
-    use std::io::Write;
-    let mut out = std::io::stdout().lock();
-    match out.write_all(text.as_bytes()).and_then(|()| out.flush()) {
-        Err(e) if e.kind() != std::io::ErrorKind::BrokenPipe => Err(CliError::Io {
-            context: "cannot write to standard output".into(),
-            source: e,
-        }),
-        _ => Ok(()),
-    }
-}
+pub(crate) use output::emit;
 
 /// A number for people to read: as Rust prints it (the shortest text that reads
 /// back exactly) between 10⁻⁴ and 10¹⁵ in magnitude, in scientific notation
@@ -374,7 +363,7 @@ pub fn main() -> ExitCode {
     match result {
         Ok(code) => code,
         Err(e) => {
-            eprintln!("error: {e}");
+            output::say!("error: {}", output::compact_numbers(&e.to_string()));
             ExitCode::from(e.exit_code())
         }
     }

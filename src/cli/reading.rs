@@ -12,6 +12,7 @@ use std::time::{Duration, Instant};
 use carom::io::ReadProgress;
 use indicatif::{ProgressBar, ProgressStyle};
 
+use super::output::say;
 use super::PLAIN_EVERY;
 
 /// Shows how far a read of one file has got, through one or more passes.
@@ -68,7 +69,7 @@ impl ReadDisplay {
         }
         if let Some(plain) = &mut self.plain {
             if let Some(line) = plain.line(p, Instant::now()) {
-                eprintln!("{line}");
+                say!("{line}");
             }
         }
     }
@@ -76,8 +77,8 @@ impl ReadDisplay {
     /// Print `line` on standard error without breaking the bar.
     pub(crate) fn warn(&self, line: &str) {
         match &self.bar {
-            Some(bar) => bar.suspend(|| eprintln!("{line}")),
-            None => eprintln!("{line}"),
+            Some(bar) => bar.suspend(|| say!("{line}")),
+            None => say!("{line}"),
         }
     }
 
@@ -87,7 +88,7 @@ impl ReadDisplay {
             bar.finish_and_clear();
         }
         if let Some(line) = self.plain.as_mut().and_then(|p| p.last(Instant::now())) {
-            eprintln!("{line}");
+            say!("{line}");
         }
     }
 }

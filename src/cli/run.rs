@@ -16,6 +16,7 @@ use carom::io::{load_config, ConfigError, ReadProgress, Stop, StopReason};
 use carom::run::{Control, Progress, ResumeOptions, ResumePass, RunError, RunSummary};
 use indicatif::{DecimalBytes, ProgressBar, ProgressStyle};
 
+use super::output::say;
 use super::reading::ReadDisplay;
 use super::{CliError, Num, ResumeArgs, RunArgs, PLAIN_EVERY};
 
@@ -59,13 +60,13 @@ fn install_ctrlc() {
         match on_signal(FIRST.get().copied(), now) {
             OnSignal::Repeat => {}
             OnSignal::Abort => {
-                eprintln!("\ninterrupted again: exiting without finishing the log");
+                say!("\ninterrupted again: exiting without finishing the log");
                 std::process::exit(130);
             }
             OnSignal::Stop => {
                 let _ = FIRST.set(now);
                 STOP.store(true, Ordering::SeqCst);
-                eprintln!(
+                say!(
                     "\ninterrupt: stopping at the next event and finishing the log, or at once \
                      if the discs are still being placed (interrupt again to abort)"
                 );
@@ -73,7 +74,7 @@ fn install_ctrlc() {
         }
     });
     if let Err(e) = r {
-        eprintln!(
+        say!(
             "warning: cannot handle Ctrl-C, SIGTERM or SIGHUP ({e}); a signal will cut the log short"
         );
     }
@@ -130,8 +131,8 @@ impl Display {
     /// Print `line` (through the bar on a terminal, so that it is not overwritten).
     fn say(&self, line: &str) {
         match &self.bar {
-            Some(bar) => bar.suspend(|| eprintln!("{line}")),
-            None => eprintln!("{line}"),
+            Some(bar) => bar.suspend(|| say!("{line}")),
+            None => say!("{line}"),
         }
     }
 
@@ -155,7 +156,7 @@ impl Display {
         } else if self.plain {
             let due = self.last_plain.is_none_or(|t| t.elapsed() >= PLAIN_EVERY);
             if due || p.fraction >= 1.0 {
-                eprintln!(
+                say!(
                     "[{:7.1} s] {:5.1}% {msg}",
                     p.wall_seconds,
                     100.0 * p.fraction.clamp(0.0, 1.0)
@@ -241,13 +242,14 @@ impl Display {
             let seconds = start.elapsed().as_secs_f64();
             if let Some(c) = p.compressing {
                 if p.close == 0 {
-                    eprintln!(
+                    say!(
                         "[{seconds:7.1} s] placed {} discs (compressed placement) in {} rescale \
                          intervals",
-                        p.discs, p.steps
+                        p.discs,
+                        p.steps
                     );
                 } else {
-                    eprintln!(
+                    say!(
                         "[{seconds:7.1} s] placing {} discs (compressed placement): packing \
                          fraction {:.4} of {:.4}, Z = {:.3}, rescale interval {} of about {}",
                         p.discs,
@@ -259,16 +261,20 @@ impl Display {
                     );
                 }
             } else if p.close == 0 {
-                eprintln!(
+                say!(
                     "[{seconds:7.1} s] placed {} discs (relaxed placement) in {} minimization \
                      steps",
-                    p.discs, p.steps
+                    p.discs,
+                    p.steps
                 );
             } else {
-                eprintln!(
+                say!(
                     "[{seconds:7.1} s] placing {} discs (relaxed placement): step {} of at most \
                      {}, {} pairs or wall contacts still too close",
-                    p.discs, p.steps, p.max_steps, p.close
+                    p.discs,
+                    p.steps,
+                    p.max_steps,
+                    p.close
                 );
             }
             self.last_plain = Some(Instant::now());
@@ -317,7 +323,7 @@ fn run_error(e: RunError, config_json: Option<&str>) -> CliError {
 }
 
 fn report(summary: &RunSummary) -> ExitCode {
-    eprintln!(
+    say!(
         "{}: stopped ({}) at t = {}, {} pair + {} wall collisions ({} logged), \
          {:.3e} collisions/s over {:.1} s, {:.1} MB",
         summary.log.display(),
@@ -331,7 +337,7 @@ fn report(summary: &RunSummary) -> ExitCode {
         summary.file_bytes as f64 / 1e6
     );
     if let Some(u) = summary.potential_energy {
-        eprintln!(
+        say!(
             "  energy in the field: K = {}, U = Σ m g y = {}, K + U = {}",
             Num(summary.kinetic_energy),
             Num(u),
@@ -340,14 +346,14 @@ fn report(summary: &RunSummary) -> ExitCode {
     }
     match summary.stop_reason {
         StopReason::Interrupted => {
-            eprintln!(
+            say!(
                 "interrupted: the log is finished; continue with `carom resume {}`",
                 summary.log.display()
             );
             ExitCode::from(130)
         }
         StopReason::DiskFull if summary.detail.is_some() => {
-            eprintln!(
+            say!(
                 "stopped early: {}; continue with `carom resume {} --ignore-disk-estimate`",
                 summary.detail.as_deref().unwrap_or_default(),
                 summary.log.display()
@@ -355,7 +361,7 @@ fn report(summary: &RunSummary) -> ExitCode {
             ExitCode::FAILURE
         }
         StopReason::DiskFull => {
-            eprintln!(
+            say!(
                 "stopped early: the disk of {log} was nearly full (room was kept to finish \
                  the log, which is complete); free some space, or continue on another disk \
                  with `carom resume {log} --out OTHER_DISK/{name}`",
@@ -368,7 +374,7 @@ fn report(summary: &RunSummary) -> ExitCode {
             ExitCode::FAILURE
         }
         StopReason::NoCollision => {
-            eprintln!(
+            say!(
                 "stopped early: {}; the log is finished",
                 summary
                     .detail

@@ -7,7 +7,7 @@
 //! its points go on — the points write into their own `carom.log`, never into the
 //! sweep's streams, so they also outlive a sweep that is killed.
 
-use std::io::{IsTerminal, Write};
+use std::io::IsTerminal;
 use std::path::PathBuf;
 use std::process::ExitCode;
 use std::sync::atomic::{AtomicBool, Ordering};
@@ -101,9 +101,7 @@ static STOP: AtomicBool = AtomicBool::new(false);
 
 /// Write `line` to standard error, or drop it if standard error cannot be
 /// written (closed pipe, full disk): a sweep's messages are never worth its points.
-pub(super) fn say(line: &str) {
-    let _ = writeln!(std::io::stderr().lock(), "{line}");
-}
+pub(super) use super::output::say_line as say;
 
 fn carom_exe() -> Result<PathBuf, CliError> {
     std::env::current_exe().map_err(|source| CliError::Io {

@@ -95,12 +95,14 @@ impl XyzWriter {
         Ok(())
     }
 
-    /// Flush everything to the file.
+    /// Flush everything to the file, and a regular file to its disk (a device or
+    /// a pipe, such as /dev/null, has no disk to sync: Linux refuses with EINVAL).
     pub fn finish(mut self) -> Result<(), FrameError> {
         self.out.flush().map_err(|e| io_error(&self.path, e))?;
-        self.out
-            .get_ref()
-            .sync_all()
-            .map_err(|e| io_error(&self.path, e))
+        let file = self.out.get_ref();
+        if file.metadata().is_ok_and(|m| m.is_file()) {
+            file.sync_all().map_err(|e| io_error(&self.path, e))?;
+        }
+        Ok(())
     }
 }

@@ -66,7 +66,7 @@ pub(super) fn check_scheduled(
         ));
     }
     for (field, count, what, remedy) in kinds {
-        if !(count <= MAX_RECORDS) {
+        if count.is_nan() || count > MAX_RECORDS {
             return Err(RunError::Invalid {
                 field,
                 problem: format!(

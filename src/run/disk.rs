@@ -1,10 +1,15 @@
 //! The disk policy: a run stops, with a finished log, while its disk still has the
-//! room that finishing the log needs ([`disk_low`]), rather than dying later with a
-//! write error and a log cut at its last flush. The room is asked of the caller
-//! ([`Control::free_space`]) or of the file system ([`free_space_for`]).
+//! room that finishing the log needs ([`disk_low`], [`finish_reserve`]), rather
+//! than dying later with a write error and a log cut at its last flush. The room
+//! is asked of the caller ([`Control::free_space`]) or of the file system
+//! ([`free_space_for`]), every [`Control::progress_interval`] and, on a disk
+//! nearly full, whenever the log has grown by a quarter of the room left over
+//! the reserve ([`DiskWatch`]): a log of every collision grows by tens of MB per
+//! second, more than a small disk holds between two timed looks.
 
 use std::path::Path;
 
+use super::memory::CHECKPOINT_MESSAGE;
 #[cfg(doc)]
 use super::Control;
 #[cfg(doc)]
@@ -30,6 +35,55 @@ pub const FAR_BEYOND_FREE: f64 = 10.0;
 /// rather than only when the disk is nearly full.
 pub fn far_too_small(bytes: u64, projected: f64, free: u64) -> bool {
     projected - bytes as f64 > FAR_BEYOND_FREE * free as f64
+}
+
+/// What finishing a log may still write (bytes): the writer's bound `writer`
+/// ([`LogWriter::finish_bound`], which takes the final checkpoint as twice the
+/// largest message so far, `largest`), with that checkpoint taken as at least
+/// twice [`CHECKPOINT_MESSAGE`] bytes per disc for `discs` discs: a resumed
+/// writer has copied its checkpoints, not written one, and does not know their
+/// size.
+pub fn finish_reserve(writer: u64, largest: u64, discs: u64) -> u64 {
+    let checkpoint = discs.saturating_mul(CHECKPOINT_MESSAGE);
+    writer.saturating_add(checkpoint.saturating_sub(largest).saturating_mul(2))
+}
+
+/// When to look at the room on the log's disk next: what the log's size was at
+/// the last look, and the size at which to look again whatever the time.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(super) struct DiskWatch {
+    bytes_at_look: u64,
+    look_at: u64,
+}
+
+impl DiskWatch {
+    /// A watch over a log of `bytes` bytes now, which looks at its first chance.
+    pub(super) fn new(bytes: u64) -> Self {
+        DiskWatch {
+            bytes_at_look: bytes,
+            look_at: bytes,
+        }
+    }
+
+    /// Whether the log, now of `bytes` bytes, has grown enough to look again.
+    pub(super) fn due(&self, bytes: u64) -> bool {
+        bytes >= self.look_at
+    }
+
+    /// Look: with the log at `bytes` bytes, `free` bytes free on its disk (an
+    /// error when that cannot be told: never low) and `finish` bytes to finish
+    /// it, whether it must stop now ([`disk_low`], with the growth since the last
+    /// look). The next look comes after a quarter of the room left over `finish`.
+    pub(super) fn look(&mut self, bytes: u64, free: std::io::Result<u64>, finish: u64) -> bool {
+        let growth = bytes.saturating_sub(self.bytes_at_look);
+        self.bytes_at_look = bytes;
+        let Ok(free) = free else {
+            self.look_at = u64::MAX;
+            return false;
+        };
+        self.look_at = bytes.saturating_add(free.saturating_sub(finish) / 4);
+        disk_low(free, finish, growth)
+    }
 }
 
 /// The bytes free for this user on the disk that holds (or will hold) the file
@@ -70,12 +124,14 @@ pub(super) fn free_bytes(
 
 #[cfg(test)]
 mod tests {
-    use super::{disk_low, free_space_for};
+    use super::{disk_low, finish_reserve, free_space_for, DiskWatch};
     use std::path::Path;
 
     #[test]
     fn a_file_system_that_reports_no_size_is_not_taken_for_a_full_disk() {
-        let here = free_space_for(Path::new("target/some.mcap")).expect("a real disk");
+        // A directory of this test's own, wherever the checkout and its target are.
+        let dir = std::env::temp_dir();
+        let here = free_space_for(&dir.join("some.mcap")).expect("a real disk");
         assert!(here > 0);
         // procfs reports a total size of 0 blocks, as some FUSE mounts do.
         #[cfg(target_os = "linux")]
@@ -96,5 +152,56 @@ mod tests {
         assert!(!disk_low(100 * mb + 1, 100 * mb, 0));
         // Huge numbers saturate instead of wrapping round to "plenty of room".
         assert!(disk_low(u64::MAX - 1, u64::MAX / 2, u64::MAX / 2));
+    }
+
+    #[test]
+    fn a_nearly_full_disk_is_looked_at_before_the_log_can_outgrow_it() {
+        let mb = 1_000_000;
+        // 5 MB to finish, 9 MB free at the start: look again after 1 MB of growth,
+        // whatever the time.
+        let mut w = DiskWatch::new(2 * mb);
+        assert!(w.due(2 * mb));
+        assert!(!w.look(2 * mb, Ok(9 * mb), 5 * mb));
+        assert!(!w.due(3 * mb - 1) && w.due(3 * mb));
+        // A 16 MB disk and a log growing by 300 kB between two chances to look (a
+        // log of every collision, 1024 events), with no look by the clock: the run
+        // stops while the room left still holds the finish.
+        let (disk, finish, step) = (16 * mb, 5 * mb, 300_000);
+        let mut w = DiskWatch::new(0);
+        let mut bytes = 0;
+        loop {
+            assert!(
+                bytes + finish <= disk,
+                "the log outgrew its disk at {bytes} bytes"
+            );
+            if w.due(bytes) && w.look(bytes, Ok(disk - bytes), finish) {
+                break;
+            }
+            bytes += step;
+        }
+        // ... and not long before it must: within a few steps of the reserve.
+        assert!(
+            disk - bytes - finish <= 4 * step,
+            "stopped at {bytes} bytes"
+        );
+        // A large disk is looked at by the clock only, and one whose room cannot
+        // be told never stops the run.
+        let mut big = DiskWatch::new(0);
+        assert!(!big.look(0, Ok(1 << 50), 5 * mb));
+        assert!(!big.due(1 << 40));
+        let mut unknown = DiskWatch::new(0);
+        assert!(!unknown.look(0, Err(std::io::ErrorKind::Unsupported.into()), 5 * mb));
+        assert!(!unknown.due(u64::MAX - 1));
+    }
+
+    #[test]
+    fn the_final_checkpoint_is_reserved_also_before_the_writer_has_written_one() {
+        // A resumed writer has written no checkpoint: 2 × 106 B per disc are added.
+        assert_eq!(finish_reserve(1000, 0, 2000), 1000 + 2 * 106 * 2000);
+        // Once a message as large as a checkpoint is written, the writer's bound
+        // holds it already.
+        assert_eq!(finish_reserve(1000, 106 * 2000, 2000), 1000);
+        assert_eq!(finish_reserve(1000, 10 * 106 * 2000, 2000), 1000);
+        assert_eq!(finish_reserve(u64::MAX, 0, u64::MAX), u64::MAX);
     }
 }

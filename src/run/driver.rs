@@ -22,7 +22,7 @@ use carom_io::{now_rfc3339, StopReason, SummaryMetadata};
 use carom_io::{GrowthEvent, LogWriter};
 use carom_io::{LogOptions, Stop};
 
-use super::disk::{disk_low, far_too_small, free_bytes};
+use super::disk::{far_too_small, finish_reserve, free_bytes, DiskWatch};
 use super::observation::Observation;
 use super::replace::Replace;
 use super::thermo::thermo;
@@ -71,8 +71,8 @@ pub(super) struct Driver<'a> {
     last_progress: Instant,
     /// The state written by the last snapshot or scene, kept to reuse its arrays.
     snapshot: Option<State>,
-    /// The log's size (bytes) when the room on its disk was last looked at.
-    bytes_at_disk_check: u64,
+    /// When to look at the room on the log's disk next.
+    disk: DiskWatch,
     /// The speed (collisions/s) of the run this one continues, reported again when
     /// this one simulates no collision (a finished log resumed to its own stop).
     pub(super) earlier_speed: Option<f64>,
@@ -118,7 +118,7 @@ impl<'a> Driver<'a> {
             started: Instant::now(),
             last_progress: Instant::now(),
             snapshot: None,
-            bytes_at_disk_check: 0,
+            disk: DiskWatch::new(0),
             earlier_speed: None,
             max_quiet: None,
             last_collision: engine_now,
@@ -341,14 +341,21 @@ impl<'a> Driver<'a> {
         std::fs::metadata(&self.path).map_or(0, |m| m.len())
     }
 
-    /// Look at the room left on the log's disk: whether the run must stop now to
-    /// finish its log ([`disk_low`]). A disk whose room cannot be told is never low.
-    fn disk_low(&mut self) -> bool {
+    /// Look at the room left on the log's disk, when the clock (`timed`) or the
+    /// log's growth says so ([`DiskWatch`]): whether the run must stop now to
+    /// finish its log. A disk whose room cannot be told is never low.
+    fn disk_low(&mut self, timed: bool) -> bool {
         let bytes = self.log_bytes();
-        let growth = bytes.saturating_sub(self.bytes_at_disk_check);
-        self.bytes_at_disk_check = bytes;
+        if !timed && !self.disk.due(bytes) {
+            return false;
+        }
         let free = free_bytes(&mut self.control.free_space, &self.path);
-        free.is_ok_and(|free| disk_low(free, self.writer.finish_bound(bytes), growth))
+        let finish = finish_reserve(
+            self.writer.finish_bound(bytes),
+            self.writer.stats().largest_message,
+            self.engine.len() as u64,
+        );
+        self.disk.look(bytes, free, finish)
     }
 
     /// The event loop; ends the log whatever happens, except when writing it fails:
@@ -382,7 +389,7 @@ impl<'a> Driver<'a> {
         };
         let mut failure = None;
         let mut tick: u32 = 0;
-        self.bytes_at_disk_check = self.log_bytes();
+        self.disk = DiskWatch::new(self.log_bytes());
         self.growth_seen = growth_seen(&self.engine, self.run_start_time);
         while reason.is_none() {
             if stop_flag.is_some_and(|f| f.load(Ordering::Relaxed)) {
@@ -461,11 +468,15 @@ impl<'a> Driver<'a> {
             tick = tick.wrapping_add(1);
             if tick.is_multiple_of(1024) || paused {
                 self.writer.maybe_flush()?;
-                if self.last_progress.elapsed() >= self.control.progress_interval {
+                let timed = self.last_progress.elapsed() >= self.control.progress_interval;
+                if timed {
                     let p = self.progress();
-                    if reason.is_none() && (self.disk_low() || self.disk_far_too_small(&p)) {
+                    if reason.is_none() && self.disk_far_too_small(&p) {
                         reason = Some(StopReason::DiskFull);
                     }
+                }
+                if reason.is_none() && self.disk_low(timed) {
+                    reason = Some(StopReason::DiskFull);
                 }
             }
         }

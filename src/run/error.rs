@@ -68,6 +68,22 @@ pub enum RunError {
         /// The log file.
         log: PathBuf,
     },
+    /// Writing the continuation of a resume in place failed (a full disk): the
+    /// continuation is lost, and the log is as it was before the resume.
+    #[error(
+        "{source}\nthe resume stopped at simulated time {}; its continuation is lost, and \
+         {log} is as it was before the resume; remove the cause (a full disk: free some \
+         space) and run `carom resume {log}` again, or resume with --out on another disk",
+        *.time as f32
+    )]
+    ResumeCut {
+        /// The writer's error.
+        source: WriteError,
+        /// Simulated time when the resume stopped (time).
+        time: f64,
+        /// The log that was being resumed, unchanged.
+        log: PathBuf,
+    },
     /// Reading the log to resume failed.
     #[error(transparent)]
     Read(#[from] ReadError),
@@ -78,12 +94,13 @@ pub enum RunError {
         /// Minimization steps (relaxed) or rescale intervals (compressed) taken.
         steps: usize,
     },
-    /// The disk that is to hold the resumed log has too little room for even the
-    /// copy of the input up to its last checkpoint (nothing was written).
+    /// The disk that is to hold the resumed log has too little room for the copy
+    /// of the input up to its last checkpoint and the reserve to finish the log
+    /// (nothing was written).
     #[error(
         "cannot resume into {out}: its disk has {} free, and the copy of {input} up to its \
-         last checkpoint needs about {}; free some space, or resume with --out on another \
-         disk",
+         last checkpoint with the room to finish the log after it needs about {}; free some \
+         space, or resume with --out on another disk",
         indicatif::DecimalBytes(*.free),
         indicatif::DecimalBytes(*.need)
     )]
@@ -92,7 +109,7 @@ pub enum RunError {
         input: PathBuf,
         /// The file the resumed log was to be written to.
         out: PathBuf,
-        /// Bytes the copy needs (taken as the input's size).
+        /// Bytes the copy and the finish need (the input's size and the reserve).
         need: u64,
         /// Bytes free on the output's disk.
         free: u64,

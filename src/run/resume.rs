@@ -19,7 +19,7 @@ use carom_io::{check_log_options, last_checkpoint_observed, LogReader, ReadProgr
 use carom_io::{LogWriter, WriterOptions, WriterPosition, CH_THERMO};
 
 use super::bounds::check_scheduled;
-use super::disk::free_bytes;
+use super::disk::{finish_reserve, free_bytes};
 use super::driver::Driver;
 use super::lock::lock_log;
 use super::observation::Observation;
@@ -108,22 +108,6 @@ pub fn resume(
     } else {
         out.to_path_buf()
     };
-    // The copy alone takes about as much room as the input up to its last
-    // checkpoint, most of the file: refuse at once when the input's size is not
-    // free, rather than fail part way (a log stopped because its disk was full,
-    // resumed in place, would).
-    let need = std::fs::metadata(input).map_or(0, |m| m.len());
-    if let Some(free) = free_bytes(&mut control.free_space, &target)
-        .ok()
-        .filter(|&free| free < need)
-    {
-        return Err(RunError::NoRoom {
-            input: input.to_path_buf(),
-            out: out.to_path_buf(),
-            need,
-            free,
-        });
-    }
     let _out_lock = if in_place {
         None
     } else {
@@ -145,6 +129,30 @@ pub fn resume(
             next_sequence: driver.next_sequence,
         },
     )?;
+    // The copy takes about as much room as the input up to its last checkpoint,
+    // most of the file, and finishing the log after it its reserve: refuse at once
+    // when that is not free, rather than fail part way (a log stopped because its
+    // disk was full, resumed in place, would).
+    let size = std::fs::metadata(input).map_or(0, |m| m.len());
+    let reserve = finish_reserve(writer.finish_bound(size), 0, engine.len() as u64);
+    let need = size.saturating_add(reserve);
+    if let Some(free) = free_bytes(&mut control.free_space, &target)
+        .ok()
+        .filter(|&free| free < need)
+    {
+        // Nothing is left behind: the temporary file of a resume in place goes
+        // with `temp`, a new --out file here.
+        drop(writer);
+        if !in_place {
+            let _ = std::fs::remove_file(out);
+        }
+        return Err(RunError::NoRoom {
+            input: input.to_path_buf(),
+            out: out.to_path_buf(),
+            need,
+            free,
+        });
+    }
     // Copy the input's messages up to and including the checkpoint.
     let mut reader = LogReader::open(input)?;
     let mut copied = 0u64;
@@ -188,8 +196,10 @@ pub fn resume(
         // A checkpoint of a time-stopped run, or of a carom without the watchdog.
         d.schedule_watchdog()?;
     }
+    // A resume in place that cannot write its log loses its continuation (the
+    // temporary file goes with `temp`); the input is as it was.
     let summary = d.run_loop(&target).map_err(|e| match e {
-        RunError::LogCut { source, time, .. } if in_place => RunError::LogCut {
+        RunError::LogCut { source, time, .. } if in_place => RunError::ResumeCut {
             source,
             time,
             log: out.to_path_buf(),

@@ -9,7 +9,7 @@
 //! is made and refused above [`MAX_POINTS`]; each point's configuration is built
 //! when it is needed ([`Plan::config`]), not held for all points at once.
 
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
 use carom_io::{apply_set, Config, RunSpec};
 use serde::de::{MapAccess, Visitor};
@@ -117,7 +117,7 @@ pub struct Point {
 impl Plan {
     /// Read and expand the plan file at `path`.
     pub fn load(path: &Path) -> Result<Plan, SweepError> {
-        let text = std::fs::read_to_string(path).map_err(|source| SweepError::Io {
+        let text = carom_io::read_config_text(path).map_err(|source| SweepError::Io {
             path: path.to_path_buf(),
             source,
         })?;
@@ -314,8 +314,8 @@ impl Plan {
     }
 }
 
-fn read_base(path: &PathBuf, origin: &str) -> Result<Value, SweepError> {
-    let text = std::fs::read_to_string(path).map_err(|e| SweepError::Plan {
+fn read_base(path: &Path, origin: &str) -> Result<Value, SweepError> {
+    let text = carom_io::read_config_text(path).map_err(|e| SweepError::Plan {
         plan: origin.to_owned(),
         field: "base".into(),
         problem: format!("cannot read {}: {e}", path.display()),

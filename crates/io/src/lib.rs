@@ -27,6 +27,7 @@ pub use config::{
     SpeciesConfig, StopConfig, ThermostatConfig, VelocitiesConfig, DEFAULT_COUNT, DEFAULT_DURATION,
     DEFAULT_PACKING_FRACTION,
 };
+pub use config::{read_config_text, MAX_CONFIG_BYTES};
 
 pub use log::format::{encode_scene, CH_SCENE, N_CHANNELS, SCENE_UPDATE_MSG, SPECIES_COLORS};
 pub use log::format::{

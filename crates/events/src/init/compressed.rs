@@ -73,7 +73,7 @@ pub(super) fn compressed(
     // The radii grow as s₀ (1 + γ t) up to the scale 1/s₀ (physics.md (17.1)):
     // a growth time (1/s₀ − 1)/γ, with a rescale every step.
     let intervals = ((scale - 1.0) / rate / step).ceil();
-    if !(intervals <= MAX_RECORDS) {
+    if intervals.is_nan() || intervals > MAX_RECORDS {
         return Err(InitError::invalid(
             format!("{field}.rate"),
             format!(

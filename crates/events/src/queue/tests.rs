@@ -157,11 +157,11 @@ fn the_bucket_width_follows_events_that_spread_out() {
     for k in 0..3000 {
         let (head, i) = q.peek();
         let now = head.into_inner();
-        let (min, arg) = q
-            .times
-            .iter()
-            .enumerate()
-            .fold((f64::INFINITY, 0), |a, (j, &x)| if x < a.0 { (x, j) } else { a });
+        let (min, arg) =
+            q.times.iter().enumerate().fold(
+                (f64::INFINITY, 0),
+                |a, (j, &x)| if x < a.0 { (x, j) } else { a },
+            );
         assert_eq!((now, i as usize), (min, arg), "pop {k}");
         let ahead = q.times.iter().map(|&x| x - now).sum::<f64>() / n as f64;
         worst = worst.max(ahead * q.q.inv_width / n as f64);

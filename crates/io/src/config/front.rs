@@ -8,13 +8,39 @@ use crate::options::RunSpec;
 use serde_json::Value;
 use std::path::Path;
 
+/// The largest configuration (or sweep plan, or sweep base) file read, in bytes:
+/// 256 MiB, room for explicit positions and velocities of more than 10⁶ discs. A
+/// larger file, or one without end (`/dev/zero`), is refused once this much is
+/// read, rather than read until memory runs out.
+pub const MAX_CONFIG_BYTES: u64 = 256 << 20;
+
+/// The text of the configuration file `path`, refused (an error of kind
+/// `InvalidData`) past [`MAX_CONFIG_BYTES`] bytes.
+pub fn read_config_text(path: &Path) -> std::io::Result<String> {
+    use std::io::Read;
+    let mut text = String::new();
+    std::fs::File::open(path)?
+        .take(MAX_CONFIG_BYTES + 1)
+        .read_to_string(&mut text)?;
+    if text.len() as u64 > MAX_CONFIG_BYTES {
+        return Err(std::io::Error::new(
+            std::io::ErrorKind::InvalidData,
+            format!(
+                "larger than the {} MiB a configuration file may have",
+                MAX_CONFIG_BYTES >> 20
+            ),
+        ));
+    }
+    Ok(text)
+}
+
 /// Read a configuration file (or the built-in default when `path` is `None`),
 /// apply the `--set key=value` overrides in order, check everything and build the
 /// [`RunSpec`]. This is what `carom run` calls.
 pub fn load_config(path: Option<&Path>, sets: &[String]) -> Result<RunSpec, ConfigError> {
     let (text, origin) = match path {
         Some(p) => (
-            std::fs::read_to_string(p).map_err(|source| ConfigError::Io {
+            read_config_text(p).map_err(|source| ConfigError::Io {
                 path: p.display().to_string(),
                 source,
             })?,

@@ -24,7 +24,7 @@ mod resolve;
 mod validate;
 
 pub use error::ConfigError;
-pub use front::{apply_set, load_config};
+pub use front::{apply_set, load_config, read_config_text, MAX_CONFIG_BYTES};
 pub use model::{
     AxisBoundary, BoundaryConfig, BoxConfig, CollisionConfig, CollisionDetailConfig,
     CollisionModel, CompressedPlacementConfig, CompressionConfig, Config, FloorConfig,
