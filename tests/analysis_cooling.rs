@@ -184,7 +184,7 @@ fn a2_of(state: &carom::events::State) -> f64 {
 /// Nearer L_c the long-wavelength flows raise a2: at e = 0.5 and η = 0.02 (L_c ≈
 /// 156σ) it measured 0.0711 ± 0.0011, 0.0768 ± 0.0006 and 0.0802 ± 0.0006 at
 /// L/L_c = 0.40, 0.57 and 0.81 (N = 100, 200, 400), and 0.0708 ± 0.0008 here
-/// (L/L_c = 0.29; docs/validation.md, case 4b). Each seed is
+/// (L/L_c = 0.29; docs/validation.md, "a2 of the cooling state"). Each seed is
 /// melted elastically (20 collisions per disc), cooled 10 collisions per disc into
 /// the cooling state, then sampled 20 times, every 5 collisions per disc, its
 /// velocities rescaled to kT = 1 after every sample (the cooling state is scale
@@ -199,7 +199,7 @@ fn a2_of(state: &carom::events::State) -> f64 {
 /// Sonine order (the truncation error of the reference: the independent DSMC values
 /// of the issue, −0.0299 ± 0.0003, −0.0264 ± 0.0002 and ≈ 0.071 at e = 0.9, 0.8,
 /// 0.5, lie within it). Run: `cargo test --release --test analysis_cooling --
-/// --ignored a2_of_the_cooling_state --nocapture` (two threads, ≈ 10 min).
+/// --ignored a2_of_the_cooling_state --nocapture` (two threads, ≈ 20 min).
 #[test]
 #[ignore]
 fn a2_of_the_cooling_state_follows_the_second_sonine_approximation() {
