@@ -54,11 +54,25 @@ fn frames(dir: &Path, log: &str) -> Vec<Frame> {
     while let Some(count) = lines.next() {
         let n: usize = count.trim().parse().unwrap();
         let header = lines.next().unwrap();
-        let time: f64 = header.split("Time=").nth(1).unwrap().split(' ').next().unwrap().parse().unwrap();
+        let time: f64 = header
+            .split("Time=")
+            .nth(1)
+            .unwrap()
+            .split(' ')
+            .next()
+            .unwrap()
+            .parse()
+            .unwrap();
         let discs = (0..n)
             .map(|_| {
                 // species x y z vx vy vz radius mass
-                let f: Vec<f64> = lines.next().unwrap().split_whitespace().skip(1).map(|v| v.parse().unwrap()).collect();
+                let f: Vec<f64> = lines
+                    .next()
+                    .unwrap()
+                    .split_whitespace()
+                    .skip(1)
+                    .map(|v| v.parse().unwrap())
+                    .collect();
                 [f[0], f[1], f[3], f[4]]
             })
             .collect();
@@ -69,7 +83,10 @@ fn frames(dir: &Path, log: &str) -> Vec<Frame> {
 
 /// K + U (energy) of a frame with m = 1, g = 1.
 fn energy(discs: &[[f64; 4]]) -> f64 {
-    discs.iter().map(|d| 0.5 * (d[2] * d[2] + d[3] * d[3]) + d[1]).sum()
+    discs
+        .iter()
+        .map(|d| 0.5 * (d[2] * d[2] + d[3] * d[3]) + d[1])
+        .sum()
 }
 
 /// Write `json` as `name` in `dir` and `carom run` it to `name.mcap`; the run
@@ -187,11 +204,22 @@ fn a_run_with_resting_discs_resumes_from_a_cut_log_bit_for_bit() {
     std::fs::write(dir.join("cut.mcap"), &bytes[..bytes.len() / 2]).unwrap();
     ok(&carom(
         &dir,
-        &["resume", "cut.mcap", "--out", "resumed.mcap", "--quiet", "--force"],
+        &[
+            "resume",
+            "cut.mcap",
+            "--out",
+            "resumed.mcap",
+            "--quiet",
+            "--force",
+        ],
     ));
     let summary = |log: &str| {
         let info = ok(&carom(&dir, &["info", log]));
-        let line = info.lines().find(|l| l.contains("summary: stopped")).unwrap().to_string();
+        let line = info
+            .lines()
+            .find(|l| l.contains("summary: stopped"))
+            .unwrap()
+            .to_string();
         // The rate (collisions/s) differs from run to run.
         line.split(" collisions,").next().unwrap().to_string()
     };
@@ -202,4 +230,26 @@ fn a_run_with_resting_discs_resumes_from_a_cut_log_bit_for_bit() {
     let (full, resumed) = (frames(&dir, "row.json.mcap"), frames(&dir, "resumed.mcap"));
     assert_eq!(full.len(), 101);
     assert!(full == resumed);
+}
+
+/// Not handled: a disc put at rest on top of a resting one (a stack). It is
+/// refused, not run wrong: the runaway error, which names the case.
+#[test]
+fn a_disc_stacked_on_a_resting_one_is_refused_with_the_runaway_error_naming_it() {
+    let dir = scratch("stack");
+    let json = config(
+        [10.0, 10.0],
+        false,
+        &[[5.0, 0.5], [5.0, 1.5]],
+        &[[0.0; 2]; 2],
+        10.0,
+    );
+    std::fs::write(dir.join("stack.json"), json).unwrap();
+    let out = carom(&dir, &["run", "stack.json", "--quiet", "--force"]);
+    assert_eq!(out.status.code(), Some(1));
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        err.contains("runaway") && err.contains("a disc at rest on top of another"),
+        "{err}"
+    );
 }

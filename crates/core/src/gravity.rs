@@ -9,8 +9,8 @@
 //! a disc just below a floor it bounced from rises, so its next floor time is the
 //! descending root, ≈ 2u/g, never the ascending one at ≈ 0. Relative motion of two
 //! falling discs stays straight, so their contact times need nothing from here; a
-//! disc resting on the floor (§15.5) does not fall, and its contact with a falling
-//! one is the quartic (15.6), solved by [`crate::roots::first_descent`].
+//! disc resting on the floor (15.9) does not fall, and its contact with a falling
+//! one is the quartic (15.10), solved by [`crate::roots::first_descent`].
 
 use crate::boundary::WallSide;
 use crate::roots::first_descent;
@@ -112,7 +112,7 @@ pub fn crossing_time_falling(
 }
 
 /// Whether a disc of radius `a` that leaves a static floor with upward velocity
-/// `u` (length/time) in the field `g > 0` comes to rest on it (physics.md §15.5):
+/// `u` (length/time) in the field `g > 0` comes to rest on it (physics.md (15.9)):
 /// when its apex a + u²/(2g) rounds to a, its height never differs from the
 /// floor's as a number, and the bounce (of period 2u/g, ≲ 10⁻⁸ √(a/g)) would only
 /// repeat at once for ever. True for u = 0; a NaN never rests.
@@ -125,7 +125,7 @@ pub fn rebound_rests(a: f64, u: f64, g: f64) -> bool {
 /// rests on the floor and the other falls: j seen from i at `dr` = r_j − r_i with
 /// relative velocity `dv` = v_j − v_i (true ones, now) and relative acceleration
 /// `accel` ŷ (−g when j falls, +g when i does). The first approaching root of
-/// physics.md (15.6),
+/// physics.md (15.10),
 /// |dr + dv t + ½ accel t² ŷ|² − σ² = c0 + 2 (dr·dv) t + (|dv|² + accel dr_y) t²
 ///                                   + accel dv_y t³ + accel²/4 t⁴ = 0,
 /// by [`first_descent`]: never in the past, never NaN; a pair that rounding left
@@ -273,7 +273,10 @@ mod tests {
             .map(|k| k as f64 * step)
             .find(|&t| gap(t) <= 0.0)
             .unwrap();
-        assert!(first >= t && first - t <= step, "brute force {first}, root {t}");
+        assert!(
+            first >= t && first - t <= step,
+            "brute force {first}, root {t}"
+        );
     }
 
     /// Thrown up past the resting disc, side by side: j at (1.5, 0) rising at 2
@@ -296,7 +299,8 @@ mod tests {
         assert_eq!(t, 0.0);
         for accel in [-1e300, -1.0, -1e-300, 1e-300, 1.0, 1e300] {
             for v in [0.0, 1e-300, 1.0, 1e150] {
-                let t = contact_time_one_falling(DVec2::new(0.5, 2.0), DVec2::new(v, -v), 1.0, accel);
+                let t =
+                    contact_time_one_falling(DVec2::new(0.5, 2.0), DVec2::new(v, -v), 1.0, accel);
                 assert!(t >= 0.0, "accel {accel} v {v}: {t}");
             }
         }

@@ -28,8 +28,8 @@ pub mod gravity;
 pub mod growth;
 pub mod kinematics;
 pub mod observables;
-pub mod roots;
 pub mod rates;
+pub mod roots;
 pub mod species;
 pub mod vibrating_wall;
 

@@ -319,11 +319,7 @@ impl Engine {
 fn check_resting(cp: &Checkpoint, i: usize, bodies: &[Body]) -> Result<(), String> {
     let b = &bodies[i];
     let radius = cp.species[b.species as usize].radius;
-    if cp.params.gravity > 0.0
-        && cp.params.floor.is_none()
-        && b.r0.y == radius
-        && b.v.y == 0.0
-    {
+    if cp.params.gravity > 0.0 && cp.params.floor.is_none() && b.r0.y == radius && b.v.y == 0.0 {
         Ok(())
     } else {
         Err(format!(

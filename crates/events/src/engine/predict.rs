@@ -345,12 +345,7 @@ impl Engine {
                         radius,
                         ri: DVec2::new(ri.x - shift_x, ri.y - shift_y),
                     };
-                    block.scan_cell::<FALL, GROW>(
-                        &me,
-                        head[row + cx],
-                        Image::new(sx, sy),
-                        found,
-                    );
+                    block.scan_cell::<FALL, GROW>(&me, head[row + cx], Image::new(sx, sy), found);
                 }
             }
         }

@@ -170,8 +170,11 @@ mod tests {
     /// and time runs to the stop, the disc exactly where it was.
     #[test]
     fn a_disc_put_at_rest_on_the_floor_rests_there_while_time_runs() {
-        let mut e = Engine::new(discs(10.0, false, 1.0, &[([5.0, 0.5], [0.0, 0.0])]), field(1.0))
-            .unwrap();
+        let mut e = Engine::new(
+            discs(10.0, false, 1.0, &[([5.0, 0.5], [0.0, 0.0])]),
+            field(1.0),
+        )
+        .unwrap();
         match e.next_event().unwrap() {
             Some(Event::Wall(w)) => {
                 assert_eq!((w.time, w.impulse, w.v_after), (0.0, 0.0, DVec2::ZERO));
@@ -210,7 +213,11 @@ mod tests {
                     0.5 + if s <= 9.0 { s } else { 18.0 - s }
                 };
                 let p = e.position(0);
-                assert!((p.x - expected).abs() < 1e-12, "t {t}: x {} vs {expected}", p.x);
+                assert!(
+                    (p.x - expected).abs() < 1e-12,
+                    "t {t}: x {} vs {expected}",
+                    p.x
+                );
                 assert_eq!(p.y, 0.5, "t {t}");
                 assert_eq!(e.velocity(0).y, 0.0);
                 assert_eq!(e.velocity(0).x.abs(), 1.0);
@@ -243,7 +250,11 @@ mod tests {
             assert!(e.bodies[0].resting());
             assert!((last - rest_at).abs() < 1e-7, "rests at {last}");
             assert_eq!(e.position(0).y, 0.5);
-            assert!((books(&e) - start).abs() < 1e-14, "{} vs {start}", books(&e));
+            assert!(
+                (books(&e) - start).abs() < 1e-14,
+                "{} vs {start}",
+                books(&e)
+            );
             e.run_until(100.0).unwrap();
             assert_eq!(e.position(0), DVec2::new(5.0, 0.5));
         }
@@ -278,8 +289,14 @@ mod tests {
         assert!((hit.time - exact).abs() < 1e-13, "{} vs {exact}", hit.time);
         let gap = |t: f64| (DVec2::new(0.3, 3.0 - 0.5 * t * t)).length() - 1.0;
         let step = 1e-6;
-        let first = (0..).map(|k| k as f64 * step).find(|&t| gap(t) <= 0.0).unwrap();
-        assert!(first >= hit.time && first - hit.time <= step, "brute force {first}");
+        let first = (0..)
+            .map(|k| k as f64 * step)
+            .find(|&t| gap(t) <= 0.0)
+            .unwrap();
+        assert!(
+            first >= hit.time && first - hit.time <= step,
+            "brute force {first}"
+        );
         let mut collisions = 0;
         while collisions < 10_000 {
             match e.next_event().unwrap().unwrap() {
@@ -319,7 +336,10 @@ mod tests {
             a.run_collisions(1).unwrap();
         }
         let cp = a.checkpoint();
-        assert!(cp.pending.iter().any(|p| p[2] >> 16 == 1), "some disc rests");
+        assert!(
+            cp.pending.iter().any(|p| p[2] >> 16 == 1),
+            "some disc rests"
+        );
         let mut b = Engine::from_checkpoint(cp.clone()).unwrap();
         for _ in 0..3000 {
             assert_eq!(a.next_event().unwrap(), b.next_event().unwrap());
