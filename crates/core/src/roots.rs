@@ -86,8 +86,10 @@ impl Poly {
         let m = self.derivative().sign_changes(lo, hi, &mut turns);
         let mut count = 0;
         let mut left = lo;
-        for k in 0..=m {
-            let right = if k < m { turns[k] } else { hi };
+        // The pieces' right ends: the turning points, then hi.
+        let mut ends = [hi; 5];
+        ends[..m].copy_from_slice(&turns[..m]);
+        for (k, &right) in ends[..=m].iter().enumerate() {
             let (sl, sr) = (self.sign(left), self.sign(right));
             if sl != 0 && sr != 0 && sl != sr {
                 out[count] = bisect(|t| self.sign(t), left, right, sl);
@@ -95,7 +97,7 @@ impl Poly {
             } else if sr == 0 && right < hi && sl != 0 {
                 // p vanishes exactly at a turning point: a sign change there only if
                 // p has the other sign beyond it, which the next piece shows.
-                if self.sign(if k + 1 < m { turns[k + 1] } else { hi }) == -sl {
+                if self.sign(ends[k + 1]) == -sl {
                     out[count] = right;
                     count += 1;
                 }
@@ -147,8 +149,7 @@ pub fn first_descent(c: [f64; 5]) -> f64 {
     let mut turns = [0.0; 4];
     let m = dp.sign_changes(0.0, hi, &mut turns);
     let mut left = 0.0;
-    for k in 0..=m {
-        let right = if k < m { turns[k] } else { hi };
+    for right in turns[..m].iter().copied().chain([hi]) {
         if p.sign(left) > 0 {
             if p.sign(right) <= 0 {
                 return bisect(|t| p.sign(t), left, right, 1);
