@@ -8,9 +8,13 @@
 //! and the right root even when rounding has put the disc a hair beyond the line —
 //! a disc just below a floor it bounced from rises, so its next floor time is the
 //! descending root, ≈ 2u/g, never the ascending one at ≈ 0. Relative motion of two
-//! discs stays straight, so pair contact times need nothing from here.
+//! falling discs stays straight, so their contact times need nothing from here; a
+//! disc resting on the floor (15.9) does not fall, and its contact with a falling
+//! one is the quartic (15.10), solved by [`crate::roots::first_descent`].
 
 use crate::boundary::WallSide;
+use crate::roots::first_descent;
+use glam::DVec2;
 
 /// Height (length) after a time `t` of free fall from height `y` with upward
 /// velocity `u` (length/time) in the field `g` (length/time²), physics.md (15.1):
@@ -105,6 +109,36 @@ pub fn crossing_time_falling(
         f64::INFINITY
     };
     (down, false)
+}
+
+/// Whether a disc of radius `a` that leaves a static floor with upward velocity
+/// `u` (length/time) in the field `g > 0` comes to rest on it (physics.md (15.9)):
+/// when its apex a + u²/(2g) rounds to a, its height never differs from the
+/// floor's as a number, and the bounce (of period 2u/g, ≲ 10⁻⁸ √(a/g)) would only
+/// repeat at once for ever. True for u = 0; a NaN never rests.
+#[inline]
+pub fn rebound_rests(a: f64, u: f64, g: f64) -> bool {
+    a + u * u / (2.0 * g) == a
+}
+
+/// Time (≥ 0, or +∞) until two discs at contact distance `sigma` meet when one
+/// rests on the floor and the other falls: j seen from i at `dr` = r_j − r_i with
+/// relative velocity `dv` = v_j − v_i (true ones, now) and relative acceleration
+/// `accel` ŷ (−g when j falls, +g when i does). The first approaching root of
+/// physics.md (15.10),
+/// |dr + dv t + ½ accel t² ŷ|² − σ² = c0 + 2 (dr·dv) t + (|dv|² + accel dr_y) t²
+///                                   + accel dv_y t³ + accel²/4 t⁴ = 0,
+/// by [`first_descent`]: never in the past, never NaN; a pair that rounding left
+/// overlapping meets now if it approaches, and a pair touching now and separating
+/// is met again only when it comes back.
+pub fn contact_time_one_falling(dr: DVec2, dv: DVec2, sigma: f64, accel: f64) -> f64 {
+    first_descent([
+        dr.length_squared() - sigma * sigma,
+        2.0 * dr.dot(dv),
+        dv.length_squared() + accel * dr.y,
+        accel * dv.y,
+        0.25 * accel * accel,
+    ])
 }
 
 /// The barometric β_g = m g/kT (1/length) whose law n ∝ exp(−β_g (y − a)),
@@ -205,6 +239,69 @@ mod tests {
                     let (f, r) = (fall_time(h, u, g), rise_time(h, u, g));
                     assert!(f >= 0.0 && r >= 0.0, "h {h} u {u} g {g}: {f} {r}");
                 }
+            }
+        }
+    }
+
+    /// A disc at rest (u = 0) rests; one leaving at 10⁻⁹ rounds its apex
+    /// 0.5 + 5·10⁻¹⁹ to 0.5 and rests; at 10⁻⁶ (apex 5·10⁻¹³ above) it bounces.
+    #[test]
+    fn a_rebound_whose_apex_rounds_to_the_floor_rests() {
+        assert!(rebound_rests(0.5, 0.0, 1.0));
+        assert!(rebound_rests(0.5, -0.0, 1.0));
+        assert!(rebound_rests(0.5, 1e-9, 1.0));
+        assert!(!rebound_rests(0.5, 1e-6, 1.0));
+        assert!(!rebound_rests(0.5, f64::NAN, 1.0));
+        assert!(!rebound_rests(0.5, 1e200, 1.0));
+    }
+
+    /// j dropped from rest with its centre at (0.3, 3) onto i resting at the origin
+    /// (σ = 1, g = 1): they touch when (3 − t²/2)² + 0.09 = 1, t = √(2 (3 − √0.91)).
+    /// Seen from j (accel +g) the same time. The brute-force check: |Δr(t)| − σ
+    /// stepped by 10⁻⁶ changes sign within one step of it.
+    #[test]
+    fn a_disc_dropped_onto_a_resting_one_meets_it_at_the_root_of_the_quartic() {
+        let (dr, sigma, g) = (DVec2::new(0.3, 3.0), 1.0, 1.0);
+        let exact = (2.0 * (3.0 - 0.91f64.sqrt())).sqrt();
+        let t = contact_time_one_falling(dr, DVec2::ZERO, sigma, -g);
+        assert!((t - exact).abs() < 1e-14, "{t} vs {exact}");
+        let t_j = contact_time_one_falling(-dr, DVec2::ZERO, sigma, g);
+        assert!((t_j - exact).abs() < 1e-14, "{t_j}");
+        let gap = |t: f64| (dr + DVec2::new(0.0, -0.5 * g * t * t)).length() - sigma;
+        let step = 1e-6;
+        let first = (0..)
+            .map(|k| k as f64 * step)
+            .find(|&t| gap(t) <= 0.0)
+            .unwrap();
+        assert!(
+            first >= t && first - t <= step,
+            "brute force {first}, root {t}"
+        );
+    }
+
+    /// Thrown up past the resting disc, side by side: j at (1.5, 0) rising at 2
+    /// with i resting at the origin (σ = 1) never touches (always 1.5 apart in x);
+    /// j leaving i upwards after a collision (touching, dr = (0, 1), rising at 1)
+    /// comes back down onto it after 2u/g = 2, not at once; overlapping by rounding
+    /// and approaching: now.
+    #[test]
+    fn separating_pairs_come_back_and_misses_never_meet() {
+        let t = contact_time_one_falling(DVec2::new(1.5, 0.0), DVec2::new(0.0, 2.0), 1.0, -1.0);
+        assert_eq!(t, f64::INFINITY);
+        let t = contact_time_one_falling(DVec2::new(0.0, 1.0), DVec2::new(0.0, 1.0), 1.0, -1.0);
+        assert!((t - 2.0).abs() < 1e-14, "{t}");
+        let t = contact_time_one_falling(
+            DVec2::new(0.0, 1.0 - 1e-16),
+            DVec2::new(0.0, -1.0),
+            1.0,
+            -1.0,
+        );
+        assert_eq!(t, 0.0);
+        for accel in [-1e300, -1.0, -1e-300, 1e-300, 1.0, 1e300] {
+            for v in [0.0, 1e-300, 1.0, 1e150] {
+                let t =
+                    contact_time_one_falling(DVec2::new(0.5, 2.0), DVec2::new(v, -v), 1.0, accel);
+                assert!(t >= 0.0, "accel {accel} v {v}: {t}");
             }
         }
     }

@@ -10,6 +10,8 @@
 //!   (physics.md §15);
 //! * [`growth`] — growing discs (compression): contact and wall times, the
 //!   contact rule (physics.md §17);
+//! * [`roots`] — the first descent through zero of a polynomial of degree ≤ 4,
+//!   isolated to rounding (the contact of a resting and a falling disc, §15);
 //! * [`boundary`] — rectangular boxes, periodic or walled per axis, and wall collisions;
 //! * [`species`] — what a disc is made of (radius, mass);
 //! * [`observables`] — degrees of freedom, kT, packing fraction, the area centres
@@ -27,6 +29,7 @@ pub mod growth;
 pub mod kinematics;
 pub mod observables;
 pub mod rates;
+pub mod roots;
 pub mod species;
 pub mod vibrating_wall;
 

@@ -56,7 +56,8 @@ pub struct Checkpoint {
     /// pending kind | aux << 8]. Kinds: 0
     /// none, 1 the pair candidate, 2 wall, 3 cell crossing. aux bits 0–1: wall 2·axis +
     /// side (1 = high) or crossing 2·axis + (1 if upwards); bits 2–5: the candidate's
-    /// image shift code (sx+1) + 3 (sy+1).
+    /// image shift code (sx+1) + 3 (sy+1). Bit 16: the disc rests on the floor in a
+    /// field (physics.md (15.9); its path is then straight, not falling).
     pub pending: Vec<[u32; 3]>,
     /// Time of each disc's pair candidate where it is the pending event (time; +∞
     /// otherwise). Not needed to resume: the engine keeps only the pending event's

@@ -109,7 +109,8 @@ fn stall_cause(dissipative: bool) -> &'static str {
     } else {
         "without dissipation this means discs in contact whose collisions at one instant \
          never end, such as a row of touching discs (round the periodic box, or from wall \
-         to wall) passing its momentum on forever — start with gaps between the discs (a \
-         slightly lower density, or relaxed placement)"
+         to wall) passing its momentum on forever, or in a field a disc at rest on top of \
+         another (discs rest on the floor only, physics.md §15) — start with gaps between \
+         the discs (a slightly lower density, or relaxed placement)"
     }
 }

@@ -3,8 +3,9 @@
 //!
 //! The record holds the disc's straight path r(t) = r0 + v t (physics.md §1, the
 //! last-update time folded into the origin r0), its collision counter, its pair
-//! candidate, its pending event ([`Pending`], with the wall or cell face and the
-//! candidate's periodic image packed into one byte, [`Aux`]) and that event's
+//! candidate, its pending event ([`Pending`], with the wall or cell face, the
+//! candidate's periodic image and whether the disc rests on the floor packed into
+//! one byte, [`Aux`]) and that event's
 //! time, its species and its place in the cell lists. At large N every event lands
 //! at a random place in memory, so one 64-byte record per disc saves a cache miss
 //! per lookup. See docs/performance.md, "disc record".
@@ -47,7 +48,8 @@ pub(super) struct Body {
     pub(super) partner_count: u32,
     /// Which event is pending (pair = the candidate).
     pub(super) pending: Pending,
-    /// The face of the boundary event and the candidate's periodic image.
+    /// The face of the boundary event, the candidate's periodic image, and
+    /// whether the disc rests on the floor (engine::resting).
     pub(super) aux: Aux,
     /// Species index.
     pub(super) species: u16,
@@ -196,16 +198,20 @@ impl Image {
     }
 }
 
-/// The pending event's face (bits 0–1; a wall or cell event) and the pair
-/// candidate's image (bits 2–5), in the one byte the record has for both.
+/// The pending event's face (bits 0–1; a wall or cell event), the pair
+/// candidate's image (bits 2–5) and, in a field, whether the disc rests on the
+/// floor (bit 6; engine::resting), in the one byte the record has for them.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub(super) struct Aux(u8);
 
+/// The bit of [`Aux`] set while the disc rests on the floor.
+const RESTING: u8 = 1 << 6;
+
 impl Aux {
-    /// Face 0, no image: what a record starts with.
+    /// Face 0, no image, not resting: what a record starts with.
     pub(super) const EMPTY: Aux = Aux(0);
 
-    /// The byte for `face` and `image`.
+    /// The byte for `face` and `image` (not resting).
     #[inline(always)]
     pub(super) fn new(face: Face, image: Image) -> Aux {
         Aux(face.0 | image.0 << 2)
@@ -220,16 +226,29 @@ impl Aux {
     /// The pair candidate's image.
     #[inline(always)]
     pub(super) fn image(self) -> Image {
-        Image(self.0 >> 2)
+        Image((self.0 >> 2) & 0xf)
     }
 
-    /// The byte as a checkpoint stores it.
-    pub(super) fn bits(self) -> u8 {
-        self.0
+    /// Whether the disc rests on the floor (engine::resting).
+    #[inline(always)]
+    pub(super) fn resting(self) -> bool {
+        self.0 & RESTING != 0
     }
 
-    /// The value of a checkpoint's byte.
-    pub(super) fn from_bits(bits: u8) -> Aux {
-        Aux(bits)
+    /// The same byte, resting on the floor or not as `resting` says.
+    #[inline(always)]
+    pub(super) fn with_resting(self, resting: bool) -> Aux {
+        Aux((self.0 & !RESTING) | (resting as u8) << 6)
+    }
+
+    /// The face and image bits (0–5) as a checkpoint stores them; the resting bit
+    /// is stored apart (engine::checkpoint).
+    pub(super) fn event_bits(self) -> u8 {
+        self.0 & !RESTING
+    }
+
+    /// The value of a checkpoint's face and image bits (0–5), not resting.
+    pub(super) fn from_event_bits(bits: u8) -> Aux {
+        Aux(bits & !RESTING)
     }
 }

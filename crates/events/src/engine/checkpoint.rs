@@ -2,7 +2,9 @@
 //! and rebuilding an engine from one.
 //!
 //! A resumed run continues bit for bit, so everything that decides the trajectory
-//! is copied: each disc's path (origin and velocity), collision counter, pair
+//! is copied: each disc's path (origin and velocity, and whether it rests on the
+//! floor: bit 16 of its pending word, beside the event's kind and details,
+//! refused by a carom that does not know it), collision counter, pair
 //! candidate and pending event with its time, the cell lists in their exact order
 //! (the order breaks no ties, but it decides which discs a scan meets first), the
 //! clock and its epoch, the running totals, the renumbering schedule and the
@@ -57,7 +59,9 @@ impl Engine {
                     [
                         b.partner,
                         b.partner_count,
-                        b.pending as u32 | (b.aux.bits() as u32) << 8,
+                        b.pending as u32
+                            | (b.aux.event_bits() as u32) << 8
+                            | (b.resting() as u32) << 16,
                     ]
                 })
                 .collect(),
@@ -209,7 +213,8 @@ impl Engine {
                 partner_count: cp.pending[i][1],
                 // A kind carom does not write is refused below.
                 pending: Pending::from_code(cp.pending[i][2] & 0xff).unwrap_or(Pending::None),
-                aux: Aux::from_bits((cp.pending[i][2] >> 8) as u8),
+                aux: Aux::from_event_bits((cp.pending[i][2] >> 8) as u8)
+                    .with_resting(((cp.pending[i][2] >> 16) & 1) == 1),
                 species: cp.species_of[i],
                 link: Link {
                     cell: cp.cell[i].map(|x| x as u16),
@@ -236,10 +241,13 @@ impl Engine {
             if p[0] != NO_DISC && p[0] as usize >= n {
                 return Err(bad(format!("pending partner of disc {i} out of range")));
             }
-            if Pending::from_code(p[2] & 0xff).is_none() || p[2] >> 8 > 0xff {
+            if Pending::from_code(p[2] & 0xff).is_none() || ((p[2] >> 14) & !0b100) != 0 {
                 return Err(bad(format!(
                     "pending kind of disc {i} is not one carom writes"
                 )));
+            }
+            if (p[2] >> 16) == 1 {
+                check_resting(&cp, i, &bodies).map_err(bad)?;
             }
             if cp.pair_times[i].is_nan() {
                 return Err(bad(format!("pair candidate time of disc {i} is NaN")));
@@ -302,6 +310,27 @@ impl Engine {
             floor_origin: cp.floor_origin,
             quiet_work: 0,
         })
+    }
+}
+
+/// Whether disc `i` (internal slot; record `bodies[i]`) of checkpoint `cp`, marked
+/// resting on the floor, can be: a field without a vibrating floor, and a path
+/// along the floor (height its radius, no vertical velocity; engine::resting).
+fn check_resting(cp: &Checkpoint, i: usize, bodies: &[Body]) -> Result<(), String> {
+    let b = &bodies[i];
+    let radius = cp.species[b.species as usize].radius;
+    if cp.params.gravity > 0.0 && cp.params.floor.is_none() && b.r0.y == radius && b.v.y == 0.0 {
+        Ok(())
+    } else {
+        Err(format!(
+            "disc {i} is marked resting on the floor with gravity {} (a vibrating floor: \
+             {}), height {} for radius {radius}, vertical velocity {} (allowed: g > 0, no \
+             vibrating floor, height = radius, vertical velocity 0)",
+            cp.params.gravity,
+            cp.params.floor.is_some(),
+            b.r0.y,
+            b.v.y
+        ))
     }
 }
 

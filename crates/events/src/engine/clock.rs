@@ -165,8 +165,9 @@ impl Engine {
         let g = self.params.gravity;
         for b in self.bodies.iter_mut() {
             b.r0 = b.at(shift);
-            if g != 0.0 {
-                // The new origin and velocity are the true ones now (engine::gravity).
+            if g != 0.0 && !b.resting() {
+                // The new origin and velocity are the true ones now (engine::gravity;
+                // a resting disc's path is its true one, engine::resting).
                 b.r0.y -= 0.5 * g * shift * shift;
                 b.v.y -= g * shift;
             }

@@ -10,7 +10,9 @@
 //! wall and cell-edge times along y (roots of quadratics, `carom_core::gravity`),
 //! a wall's reflection, the positions and velocities handed out, and the
 //! restart of the clock. These are separate functions, entered by one test of
-//! g ≠ 0, so that the engine without a field does exactly what it did before.
+//! g ≠ 0, so that the engine without a field does exactly what it did before. A
+//! disc resting on the floor does not fall: its record is its straight true path
+//! (engine::resting).
 
 use super::body::{Body, Face, Pending};
 use super::Engine;
@@ -22,16 +24,24 @@ use carom_core::{Boundary, DVec2, SimBox, WallSide};
 
 impl Body {
     /// True position at internal time `t` in the field `g` (length): the path
-    /// p(t) lowered by g t²/2 (physics.md (15.1)).
+    /// p(t) lowered by g t²/2 (physics.md (15.1)); the path itself for a disc
+    /// resting on the floor.
     #[inline]
     pub(super) fn falling_at(&self, t: f64, g: f64) -> DVec2 {
         let p = self.at(t);
+        if self.resting() {
+            return p;
+        }
         DVec2::new(p.x, p.y - 0.5 * g * t * t)
     }
 
-    /// True velocity at internal time `t` in the field `g` (length/time): v − ŷ g t.
+    /// True velocity at internal time `t` in the field `g` (length/time): v − ŷ g t;
+    /// v for a disc resting on the floor.
     #[inline]
     pub(super) fn falling_velocity(&self, t: f64, g: f64) -> DVec2 {
+        if self.resting() {
+            return self.v;
+        }
         DVec2::new(self.v.x, self.v.y - g * t)
     }
 }
@@ -71,8 +81,9 @@ impl Engine {
 
     /// Disc `i`'s earliest cell crossing or wall hit from now in the field, as
     /// [`Engine::boundary_event`] gives it without one: along x on its straight
-    /// path, along y on its parabola (`carom_core::gravity`). `p` is the disc's
-    /// path point now (not its position), `v` its path velocity.
+    /// path, along y on its parabola (`carom_core::gravity`), and along y never
+    /// while it rests on the floor. `p` is the disc's path point now (not its
+    /// position), `v` its path velocity.
     #[cold]
     #[inline(never)]
     pub(super) fn boundary_event_falling(
@@ -86,6 +97,7 @@ impl Engine {
         }
         let (g, now) = (self.params.gravity, self.clock);
         let b = &self.bodies[i];
+        let resting = b.resting();
         let c = b.link.coords();
         let grid = self.grids.get(self.grids.class(b.species));
         let radius = self.species[b.species as usize].radius;
@@ -102,6 +114,9 @@ impl Engine {
             if let Some((dt, side)) = wall_time(p.x, v.x, radius, self.sim_box.size.x) {
                 keep(dt, Pending::Wall, Face::new(0, side == WallSide::High));
             }
+        }
+        if resting {
+            return (best, kind, face);
         }
         let y = p.y - 0.5 * g * now * now;
         let u = v.y - g * now;

@@ -28,6 +28,7 @@ mod lookahead;
 mod pause;
 mod predict;
 mod resolve;
+mod resting;
 mod thermostat;
 
 use crate::cells::Link;

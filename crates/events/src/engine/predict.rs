@@ -10,9 +10,12 @@
 //! the candidate (its time computed again from the two unchanged paths) stands for
 //! the six cells seen before, unless its partner changed velocity since. The hot
 //! comparisons run without branches (`select_unpredictable`): which neighbour
-//! wins is a coin toss. See docs/performance.md, "neighbour scan".
+//! wins is a coin toss. In a field, a pair of which exactly one disc rests on the
+//! floor meets at the root of a quartic instead (engine::resting, physics.md
+//! (15.10)). See docs/performance.md, "neighbour scan".
 
 use super::body::{Aux, Body, Face, Image, Pending};
+use super::resting::contact_time_resting;
 use super::{time_key, Engine};
 use crate::classes::cells_along;
 use crate::NO_DISC;
@@ -67,15 +70,18 @@ struct Scanner<'a> {
 ///
 /// With `GROW` the radii are the reference radii of growing discs, scaled by
 /// `grow` = (s, γ): the contact distance is σ s and grows at σ γ (physics.md §17).
+/// With `FALL`, in the field `g`, a pair of which one disc rests on the floor meets
+/// at the root of (15.10) (engine::resting).
 #[inline(always)]
 #[allow(clippy::too_many_arguments)]
-fn test_pair<const GROW: bool>(
+fn test_pair<const FALL: bool, const GROW: bool>(
     me: &Scanner,
     species: &[Species],
     j: u32,
     bj: &Body,
     now: f64,
     grow: (f64, f64),
+    g: f64,
     image: Image,
     found: &mut Found,
 ) {
@@ -91,6 +97,8 @@ fn test_pair<const GROW: bool>(
         } else {
             t
         }
+    } else if FALL && bi.resting() != bj.resting() {
+        contact_time_resting(bi, me.ri, bj, sigma, g, now)
     } else {
         contact_time_or_inf(dr, bj.v - bi.v, sigma)
     };
@@ -111,6 +119,8 @@ struct Block<'a> {
     now: f64,
     /// Scale and relative growth rate of the radii (s, γ) when they grow.
     grow: (f64, f64),
+    /// The field g (length/time²) when discs fall (0 otherwise).
+    g: f64,
 }
 
 impl Block<'_> {
@@ -118,7 +128,7 @@ impl Block<'_> {
     /// discs of the cell whose list starts at `first`, seen through the image with
     /// `image`.
     #[inline(always)]
-    fn scan_cell<const GROW: bool>(
+    fn scan_cell<const FALL: bool, const GROW: bool>(
         &self,
         me: &Scanner,
         first: u32,
@@ -128,7 +138,17 @@ impl Block<'_> {
         let mut j = first;
         while j != NO_DISC {
             let bj = &self.bodies[j as usize];
-            test_pair::<GROW>(me, self.species, j, bj, self.now, self.grow, image, found);
+            test_pair::<FALL, GROW>(
+                me,
+                self.species,
+                j,
+                bj,
+                self.now,
+                self.grow,
+                self.g,
+                image,
+                found,
+            );
             j = bj.link.next;
         }
     }
@@ -143,18 +163,21 @@ impl Engine {
         let bi = self.bodies[i];
         let ri = bi.at(now);
         let mut found = Found::NOTHING;
-        self.scan::<GROW>(i, ri, [-1, 1], [-1, 1], &mut found);
+        self.scan::<FALL, GROW>(i, ri, [-1, 1], [-1, 1], &mut found);
         if !self.grids.single() {
-            self.scan_other_classes(i, ri, &mut found);
+            self.scan_other_classes::<FALL>(i, ri, &mut found);
         }
         let boundary = self.boundary_event::<FALL, GROW>(i, ri, bi.v);
-        self.file_event(i, &found, boundary);
+        self.file_event::<FALL>(i, &found, boundary);
     }
 
     /// Make disc `i`'s earliest event pending and queue it: the pair candidate
     /// `found`, or the boundary event (time from now, kind, face) if that comes first.
+    ///
+    /// The record's resting flag (engine::resting) is kept: with `FALL` only, as
+    /// only a field sets it.
     #[inline(always)]
-    fn file_event(
+    fn file_event<const FALL: bool>(
         &mut self,
         i: usize,
         found: &Found,
@@ -169,7 +192,11 @@ impl Engine {
         b.partner_count =
             std::hint::select_unpredictable(found.partner != NO_DISC, partner_count, 0);
         b.pending = std::hint::select_unpredictable(pair, Pending::Pair, kind);
-        b.aux = Aux::new(face, found.image);
+        b.aux = if FALL {
+            Aux::new(face, found.image).with_resting(b.aux.resting())
+        } else {
+            Aux::new(face, found.image)
+        };
         self.queue.set(
             self.bodies.as_mut_slice(),
             i as u32,
@@ -210,7 +237,7 @@ impl Engine {
                 radius: self.species[bi.species as usize].radius,
                 ri: ri - image.shift(self.sim_box.size),
             };
-            test_pair::<GROW>(
+            test_pair::<FALL, GROW>(
                 &me,
                 &self.species,
                 bi.partner,
@@ -221,6 +248,7 @@ impl Engine {
                 } else {
                     (1.0, 0.0)
                 },
+                self.params.gravity,
                 image,
                 &mut candidate,
             );
@@ -232,12 +260,12 @@ impl Engine {
             ([-1, 1], [o, o])
         };
         // The strip's discs replace the candidate only when one meets earlier.
-        self.scan::<GROW>(i, ri, xs, ys, &mut candidate);
+        self.scan::<FALL, GROW>(i, ri, xs, ys, &mut candidate);
         if !self.grids.single() {
-            self.scan_other_classes(i, ri, &mut candidate);
+            self.scan_other_classes::<FALL>(i, ri, &mut candidate);
         }
         let boundary = self.boundary_event::<FALL, GROW>(i, ri, bi.v);
-        self.file_event(i, &candidate, boundary);
+        self.file_event::<FALL>(i, &candidate, boundary);
     }
 
     /// Look for disc `i`'s earliest pair collision (before `found.best`, time from
@@ -249,7 +277,7 @@ impl Engine {
     /// Each cell is walked behind a branch on its emptiness (see
     /// docs/performance.md, "neighbour scan").
     #[inline(always)]
-    fn scan<const GROW: bool>(
+    fn scan<const FALL: bool, const GROW: bool>(
         &self,
         i: usize,
         ri: DVec2,
@@ -258,7 +286,7 @@ impl Engine {
         found: &mut Found,
     ) {
         let grid = self.grids.get(self.grids.class(self.bodies[i].species));
-        let block = self.block::<GROW>();
+        let block = self.block::<FALL, GROW>();
         let bi = &self.bodies[i];
         let radius = self.species[bi.species as usize].radius;
         let c = bi.link.coords();
@@ -283,14 +311,14 @@ impl Engine {
                     head[first + 2 * nx + 2],
                 ];
                 for h in heads {
-                    block.scan_cell::<GROW>(&me, h, Image::SAME, found);
+                    block.scan_cell::<FALL, GROW>(&me, h, Image::SAME, found);
                 }
             } else {
                 // A strip: a column (x crossing) or a row (y crossing) of three.
                 let stride = if xs[0] == xs[1] { nx } else { 1 };
                 let heads = [head[first], head[first + stride], head[first + 2 * stride]];
                 for h in heads {
-                    block.scan_cell::<GROW>(&me, h, Image::SAME, found);
+                    block.scan_cell::<FALL, GROW>(&me, h, Image::SAME, found);
                 }
             }
         } else {
@@ -317,7 +345,7 @@ impl Engine {
                         radius,
                         ri: DVec2::new(ri.x - shift_x, ri.y - shift_y),
                     };
-                    block.scan_cell::<GROW>(&me, head[row + cx], Image::new(sx, sy), found);
+                    block.scan_cell::<FALL, GROW>(&me, head[row + cx], Image::new(sx, sy), found);
                 }
             }
         }
@@ -325,7 +353,7 @@ impl Engine {
 
     /// The neighbour search's view of the engine now (see [`Block`]).
     #[inline(always)]
-    fn block<const GROW: bool>(&self) -> Block<'_> {
+    fn block<const FALL: bool, const GROW: bool>(&self) -> Block<'_> {
         Block {
             bodies: &self.bodies,
             species: &self.species,
@@ -335,6 +363,7 @@ impl Engine {
             } else {
                 (1.0, 0.0)
             },
+            g: if FALL { self.params.gravity } else { 0.0 },
         }
     }
 
@@ -344,8 +373,8 @@ impl Engine {
     /// (see [`crate::classes`]). `ri` is its position now.
     ///
     /// Never with growing discs, which share one grid (engine::growth).
-    fn scan_other_classes(&self, i: usize, ri: DVec2, found: &mut Found) {
-        let block = self.block::<false>();
+    fn scan_other_classes<const FALL: bool>(&self, i: usize, ri: DVec2, found: &mut Found) {
+        let block = self.block::<FALL, false>();
         let bi = &self.bodies[i];
         let radius = self.species[bi.species as usize].radius;
         let own_class = self.grids.class(bi.species);
@@ -373,7 +402,7 @@ impl Engine {
                         ri: DVec2::new(ri.x - sx as f64 * size.x, ri.y - sy as f64 * size.y),
                     };
                     let first = grid.head[cy as usize * nx + cx as usize];
-                    block.scan_cell::<false>(&me, first, Image::new(sx, sy), found);
+                    block.scan_cell::<FALL, false>(&me, first, Image::new(sx, sy), found);
                 }
             }
         }

@@ -123,6 +123,9 @@ impl Engine {
         image: Image,
     ) -> PairCollision {
         let now = self.clock;
+        // In a field, a resting disc hit by a falling one falls again first; two
+        // resting discs collide on their straight paths (engine::resting).
+        let on_floor = FALL && self.pair_on_floor(i, j);
         let shift = image.shift(self.sim_box.size);
         let dr = self.bodies[j].at(now) + shift - self.bodies[i].at(now);
         // The unnormalised contact vector goes to the collision rule (see
@@ -172,6 +175,10 @@ impl Engine {
         let virial = -dr.dot(res.impulse_i);
         self.bodies[i].set_velocity(res.vi, now);
         self.bodies[j].set_velocity(res.vj, now);
+        if on_floor {
+            self.leave_floor_if_moved(i);
+            self.leave_floor_if_moved(j);
+        }
         self.keep_origin_near([i, j]);
         self.bodies[i].count = self.bodies[i].count.wrapping_add(1);
         self.bodies[j].count = self.bodies[j].count.wrapping_add(1);
@@ -199,7 +206,7 @@ impl Engine {
             virial,
             impulse: res.impulse_i,
         };
-        if FALL {
+        if FALL && !on_floor {
             self.falling_pair(&mut ev, now);
         }
         ev
@@ -238,21 +245,32 @@ impl Engine {
         let path_v = self.bodies[i].v;
         let mut path_after = path_v;
         // In a field the path velocity's y is the true one plus g t (engine::gravity):
-        // the wall reverses the true normal velocity.
+        // the wall reverses the true normal velocity. (A disc resting on the floor
+        // meets only the side walls, k = 0, and its path is its true one.)
         let g = self.params.gravity;
+        let was_resting = FALL && self.bodies[i].resting();
         let lift = if k == 1 { g * now } else { 0.0 };
         let vk = path_v[k] - lift;
         // Applied as v_k + Δp/m, the arithmetic a reader of the log repeats.
-        let dp = if GROW {
+        let mut dp = if GROW {
             self.growing_wall_impulse(i, vk, m, face.high())
         } else {
             wall_impulse(vk, m, e)
         };
         path_after[k] = apply_wall_impulse(vk, m, dp);
-        if lift != 0.0 {
+        // A floor bounce whose apex rounds to the floor rests instead (15.9): the
+        // floor takes the whole vertical momentum (engine::resting).
+        let rests = FALL && k == 1 && !face.high() && self.rests_on_floor(i, path_after[k]);
+        if rests {
+            dp = -m * vk;
+            path_after[k] = 0.0;
+        } else if lift != 0.0 {
             path_after[k] += lift;
         }
         self.bodies[i].set_velocity(path_after, now);
+        if rests {
+            self.lay_to_rest(i);
+        }
         self.keep_origin_near([i]);
         self.keep_fall_short();
         self.bodies[i].count = self.bodies[i].count.wrapping_add(1);
@@ -260,13 +278,19 @@ impl Engine {
         let energy_lost = if GROW {
             // Growing: the wall gives energy (physics.md (17.6)).
             0.5 * m * (vk * vk - path_after[k] * path_after[k])
+        } else if rests {
+            0.5 * m * vk * vk
         } else {
             0.5 * m * (1.0 - e * e) * vk * vk
         };
         let (mut before, mut after) = (path_v, path_after);
         if g != 0.0 {
-            before.y -= g * now;
-            after.y -= g * now;
+            if !was_resting {
+                before.y -= g * now;
+            }
+            if !(was_resting || rests) {
+                after.y -= g * now;
+            }
         }
         self.stats.wall_collisions += 1;
         self.stats.wall_impulse[k][face.high() as usize] += impulse;

@@ -178,7 +178,7 @@ impl Engine {
                     // then sees the other discs' new paths.
                     for (k, dv) in kicks.iter().enumerate() {
                         let i = self.index_of[k] as usize;
-                        let v = self.bodies[i].v - lift + (*dv - mean);
+                        let v = self.true_velocity(&self.bodies[i]) + (*dv - mean);
                         r.stats.energy_added += self.replace_velocity(i, v, lift);
                     }
                     for i in 0..n {
@@ -210,6 +210,10 @@ impl Engine {
     /// `v + lift` in a field), keeping its position, and
     /// make its partners' predictions obsolete; returns the kinetic energy change.
     fn replace_velocity(&mut self, i: usize, v: DVec2, lift: DVec2) -> f64 {
+        if self.bodies[i].resting() {
+            // Kicked off the floor: a falling path again (engine::resting).
+            self.lift_off(i);
+        }
         let now = self.clock;
         let m = self.species[self.bodies[i].species as usize].mass;
         let b = &mut self.bodies[i];
