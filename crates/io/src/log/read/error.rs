@@ -119,10 +119,11 @@ pub enum LogEnd {
         detail: String,
     },
     /// Every message was read (each chunk's CRC holds, and the `carom.summary`
-    /// record, written after the last chunk, was reached), but what follows the
-    /// messages is damaged: the data-section CRC, the index (MCAP summary
-    /// section), the footer or the end magic. A warning, not an error: the index
-    /// only repeats what the chunks hold, and readers read the chunks in order.
+    /// record, written after the last chunk, was reached, with the data section's
+    /// CRC holding), but what follows the data section is damaged: the index (MCAP
+    /// summary section), the footer or the end magic. A warning, not an error: the
+    /// index only repeats what the chunks hold, and readers read the chunks in
+    /// order.
     Damaged {
         /// What is damaged.
         detail: String,

@@ -9,9 +9,9 @@
 //! then end normally and [`LogReader::end`] says [`LogEnd::Truncated`] (with
 //! [`ReadOptions::strict`] the cut is an error instead). Damage inside a file that
 //! was finished properly is a [`ReadError::Corrupt`] error, returned after
-//! everything before the damage, unless it comes after the last chunk (the index,
-//! the footer, the data-section CRC): then every message has been read and the end
-//! is [`LogEnd::Damaged`], a warning. [`salvage`] reads around damaged chunks
+//! everything before the damage, unless it comes after the data section (the
+//! index, the footer), whose CRC held: then every message has been read and the
+//! end is [`LogEnd::Damaged`], a warning. [`salvage`] reads around damaged chunks
 //! (for `carom repair`). Nothing here panics on bad input.
 //!
 //! ```no_run
@@ -341,9 +341,9 @@ impl<R: Read + Seek> LogReader<R> {
 
     /// Turn a low-level failure into the end of reading. Damage after the last
     /// chunk (once the `carom.summary` record, written after it, or the summary
-    /// section has been reached) loses no message: the end is
-    /// [`LogEnd::Damaged`], a warning. (A log without that record, as a repaired
-    /// cut log, cannot tell and fails as before.)
+    /// section has been reached) loses no message, unless the data section's CRC
+    /// failed: the end is [`LogEnd::Damaged`], a warning. (A log without that
+    /// record, as a repaired cut log, cannot tell and fails as before.)
     fn fail(&mut self, detail: String) -> Result<Found, ReadError> {
         // (A file that simply ends there was cut while being finished: truncated.)
         let cut = self.cut && !self.has_end_magic;
