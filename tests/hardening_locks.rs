@@ -4,6 +4,9 @@
 //! it was. (2) `carom run --force` over an older log keeps that log until the new
 //! run has started: a run that fails at its start (the engine refuses the
 //! configuration, or the process aborts for want of memory) leaves it as it was.
+//! The figures of `analyze --plot` and `collect --plot` take the same lock, and
+//! `resume --out OTHER --force` keeps an older OTHER until the copied prefix of
+//! the new log is on the disk.
 
 mod cli_common;
 use cli_common::*;
@@ -13,6 +16,7 @@ use std::process::{Child, Command, Output, Stdio};
 use std::time::{Duration, Instant};
 
 use carom::io::LogReader;
+use carom::run::{resume, Control, ResumeOptions, ResumePass, RunError};
 
 /// A run of 300 discs that lasts until it is interrupted, logging no collisions
 /// (a small log), into `out`.
@@ -313,4 +317,103 @@ fn a_force_run_killed_after_its_start_leaves_its_own_log_resumable_in_place() {
     let until = format!("{}", i["last_checkpoint_time"].as_f64().unwrap() + 0.5);
     ok(&carom(&dir, &["resume", "s.mcap", "--until", &until, "-q"]));
     assert_eq!(discs(&dir, "s.mcap"), (300, true));
+}
+
+#[test]
+fn figures_onto_files_a_run_is_writing_are_refused() {
+    let dir = scratch("figures");
+    small_log(&dir, "small.mcap");
+    std::fs::create_dir_all(dir.join("figs")).unwrap();
+    // `analyze --plot`: its first figure is a run's log.
+    let run = long_run(&dir, "figs/speed_species0.png");
+    let pid = run.id();
+    wait_started(&dir, "figs/speed_species0.png");
+    let args = ["analyze", "small.mcap", "--plot", "figs", "-q"];
+    refused(&carom(&dir, &args), "speed_species0.png", pid, "analyze");
+    interrupt(run);
+    assert_eq!(discs(&dir, "figs/speed_species0.png"), (300, true));
+    // `collect --plot`: the equation of state of a two-point sweep.
+    std::fs::write(
+        dir.join("plan.json"),
+        r#"{"base": {"species": [{"count": 64}], "stop": {"duration": 2}},
+            "vary": {"box.packing_fraction": [0.2, 0.3]}}"#,
+    )
+    .unwrap();
+    ok(&carom(&dir, &["sweep", "plan.json", "--out", "out", "-q"]));
+    let run = long_run(&dir, "figs/equation_of_state.svg");
+    let pid = run.id();
+    wait_started(&dir, "figs/equation_of_state.svg");
+    let args = ["collect", "out", "--plot", "figs", "--no-structure", "-q"];
+    refused(&carom(&dir, &args), "equation_of_state.svg", pid, "collect");
+    interrupt(run);
+    assert_eq!(discs(&dir, "figs/equation_of_state.svg"), (300, true));
+    // Once the runs have ended, the figures are written over them.
+    ok(&carom(&dir, &args));
+    let svg = std::fs::read_to_string(dir.join("figs/equation_of_state.svg")).unwrap();
+    assert!(svg.starts_with("<svg"), "{}", &svg[..40.min(svg.len())]);
+}
+
+#[test]
+fn a_resume_over_an_older_log_keeps_it_until_the_copy_is_on_the_disk() {
+    let dir = scratch("resume-over");
+    ok(&carom(
+        &dir,
+        &[
+            "run",
+            "-q",
+            "--out",
+            "in.mcap",
+            "--set",
+            "species.0.count=400",
+            "--set",
+            "stop.duration=4",
+            "--set",
+            "log.checkpoint_interval=1",
+        ],
+    ));
+    small_log(&dir, "old.mcap");
+    let (input, old) = (dir.join("in.mcap"), dir.join("old.mcap"));
+    let before = std::fs::read(&old).unwrap();
+    let later = ResumeOptions {
+        stop: Some(carom::io::Stop::Time(6.0)),
+        ..ResumeOptions::default()
+    };
+    // No room for the copy: refused, the older log as it was, nothing beside it.
+    let mut no_room = |_: &Path| -> std::io::Result<u64> { Ok(1000) };
+    let e = resume(
+        &input,
+        &old,
+        &later,
+        Control {
+            free_space: Some(&mut no_room),
+            ..Control::default()
+        },
+    )
+    .unwrap_err();
+    assert!(matches!(e, RunError::NoRoom { .. }), "{e:?}");
+    assert_eq!(std::fs::read(&old).unwrap(), before);
+    assert!(!dir.join("old.mcap.run-tmp").exists());
+    // While the prefix is copied the older log is untouched; the result is the
+    // resume a fresh file gets, message for message.
+    let mut looked = 0;
+    let mut watch = |pass: ResumePass, _| {
+        if pass == ResumePass::Copying {
+            looked += 1;
+            assert_eq!(std::fs::read(&old).unwrap(), before);
+        }
+    };
+    resume(
+        &input,
+        &old,
+        &later,
+        Control {
+            reading: Some(&mut watch),
+            ..Control::default()
+        },
+    )
+    .unwrap();
+    assert!(looked > 0);
+    resume(&input, &dir.join("fresh.mcap"), &later, Control::default()).unwrap();
+    assert!(messages(&old) == messages(&dir.join("fresh.mcap")));
+    assert!(!dir.join("old.mcap.run-tmp").exists());
 }

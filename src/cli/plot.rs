@@ -51,11 +51,14 @@ fn plot_err<E: std::error::Error + Send + Sync + 'static>(
     CliError::Plot(format!("cannot write {}: {reason}", path.display()))
 }
 
-/// Draw one figure with `draw` into `dir/name.png` and `dir/name.svg`. A failed
-/// file is removed once its backend is dropped (dropping presents it again).
+/// Draw one figure with `draw` into `dir/name.png` and `dir/name.svg`, each
+/// under the lock a run takes on its log (a file another process writes is
+/// refused and left as it is). A failed file is removed once its backend is
+/// dropped (dropping presents it again).
 macro_rules! both {
     ($dir:expr, $name:expr, $draw:expr) => {{
         let png = $dir.join(format!("{}.png", $name));
+        let lock = super::render::OutLock::take(&png)?;
         let drawn = {
             let root = BitMapBackend::new(&png, SIZE).into_drawing_area();
             root.fill(&WHITE)
@@ -64,7 +67,9 @@ macro_rules! both {
                 .map_err(|e| plot_err(&png, e))
         };
         drawn.inspect_err(|_| remove(&png))?;
+        lock.keep();
         let svg = $dir.join(format!("{}.svg", $name));
+        let lock = super::render::OutLock::take(&svg)?;
         let drawn = {
             let root = SVGBackend::new(&svg, SIZE).into_drawing_area();
             root.fill(&WHITE)
@@ -73,6 +78,7 @@ macro_rules! both {
                 .map_err(|e| plot_err(&svg, e))
         };
         drawn.inspect_err(|_| remove(&svg))?;
+        lock.keep();
     }};
 }
 

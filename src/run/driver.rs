@@ -360,6 +360,14 @@ impl<'a> Driver<'a> {
 
     /// The event loop; ends the log whatever happens, except when writing it fails:
     /// that is reported as [`RunError::LogCut`].
+    /// Put the log on the disk and rename it over the older log it replaces
+    /// (`replace.rs`).
+    pub(super) fn replace(&mut self, r: Replace) -> Result<(), RunError> {
+        self.writer.sync()?;
+        self.path = r.apply()?;
+        Ok(())
+    }
+
     pub(super) fn run_loop(mut self, log_path: &Path) -> Result<RunSummary, RunError> {
         self.run_events(log_path).map_err(|e| match e {
             RunError::Write(source) => RunError::LogCut {
@@ -434,7 +442,7 @@ impl<'a> Driver<'a> {
                         self.schedule_next(Observation::Checkpoint, k, interval)?;
                         self.write_checkpoint()?;
                         if let Some(r) = self.replace_at_start.take() {
-                            self.path = r.apply()?;
+                            self.replace(r)?;
                         }
                     }
                     Some(Observation::Scene(k)) => {

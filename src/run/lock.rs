@@ -1,6 +1,6 @@
 //! One writer per file: an exclusive advisory lock (`flock`) on the log a run
 //! writes, on the log a resume reads, on a resume's `--out`, and on every file a
-//! command writes (`repair --out`, `export --out`, `render --out`), held until
+//! command writes (`repair --out`, `export --out`, `render --out`, figures), held until
 //! the command ends. A second writer is refused at once, before it truncates or
 //! replaces anything, and is told which process holds the lock (on Linux, from
 //! `/proc/locks`; elsewhere only that one does). The lock is advisory: it keeps

@@ -3,8 +3,9 @@
 //!
 //! The new log is written beside the old one, as `NAME.run-tmp`, and renamed over
 //! it once the run has started: once its first checkpoint (written at the start
-//! of the run) has been handed to the writer, so that the new log can be resumed
-//! on its own. From then on NAME is the new log, as for a fresh run (a crash
+//! of the run) is on the disk (the writer syncs it), so that the new log can be
+//! resumed on its own. `carom resume --out NAME` over an older NAME does the
+//! same once the copied prefix, which ends in a checkpoint, is on the disk. From then on NAME is the new log, as for a fresh run (a crash
 //! leaves it resumable in place). A run that fails before then (an engine that
 //! refuses the configuration, a write error, an abort for want of memory) leaves
 //! the old log as it was; its temporary file is removed, or, after a kill or an
@@ -40,16 +41,22 @@ pub(super) struct Replace {
 }
 
 impl Replace {
-    /// Rename the new log over the older one; returns the log's path now.
+    /// Rename the new log (whose writer has synced it to its disk) over the
+    /// older one, and sync the directory, so that after a crash the name holds
+    /// one of the two logs whole; returns the log's path now.
     pub(super) fn apply(self) -> Result<PathBuf, RunError> {
-        match std::fs::rename(&self.from, &self.to) {
-            Ok(()) => Ok(self.to),
-            Err(source) => Err(RunError::Rename {
+        if let Err(source) = std::fs::rename(&self.from, &self.to) {
+            return Err(RunError::Rename {
                 from: self.from,
                 to: self.to,
                 source,
-            }),
+            });
         }
+        // Best effort: not every file system can sync a directory.
+        if let Some(dir) = self.to.parent().and_then(|d| std::fs::File::open(d).ok()) {
+            let _ = dir.sync_all();
+        }
+        Ok(self.to)
     }
 }
 

@@ -7,7 +7,8 @@
 //! exactly the messages the uninterrupted run would have written. Messages after
 //! the last checkpoint (up to a crash) are dropped and written again, identically.
 //! Resuming in place writes beside the input and renames over it once finished,
-//! so a crash during the resume leaves the input intact.
+//! so a crash during the resume leaves the input intact; resuming over another,
+//! older log replaces it once the copied prefix is on the disk (`replace.rs`).
 
 use std::path::Path;
 
@@ -23,6 +24,7 @@ use super::disk::{finish_reserve, free_bytes};
 use super::driver::Driver;
 use super::lock::lock_log;
 use super::observation::Observation;
+use super::replace::Output;
 use super::watchdog::check_reachable;
 use super::{Control, ResumeOptions, ResumePass, RunError, RunSummary};
 
@@ -101,22 +103,26 @@ pub fn resume(
     meta.resumed_at = Some(resumed_at);
     meta.stop = stop;
     let in_place = same_file(input, out);
-    let target = if in_place {
-        let mut name = out.file_name().unwrap_or_default().to_os_string();
-        name.push(".resume-tmp");
-        out.with_file_name(name)
-    } else {
-        out.to_path_buf()
-    };
-    let _out_lock = if in_place {
+    // In place: NAME.resume-tmp, renamed over the input once finished. Over
+    // another, older log: NAME.run-tmp, renamed over it once the copy, which ends
+    // in a checkpoint, is on the disk (replace.rs); a fresh file: in place.
+    let output = if in_place {
         None
     } else {
-        Some(lock_log(out, true)?)
+        Some(Output::lock(out)?)
+    };
+    let target = match &output {
+        Some(o) => o.writing().to_path_buf(),
+        None => {
+            let mut name = out.file_name().unwrap_or_default().to_os_string();
+            name.push(".resume-tmp");
+            out.with_file_name(name)
+        }
     };
     // A failed resume in place leaves no temporary file to fill the disk: the
     // input is intact and is what to resume again.
     let mut temp = TempFile(in_place.then(|| target.clone()));
-    let mut writer = LogWriter::create(
+    let writer = LogWriter::create(
         &target,
         WriterOptions {
             collision_normals,
@@ -128,7 +134,13 @@ pub fn resume(
             logged_collisions: driver.logged_collisions,
             next_sequence: driver.next_sequence,
         },
-    )?;
+    );
+    let writer = match (writer, output) {
+        (Ok(w), output) => (w, output),
+        (Err(e), Some(o)) => return Err(o.abandon(e.into())),
+        (Err(e), None) => return Err(e.into()),
+    };
+    let (mut writer, output) = writer;
     // The copy takes about as much room as the input up to its last checkpoint,
     // most of the file, and finishing the log after it its reserve: refuse at once
     // when that is not free, rather than fail part way (a log stopped because its
@@ -141,16 +153,17 @@ pub fn resume(
         .filter(|&free| free < need)
     {
         // Nothing is left behind: the temporary file of a resume in place goes
-        // with `temp`, a new --out file here.
+        // with `temp`, the new file or temporary file with `output`.
         drop(writer);
-        if !in_place {
-            let _ = std::fs::remove_file(out);
-        }
-        return Err(RunError::NoRoom {
+        let e = RunError::NoRoom {
             input: input.to_path_buf(),
             out: out.to_path_buf(),
             need,
             free,
+        };
+        return Err(match output {
+            Some(o) => o.abandon(e),
+            None => e,
         });
     }
     // Copy the input's messages up to and including the checkpoint.
@@ -178,6 +191,9 @@ pub fn resume(
     drop(reader);
     writer.flush()?;
     let mut d = Driver::new(engine, writer, meta.log.clone(), stop, control);
+    if let Some(r) = output.as_ref().and_then(|o| o.replace_at_start()) {
+        d.replace(r)?;
+    }
     d.run_start_time = driver.run_start_time;
     d.last_checkpoint_at = Some((resumed_at, d.collisions));
     d.last_thermo_at = last_thermo_at;
@@ -198,7 +214,8 @@ pub fn resume(
     }
     // A resume in place that cannot write its log loses its continuation (the
     // temporary file goes with `temp`); the input is as it was.
-    let summary = d.run_loop(&target).map_err(|e| match e {
+    let log_path = if in_place { &target } else { out };
+    let summary = d.run_loop(log_path).map_err(|e| match e {
         RunError::LogCut { source, time, .. } if in_place => RunError::ResumeCut {
             source,
             time,

@@ -354,6 +354,27 @@ impl LogWriter {
         self.send(Cmd::Flush)
     }
 
+    /// Flush and wait until everything written so far is on the disk (`fsync`):
+    /// a crash after this returns loses none of it. Blocks the caller, so it is
+    /// for rare moments, as before a new log replaces an older one.
+    pub fn sync(&mut self) -> Result<(), WriteError> {
+        self.write_batch()?;
+        match &mut self.backend {
+            Backend::Inline(sink) => {
+                let synced = sink.sync();
+                self.stop_on_error(synced)
+            }
+            Backend::Thread { tx, .. } => {
+                let (done, answer) = std::sync::mpsc::sync_channel(1);
+                if tx.send(Cmd::Sync(done)).is_err() || answer.recv().is_err() {
+                    return Err(self.thread_failure());
+                }
+                Ok(())
+            }
+            Backend::Done => Err(WriteError::Finished(self.path.clone())),
+        }
+    }
+
     /// With the inline backend, flush if `flush_every` of wall time has passed since
     /// the last flush (the writer thread does this by itself).
     #[inline]

@@ -51,6 +51,9 @@ pub(super) enum Cmd {
     },
     Metadata(Metadata),
     Flush,
+    /// Flush, then have the operating system write the file to its disk; the
+    /// answer goes back once it has.
+    Sync(SyncSender<()>),
     Finish,
 }
 
@@ -58,6 +61,8 @@ pub(super) enum Cmd {
 pub(super) struct Sink {
     path: PathBuf,
     mcap: mcap::Writer<BufWriter<File>>,
+    /// A second handle on the file, to make its data durable (`Cmd::Sync`).
+    durable: File,
     /// MCAP channel id of each channel, once defined.
     channel_ids: [Option<u16>; N_CHANNELS],
     /// `Some(normals)` when `/collisions` holds compact records.
@@ -80,6 +85,10 @@ impl Sink {
         run_metadata: &BTreeMap<String, String>,
     ) -> Result<Sink, WriteError> {
         let file = File::create(path).map_err(|source| WriteError::Io {
+            path: path.to_path_buf(),
+            source,
+        })?;
+        let durable = file.try_clone().map_err(|source| WriteError::Io {
             path: path.to_path_buf(),
             source,
         })?;
@@ -117,6 +126,7 @@ impl Sink {
         let mut sink = Sink {
             path: path.to_path_buf(),
             mcap,
+            durable,
             channel_ids: [None; N_CHANNELS],
             compact,
             cdr: CdrWriter::new(),
@@ -224,12 +234,25 @@ impl Sink {
                 self.dirty = true;
             }
             Cmd::Flush => self.flush()?,
+            Cmd::Sync(done) => {
+                self.sync()?;
+                let _ = done.send(());
+            }
             Cmd::Finish => {}
         }
         if self.dirty && self.last_flush.elapsed() >= self.flush_every {
             self.flush()?;
         }
         Ok(())
+    }
+
+    /// Flush, and wait until the file's data are on its disk.
+    pub(super) fn sync(&mut self) -> Result<(), WriteError> {
+        self.flush()?;
+        self.durable.sync_data().map_err(|source| WriteError::Io {
+            path: self.path.clone(),
+            source,
+        })
     }
 
     pub(super) fn flush(&mut self) -> Result<(), WriteError> {
