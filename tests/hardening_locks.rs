@@ -376,7 +376,6 @@ fn a_resume_over_an_older_log_keeps_it_until_the_copy_is_on_the_disk() {
     let before = std::fs::read(&old).unwrap();
     let later = ResumeOptions {
         stop: Some(carom::io::Stop::Time(6.0)),
-        ..ResumeOptions::default()
     };
     // No room for the copy: refused, the older log as it was, nothing beside it.
     let mut no_room = |_: &Path| -> std::io::Result<u64> { Ok(1000) };
