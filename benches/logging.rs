@@ -23,7 +23,7 @@
 //! Each logged case prints the bytes per logged collision of the files it wrote.
 //! Run: `cargo bench --bench logging -- --warm-up-time 1 --measurement-time 5`.
 
-use carom::events::{Engine, EngineParams, Event, SystemSpec};
+use carom::engine::{Engine, EngineParams, Event, SystemSpec};
 use carom::io::{Compression, LogOptions, LogWriter, RunSpec, Stop, WriterOptions, WriterPosition};
 use criterion::{criterion_group, Criterion, Throughput};
 use std::collections::BTreeMap;

@@ -23,7 +23,7 @@
 
 mod common;
 
-use carom::events::Engine;
+use carom::engine::Engine;
 use common::equilibrated_fluid as engine;
 use std::time::Instant;
 

@@ -24,7 +24,7 @@
 
 use std::time::Instant;
 
-use carom::events::{Engine, EngineParams, Event, InvariantChecker, SystemSpec};
+use carom::engine::{Engine, EngineParams, Event, InvariantChecker, SystemSpec};
 
 fn main() {
     let args: Vec<String> = std::env::args().collect();

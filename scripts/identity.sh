@@ -2,7 +2,7 @@
 # Fingerprints of ten runs, for checking that a change leaves trajectories and
 # analyses bit-identical (issue 52's rule): per-channel message hashes of each
 # log (examples/message_hashes.rs), a hash of `carom analyze --json` of each, and
-# the final-state hash of `examples/profile 10000 0.5 3e5` (carom-events).
+# the final-state hash of `examples/profile 10000 0.5 3e5` (carom-engine).
 #   bash scripts/identity.sh OUT_DIR      # then: diff OLD/identity.txt NEW/identity.txt
 set -euo pipefail
 out=${1:?usage: identity.sh OUT_DIR}
@@ -11,8 +11,7 @@ mkdir -p "$out"
 out=$(cd "$out" && pwd)
 cd "$root"
 cargo build --release -q --bin carom --example message_hashes
-cargo build --release -q -p carom-events --example profile 2>/dev/null \
-  || cargo build --release -q --example profile
+cargo build --release -q -p carom-engine --example profile
 bin=$root/target/release/carom
 d=$root/data
 runs=(

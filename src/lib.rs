@@ -4,7 +4,7 @@
 //! command and re-exports the workspace's public API:
 //!
 //! * [`core`] (`carom-core`) — discs, boxes, exact kinematics and collision rules;
-//! * [`events`] (`carom-events`) — the event queue, neighbour search and the event loop;
+//! * [`engine`] (`carom-engine`) — the event queue, neighbour search and the event loop;
 //! * [`io`] (`carom-io`) — configuration, MCAP logging and reading.
 //!
 //! Its own modules: `run` (runs and resumes), `analysis` (reports from logs),
@@ -19,5 +19,5 @@ pub mod run;
 pub mod sweep;
 
 pub use carom_core as core;
-pub use carom_events as events;
+pub use carom_engine as engine;
 pub use carom_io as io;

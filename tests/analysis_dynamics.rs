@@ -7,7 +7,7 @@ mod analysis_common;
 
 use analysis_common::fluid;
 use carom::analysis::{AnalysisOptions, Analyzer, RunDescription};
-use carom::events::{Engine, EngineParams, Event, Velocities};
+use carom::engine::{Engine, EngineParams, Event, Velocities};
 
 #[test]
 fn a_dilute_gas_is_ballistic_at_short_lags() {
@@ -114,7 +114,7 @@ fn unwrapped(i: usize, t: f64) -> (f64, f64) {
 /// = `gap`).
 fn free_flight_log(name: &str, gap: f64) -> std::path::PathBuf {
     use carom::core::{DVec2, SimBox, Species};
-    use carom::events::State;
+    use carom::engine::State;
     use carom::io::{
         LogOptions, LogWriter, RunFacts, RunMetadata, Stop, StopReason, SummaryMetadata, Thermo,
         WriterOptions, WriterPosition,

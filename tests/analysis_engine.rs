@@ -9,7 +9,7 @@ use analysis_common::{analyse, analyse_state, fluid};
 use carom::analysis::AnalysisOptions;
 use carom::core::rates::expected_mean_free_time;
 use carom::core::{SimBox, Species};
-use carom::events::{box_size_for, Engine, EngineParams, Placement, SystemSpec, Velocities};
+use carom::engine::{box_size_for, Engine, EngineParams, Placement, SystemSpec, Velocities};
 use stats_common::{assert_within, dilute_wall_z};
 
 #[test]

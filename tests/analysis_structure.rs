@@ -8,7 +8,7 @@ mod analysis_common;
 
 use analysis_common::{analyse, fluid};
 use carom::analysis::{AnalysisOptions, Report};
-use carom::events::{EngineParams, Velocities};
+use carom::engine::{EngineParams, Velocities};
 
 fn run(n: usize, eta: f64, seed: u64, t_end: f64, dt: f64, equilibrate: f64) -> Report {
     let opts = AnalysisOptions {

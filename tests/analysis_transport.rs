@@ -7,7 +7,7 @@ mod analysis_common;
 
 use analysis_common::{analyse, fluid};
 use carom::analysis::{AnalysisOptions, Estimate};
-use carom::events::{EngineParams, Velocities};
+use carom::engine::{EngineParams, Velocities};
 
 /// |a − b| within k standard errors of the difference.
 fn agree(what: &str, d: &Estimate, k: f64) {

@@ -10,7 +10,7 @@ mod mcap_common;
 
 use carom::analysis::{analyze_log, AnalysisOptions, ReadObserver};
 use carom::core::{Boundary, Restitution};
-use carom::events::EngineParams;
+use carom::engine::EngineParams;
 use carom::io::{
     CollisionDetail, CollisionRecord, LogOptions, LogReader, ReadProgress, Stop,
     COMPACT_COLLISIONS_CHANNEL,
@@ -31,7 +31,7 @@ fn log_opts(detail: CollisionDetail) -> LogOptions {
 }
 
 /// The three runs: (name, system, dynamics).
-fn cases() -> Vec<(&'static str, carom::events::SystemSpec, EngineParams)> {
+fn cases() -> Vec<(&'static str, carom::engine::SystemSpec, EngineParams)> {
     let mut walled = system(120, 0.35, true, true, 5);
     walled.sim_box.boundary[1] = Boundary::Walls { restitution: 0.9 };
     vec![
@@ -62,7 +62,7 @@ fn cases() -> Vec<(&'static str, carom::events::SystemSpec, EngineParams)> {
 
 fn write(
     name: &str,
-    sys: &carom::events::SystemSpec,
+    sys: &carom::engine::SystemSpec,
     params: EngineParams,
     log: LogOptions,
 ) -> std::path::PathBuf {

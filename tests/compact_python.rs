@@ -12,7 +12,7 @@
 mod mcap_common;
 
 use carom::core::{Boundary, Restitution, Species};
-use carom::events::{EngineParams, SystemSpec};
+use carom::engine::{EngineParams, SystemSpec};
 use carom::io::{LogOptions, Stop};
 use carom::run::{run, Control};
 use mcap_common::*;

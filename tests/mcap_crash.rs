@@ -10,7 +10,7 @@
 
 mod mcap_common;
 
-use carom::events::EngineParams;
+use carom::engine::EngineParams;
 use carom::io::CollisionRecord;
 use carom::io::StopReason;
 use carom::io::CH_CHECKPOINT;
@@ -39,7 +39,7 @@ fn log_opts() -> LogOptions {
     }
 }
 
-fn crash_system() -> carom::events::SystemSpec {
+fn crash_system() -> carom::engine::SystemSpec {
     system(400, 0.5, true, false, 77)
 }
 

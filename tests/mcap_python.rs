@@ -18,7 +18,7 @@ mod log_view_common;
 mod mcap_common;
 
 use carom::core::Restitution;
-use carom::events::EngineParams;
+use carom::engine::EngineParams;
 use carom::io::{CollisionDetail, Compression, LogOptions, Stop};
 use carom::io::{CHANNELS, CH_COLLISIONS, COMPACT_COLLISIONS_CHANNEL, TOPICS};
 use carom::run::{run, Control};

@@ -11,7 +11,7 @@
 
 mod mcap_common;
 
-use carom::events::{Engine, EngineParams};
+use carom::engine::{Engine, EngineParams};
 use carom::io::{Compression, LogEnd, LogReader, LogWriter, WriterOptions, WriterPosition};
 use mcap_common::*;
 use serde_json::Value;

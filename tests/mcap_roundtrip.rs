@@ -5,7 +5,7 @@
 
 mod mcap_common;
 
-use carom::events::{Engine, EngineParams, Event, SystemSpec};
+use carom::engine::{Engine, EngineParams, Event, SystemSpec};
 use carom::io::StopReason;
 use carom::io::{
     scan, scan_indexed, scan_observed, LogEnd, LogEvent, LogMessage, LogReader, ReadProgress,
@@ -358,7 +358,7 @@ fn docs_show_every_schema_verbatim() {
 
 #[test]
 fn relaxed_placement_reports_progress_and_the_stop_flag_ends_it_before_the_log() {
-    use carom::events::{Placement, PlacementProgress};
+    use carom::engine::{Placement, PlacementProgress};
     use carom::run::RunError;
     let system = SystemSpec {
         placement: Placement::Relaxed,

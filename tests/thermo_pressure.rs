@@ -25,7 +25,7 @@ mod mcap_common;
 mod stats_common;
 
 use carom::core::{Boundary, Species};
-use carom::events::SystemSpec;
+use carom::engine::SystemSpec;
 use carom::io::{
     CollisionDetail, CollisionRecord, LogMessage, LogOptions, LogReader, Stop, StopReason, Thermo,
 };
@@ -218,7 +218,7 @@ fn thermo_pressure_matches_the_equation_of_state() {
     assert!((b.z.unwrap() - z_run).abs() < 1e-12 * z_run, "{:?}", b.z);
     let p = b.pressure.unwrap();
     let area = {
-        let snap = carom::events::box_size_for(&[carom::core::Species::reference(n)], 0.5, 1.0);
+        let snap = carom::engine::box_size_for(&[carom::core::Species::reference(n)], 0.5, 1.0);
         snap.x * snap.y
     };
     assert!((p * area / (nf * b.temperature) - b.z.unwrap()).abs() < 1e-9);

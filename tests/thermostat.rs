@@ -10,7 +10,7 @@ use carom::analysis::{
     driven_a2, driven_steady_temperature, enskog_rate_coefficient, AnalysisOptions, Report,
 };
 use carom::core::{Restitution, Species};
-use carom::events::{EngineParams, SystemSpec, Thermostat, ThermostatStats, Velocities};
+use carom::engine::{EngineParams, SystemSpec, Thermostat, ThermostatStats, Velocities};
 
 /// Run `spec` with `params` and `thermostat` (seeded with the spec's seed) to
 /// `t_end`, a snapshot every `dt`, and analyse it from `equilibrate` on.

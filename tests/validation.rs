@@ -72,7 +72,7 @@ use carom::analysis::stats::{
     chi_square_histogram, ks_test, mb_speed_test, Histogram, MaxwellBoltzmann2d,
 };
 use carom::core::{Axis, Boundary, DVec2, Restitution, Species, WallSide};
-use carom::events::{Engine, EngineError, EngineParams, Event, State, SystemSpec, Velocities};
+use carom::engine::{Engine, EngineError, EngineParams, Event, State, SystemSpec, Velocities};
 use stats_common::{dilute_wall_z, est, Est};
 use validation_common::{fmt_se, Check, Fragment, Row};
 

@@ -27,7 +27,7 @@ use carom::analysis::{
 };
 use carom::core::observables::{degrees_of_freedom, packing_fraction, temperature, virial_z};
 use carom::core::{Boundary, SimBox, Species};
-use carom::events::{
+use carom::engine::{
     box_size_for, Engine, EngineParams, Growth, GrowthEnd, Placement, State, SystemSpec, Velocities,
 };
 

@@ -22,7 +22,7 @@ use carom::core::gravity::barometric_beta;
 use carom::core::observables::degrees_of_freedom;
 use carom::core::rates::henderson_contact_value;
 use carom::core::{Boundary, DVec2, SimBox, Species};
-use carom::events::{Engine, EngineParams, Placement, State, SystemSpec, Velocities};
+use carom::engine::{Engine, EngineParams, Placement, State, SystemSpec, Velocities};
 
 /// A column of `n` discs (σ = 1, m = 1) in an `lx` × `ly` box, periodic x, walls
 /// y, in the field `g`: run for `settle`, brought back to kT = 1, twice, then run

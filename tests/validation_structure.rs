@@ -27,7 +27,7 @@ use std::time::Instant;
 use carom::analysis::kolafa_rottner;
 use carom::analysis::{AnalysisOptions, Analyzer, Report, RunDescription};
 use carom::core::{Boundary, SimBox, Species};
-use carom::events::{box_size_for, Engine, EngineParams, SystemSpec};
+use carom::engine::{box_size_for, Engine, EngineParams, SystemSpec};
 use validation_common::{fmt_se, Check, Fragment, Row};
 
 /// A run's analysis and what it cost.

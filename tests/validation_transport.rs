@@ -26,7 +26,7 @@ mod validation_common;
 use std::time::Instant;
 
 use carom::analysis::{AnalysisOptions, Analyzer, Report, RunDescription};
-use carom::events::{Engine, EngineParams, SystemSpec};
+use carom::engine::{Engine, EngineParams, SystemSpec};
 use validation_common::{fmt_se, Check, Fragment, Row};
 
 /// A run's analysis and what it cost.

@@ -17,7 +17,7 @@ macro_rules! bench_main {
     };
 }
 
-use carom::events::{Engine, EngineParams, SystemSpec};
+use carom::engine::{Engine, EngineParams, SystemSpec};
 use criterion::measurement::WallTime;
 use criterion::BenchmarkGroup;
 use std::time::Instant;
@@ -41,7 +41,7 @@ pub fn equilibrated_fluid(n: usize, eta: f64) -> Engine {
 #[allow(dead_code)] // each bench binary uses only some of these systems
 pub fn equilibrated_mixture(small: usize, large: usize, ratio: f64, eta: f64) -> Engine {
     use carom::core::{Boundary, Species};
-    use carom::events::Placement;
+    use carom::engine::Placement;
     let species = vec![Species::reference(small), Species::scaled(large, ratio)];
     let mut spec = SystemSpec::square_box(species, eta, [Boundary::Periodic; 2], 42);
     spec.placement = Placement::Relaxed;

@@ -14,7 +14,7 @@ use std::path::Path;
 
 use carom_core::observables::packing_fraction;
 use carom_core::{SimBox, Species};
-use carom_events::Growth;
+use carom_engine::Growth;
 use carom_io::{GrowthEvent, GrowthPhase, LogMessage, LogReader};
 use serde::Serialize;
 

@@ -211,7 +211,7 @@ pub(super) fn describe(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use carom_events::EngineParams;
+    use carom_engine::EngineParams;
     use carom_io::{LogEnd, LogOptions, RunFacts, RunMetadata, Stop};
 
     /// A log's scan with the stored configuration `config` and the given facts.

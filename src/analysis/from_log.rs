@@ -312,7 +312,7 @@ mod tests {
     //! values worked from the events written.
     use super::*;
     use carom_core::{Axis, SimBox, Species, WallSide};
-    use carom_events::{EngineParams, PairCollision, State, WallCollision};
+    use carom_engine::{EngineParams, PairCollision, State, WallCollision};
     use carom_io::{
         CollisionDetail, LogOptions, LogWriter, RunFacts, RunMetadata, Stop, StopReason,
         SummaryMetadata, Thermo, WriterOptions, WriterPosition,

@@ -13,7 +13,7 @@
 
 use carom_core::rates::henderson_contact_value;
 use carom_core::{Restitution, Species};
-use carom_events::Thermostat;
+use carom_engine::Thermostat;
 use serde::Serialize;
 
 use super::report::Report;

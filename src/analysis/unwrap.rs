@@ -125,7 +125,7 @@ impl Unwrapper {
 mod tests {
     use super::*;
     use carom_core::Boundary;
-    use carom_events::{Engine, EngineParams, Event, SystemSpec};
+    use carom_engine::{Engine, EngineParams, Event, SystemSpec};
 
     /// One disc of mass 2 at x = 9.5 moving at +0.3 in a 10 × 4 box periodic in x,
     /// walled in y, seen at t = 0 and t = 2: it crossed x = 10 once and is at

@@ -11,7 +11,7 @@ use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::OnceLock;
 use std::time::{Duration, Instant};
 
-use carom::events::{Placement, PlacementProgress};
+use carom::engine::{Placement, PlacementProgress};
 use carom::io::{load_config, ConfigError, ReadProgress, Stop, StopReason};
 use carom::run::{Control, Progress, ResumeOptions, ResumePass, RunError, RunSummary};
 use indicatif::{DecimalBytes, ProgressBar, ProgressStyle};

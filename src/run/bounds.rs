@@ -10,9 +10,9 @@
 //! velocity rescales of growing discs min(T, time left to the target)/Δt_r
 //! (§17), periods of the vibrating floor f T (§18). Each would otherwise keep the
 //! engine busy for hours between two collisions or observations; the engine hands
-//! back control meanwhile (`carom_events::PAUSE_TAG`), so a stop is still heard.
+//! back control meanwhile (`carom_engine::PAUSE_TAG`), so a stop is still heard.
 
-use carom_events::{Engine, Thermostat};
+use carom_engine::{Engine, Thermostat};
 use carom_io::{Stop, MAX_RECORDS};
 
 use super::watchdog::time_to_stop;

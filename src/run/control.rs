@@ -8,7 +8,7 @@
 use std::sync::atomic::AtomicBool;
 use std::time::Duration;
 
-use carom_events::PlacementProgress;
+use carom_engine::PlacementProgress;
 use carom_io::ReadProgress;
 use carom_io::Stop;
 

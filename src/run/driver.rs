@@ -17,7 +17,7 @@ use std::path::{Path, PathBuf};
 use std::sync::atomic::Ordering;
 use std::time::Instant;
 
-use carom_events::{Engine, EngineError, Event, GrowthEnd, State, PAUSE_TAG};
+use carom_engine::{Engine, EngineError, Event, GrowthEnd, State, PAUSE_TAG};
 use carom_io::{now_rfc3339, StopReason, SummaryMetadata};
 use carom_io::{GrowthEvent, LogWriter};
 use carom_io::{LogOptions, Stop};

@@ -6,7 +6,7 @@
 
 use std::path::PathBuf;
 
-use carom_events::{EngineError, InitError};
+use carom_engine::{EngineError, InitError};
 use carom_io::WriteError;
 use carom_io::{OptionsError, ReadError};
 use thiserror::Error;

@@ -198,7 +198,7 @@ mod tests {
         std::fs::write(&temp, b"newer").unwrap();
         // A failure before the start: the older log is as it was, no temporary file.
         let failed = RunError::Engine {
-            source: carom_events::EngineError::BadCheckpoint("test".into()),
+            source: carom_engine::EngineError::BadCheckpoint("test".into()),
             time: 0.0,
             log: log.clone(),
         };

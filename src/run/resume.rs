@@ -12,7 +12,7 @@
 
 use std::path::Path;
 
-use carom_events::{Engine, EngineError};
+use carom_engine::{Engine, EngineError};
 use carom_io::LogCheckpoint;
 use carom_io::Stop;
 use carom_io::Thermo;
@@ -241,7 +241,7 @@ pub fn resume(
 
 /// The first non-finite value among the checkpoint's times, positions and
 /// velocities (which the engine assumes finite), if any.
-fn non_finite(cp: &carom_events::Checkpoint) -> Option<String> {
+fn non_finite(cp: &carom_engine::Checkpoint) -> Option<String> {
     if !cp.now.is_finite() {
         return Some(format!("current time {} is not finite", cp.now));
     }

@@ -9,7 +9,7 @@ use std::path::Path;
 use std::sync::atomic::Ordering;
 use std::time::Instant;
 
-use carom_events::{Engine, PlacementProgress, State, SystemSpec};
+use carom_engine::{Engine, PlacementProgress, State, SystemSpec};
 use carom_io::{
     check_log_options, now_rfc3339, LogWriter, RunFacts, RunMetadata, RunSpec, WriterOptions,
     WriterPosition, LOG_FORMAT_VERSION,

@@ -14,7 +14,7 @@ use carom_core::observables::{
     accessible_area, collision_rate, degrees_of_freedom, has_walls, pressure, temperature,
     virial_pressure, virial_z, wall_z,
 };
-use carom_events::{Engine, GrowthEnd};
+use carom_engine::{Engine, GrowthEnd};
 use carom_io::{GrowthPhase, Thermo};
 
 /// The `/thermo` record of `engine` now, with rates and pressures averaged since

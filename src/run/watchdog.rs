@@ -14,7 +14,7 @@
 
 use carom_core::observables::{degrees_of_freedom, temperature};
 use carom_core::rates::{expected_collision_rate, expected_mean_free_time};
-use carom_events::Engine;
+use carom_engine::Engine;
 use carom_io::{LogOptions, Stop, MAX_RECORDS};
 
 use super::RunError;
@@ -155,7 +155,7 @@ pub(super) fn check_reachable(
 mod tests {
     use super::*;
     use carom_core::{Boundary, Species};
-    use carom_events::{EngineParams, SystemSpec};
+    use carom_engine::{EngineParams, SystemSpec};
     use carom_io::SchedulePoints;
 
     #[test]

@@ -3,7 +3,7 @@
 #![allow(dead_code)]
 
 use carom::analysis::{AnalysisOptions, Analyzer, Report, RunDescription};
-use carom::events::{Engine, EngineParams, Event, State, SystemSpec, Velocities};
+use carom::engine::{Engine, EngineParams, Event, State, SystemSpec, Velocities};
 
 /// Run the engine from `spec` until `t_end`, with a snapshot (and thermo record)
 /// every `dt`, feeding every event to an analyzer.

@@ -200,7 +200,7 @@ pub fn checkpoint(cp: &LogCheckpoint) -> Value {
         engine,
     } = cp;
     // Alphabetical: the order does not matter, only that every field is named.
-    let carom::events::Checkpoint {
+    let carom::engine::Checkpoint {
         cell,
         cell_head,
         cell_next,
@@ -231,7 +231,7 @@ pub fn checkpoint(cp: &LogCheckpoint) -> Value {
         times,
         velocities,
     } = engine;
-    let carom::events::EngineParams {
+    let carom::engine::EngineParams {
         restitution,
         tc,
         max_events_without_time_advance,
@@ -239,7 +239,7 @@ pub fn checkpoint(cp: &LogCheckpoint) -> Value {
         growth: gp,
         floor,
     } = params;
-    let carom::events::Stats {
+    let carom::engine::Stats {
         pair_collisions,
         wall_collisions,
         cell_crossings,
@@ -306,8 +306,8 @@ pub fn checkpoint(cp: &LogCheckpoint) -> Value {
         None => (0, 0.0, 0.0, 0u128, 0, 0.0, 0.0),
         Some(t) => {
             let (kind, a, b) = match t.thermostat {
-                carom::events::Thermostat::Andersen { kt, rate } => (1, kt, rate),
-                carom::events::Thermostat::Driven { xi2, interval } => (2, xi2, interval),
+                carom::engine::Thermostat::Andersen { kt, rate } => (1, kt, rate),
+                carom::engine::Thermostat::Driven { xi2, interval } => (2, xi2, interval),
             };
             (
                 kind,

@@ -3,7 +3,7 @@
 #![allow(dead_code)]
 
 use carom::core::{Boundary, DVec2, Species};
-use carom::events::{Engine, EngineParams, Event, SystemSpec};
+use carom::engine::{Engine, EngineParams, Event, SystemSpec};
 use carom::io::{LogOptions, RunSpec, Stop};
 use serde_json::Value;
 use std::path::{Path, PathBuf};

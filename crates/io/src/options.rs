@@ -5,7 +5,7 @@
 //! call.
 
 use crate::schedule::{SchedulePoints, SnapshotSchedule};
-use carom_events::{EngineParams, SystemSpec};
+use carom_engine::{EngineParams, SystemSpec};
 use thiserror::Error;
 
 /// Compression of MCAP chunks.
@@ -153,12 +153,12 @@ pub struct RunSpec {
     /// The user's configuration as JSON text, stored verbatim in the log's metadata.
     pub config_json: String,
     /// The thermostat, if any (its generator is seeded from `system.seed`).
-    pub thermostat: Option<carom_events::Thermostat>,
+    pub thermostat: Option<carom_engine::Thermostat>,
 }
 
 /// The most records of one kind a run may ask for through its log interval
-/// (defined with the engine's scheduled events, `carom_events::MAX_RECORDS`).
-pub use carom_events::MAX_RECORDS;
+/// (defined with the engine's scheduled events, `carom_engine::MAX_RECORDS`).
+pub use carom_engine::MAX_RECORDS;
 
 /// A log option, or the stop, out of range (see [`check_log_options`]).
 #[derive(Debug, Clone, PartialEq, Eq, Error)]

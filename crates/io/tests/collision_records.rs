@@ -9,7 +9,7 @@
 
 use carom_core::collision::resolve;
 use carom_core::{Axis, DVec2, Restitution, WallSide};
-use carom_events::{PairCollision, WallCollision};
+use carom_engine::{PairCollision, WallCollision};
 use carom_io::{CollisionBatch, CollisionRecord, KIND_PAIR, KIND_WALL, NO_DISC};
 
 fn wall(axis: Axis, side: WallSide) -> WallCollision {

@@ -7,7 +7,7 @@
 use super::tests::err_of;
 use super::*;
 use crate::CollisionDetail;
-use carom_events::Placement;
+use carom_engine::Placement;
 
 fn spec(text: &str) -> crate::RunSpec {
     Config::from_json_str(text).unwrap().to_run_spec().unwrap()

@@ -3,7 +3,7 @@
 //! field names, so that every error names a setting the user can change.
 
 use crate::options::OptionsError;
-use carom_events::InitError;
+use carom_engine::InitError;
 use thiserror::Error;
 
 /// A configuration that cannot be read or does not describe a valid run. Every
@@ -73,7 +73,7 @@ impl ConfigError {
         }
     }
 
-    /// Translate an error of the initial-state builder ([`carom_events::SystemSpec::build`]) into
+    /// Translate an error of the initial-state builder ([`carom_engine::SystemSpec::build`]) into
     /// the configuration's field names: `species[1].radius` becomes
     /// `species.1.radius`, `positions[3].x` becomes `placement.explicit.3`,
     /// overlapping explicit discs are reported on `placement.explicit`.

@@ -3,7 +3,7 @@
 //! `1e9`. `data/config.schema.json` lists the same fields (a test checks it).
 
 use crate::options::{Compression, LogOptions};
-use carom_events::EngineParams;
+use carom_engine::EngineParams;
 use serde::{Deserialize, Deserializer, Serialize};
 
 /// A whole run, as written in a JSON configuration file. Every field is optional.
@@ -153,13 +153,13 @@ pub enum ThermostatConfig {
 
 impl ThermostatConfig {
     /// The engine's thermostat.
-    pub fn thermostat(&self) -> carom_events::Thermostat {
+    pub fn thermostat(&self) -> carom_engine::Thermostat {
         match *self {
             ThermostatConfig::Andersen { kt, rate } => {
-                carom_events::Thermostat::Andersen { kt, rate }
+                carom_engine::Thermostat::Andersen { kt, rate }
             }
             ThermostatConfig::Driven { xi2, interval } => {
-                carom_events::Thermostat::Driven { xi2, interval }
+                carom_engine::Thermostat::Driven { xi2, interval }
             }
         }
     }

@@ -12,7 +12,7 @@ use crate::schedule::SchedulePoints;
 use carom_core::observables::packing_fraction;
 use carom_core::vibrating_wall::Floor;
 use carom_core::{Boundary, DVec2, Restitution, SimBox, Species};
-use carom_events::{
+use carom_engine::{
     box_size_for, largest_radius, EngineParams, Growth, Placement, SystemSpec, Velocities,
 };
 

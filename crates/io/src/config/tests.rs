@@ -4,7 +4,7 @@ use super::error::init_field_to_config;
 use super::*;
 use crate::{CollisionDetail, LogOptions, RunSpec, Stop};
 use carom_core::Restitution;
-use carom_events::{EngineParams, Placement, Velocities};
+use carom_engine::{EngineParams, Placement, Velocities};
 use std::collections::BTreeSet;
 use std::path::Path;
 

@@ -4,7 +4,7 @@
 use super::tests::{data_dir, err_of};
 use super::*;
 use crate::CollisionDetail;
-use carom_events::Thermostat;
+use carom_engine::Thermostat;
 
 fn spec(text: &str) -> crate::RunSpec {
     Config::from_json_str(text).unwrap().to_run_spec().unwrap()

@@ -7,7 +7,7 @@
 #![allow(dead_code, unused_imports)]
 
 pub use carom_core::{Boundary, DVec2, Restitution, Species};
-pub use carom_events::{Engine, EngineParams, Event, SystemSpec};
+pub use carom_engine::{Engine, EngineParams, Event, SystemSpec};
 pub use carom_io::{
     last_checkpoint, scan, scan_indexed, scan_observed, CollisionDetail, CollisionRecord,
     Compression, DriverState, LogCheckpoint, LogEnd, LogEvent, LogMessage, LogOptions, LogReader,

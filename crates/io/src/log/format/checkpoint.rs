@@ -4,7 +4,7 @@
 //! [`CHECKPOINT_MSG`], which every log stores and `docs/log-format.md` shows
 //! verbatim; [`LogCheckpoint::encode`] and [`LogCheckpoint::decode`] follow it
 //! field by field. Fields the schema marks "engine-internal" are copied as the
-//! engine hands them over; `carom_events::Checkpoint` says what they mean.
+//! engine hands them over; `carom_engine::Checkpoint` says what they mean.
 //!
 //! Every `f64` is stored bit for bit (±∞ included), so an engine restored from a
 //! decoded checkpoint continues bit-identically. The engine draws random numbers
@@ -15,7 +15,7 @@ use super::cdr::{CdrError, CdrReader, CdrWriter};
 use super::snapshot::boundary_code;
 use carom_core::vibrating_wall::Floor;
 use carom_core::{Boundary, DVec2, Restitution, SimBox, Species};
-use carom_events::{
+use carom_engine::{
     Checkpoint, EngineParams, GrowthEnd, GrowthState, Stats, Thermostat, ThermostatState,
     ThermostatStats,
 };
@@ -269,7 +269,7 @@ impl LogCheckpoint {
     }
 
     /// Decode from CDR. Checks the layout and the lengths of paired arrays; the
-    /// engine's own [`carom_events::Engine::from_checkpoint`] checks the rest.
+    /// engine's own [`carom_engine::Engine::from_checkpoint`] checks the rest.
     pub fn decode(data: &[u8]) -> Result<Self, CdrError> {
         let mut r = CdrReader::new(data)?;
         let version: u32 = r.get("format_version")?;
@@ -553,7 +553,7 @@ fn decode_thermostat(r: &mut CdrReader) -> Result<Option<ThermostatState>, CdrEr
 #[cfg(test)]
 mod tests {
     use super::*;
-    use carom_events::{box_size_for, Engine, Placement, SystemSpec, Velocities};
+    use carom_engine::{box_size_for, Engine, Placement, SystemSpec, Velocities};
 
     #[test]
     fn checkpoint_round_trips_bit_for_bit() {

@@ -5,7 +5,7 @@
 
 use super::cdr::{CdrError, CdrReader, CdrWriter};
 use carom_core::{Axis, DVec2, WallSide};
-use carom_events::{PairCollision, WallCollision};
+use carom_engine::{PairCollision, WallCollision};
 
 /// `ros2msg` text of the schema `carom_msgs/msg/CollisionBatch`.
 pub const COLLISION_BATCH_MSG: &str = "\

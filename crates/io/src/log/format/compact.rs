@@ -225,7 +225,7 @@ fn compact_j(r: &CollisionRecord) -> u32 {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use carom_events::{PairCollision, WallCollision};
+    use carom_engine::{PairCollision, WallCollision};
 
     #[test]
     fn wall_codes_round_trip_and_are_not_discs() {

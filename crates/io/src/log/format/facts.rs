@@ -15,7 +15,7 @@
 use crate::options::LogOptions;
 use carom_core::observables::{accessible_area, disc_count};
 use carom_core::{Boundary, DVec2, Restitution, SimBox, Species};
-use carom_events::EngineParams;
+use carom_engine::EngineParams;
 use serde::{Deserialize, Serialize};
 use serde_json::Value;
 

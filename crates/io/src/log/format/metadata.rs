@@ -585,7 +585,7 @@ mod tests {
             run_facts: Some(RunFacts::new(
                 &[carom_core::Species::new(100, 0.5, 1.0)],
                 &carom_core::SimBox::walled(12.0, 15.0, 1.0),
-                &carom_events::EngineParams::default(),
+                &carom_engine::EngineParams::default(),
                 &LogOptions::default(),
             )),
         };

@@ -11,7 +11,7 @@
 
 use super::cdr::CdrWriter;
 use super::log_time_ns;
-use carom_events::State;
+use carom_engine::State;
 
 /// `ros2msg` text of the schema `foxglove_msgs/msg/SceneUpdate`: Foxglove's
 /// definitions (foxglove/schemas, `ros_foxglove_msgs/ros2`, comments dropped) with

@@ -15,7 +15,7 @@ use super::{
     COLLISION_BATCH_MSG, COMPACT_COLLISION_BATCH_MSG, SNAPSHOT_MSG,
 };
 use carom_core::{Axis, DVec2, WallSide};
-use carom_events::{PairCollision, WallCollision};
+use carom_engine::{PairCollision, WallCollision};
 
 /// A primitive type of the schemas and its size in bytes (also its alignment).
 fn size_of(ty: &str) -> usize {
@@ -420,8 +420,8 @@ fn checkpoint_fields(c: &LogCheckpoint) -> Values {
 }
 
 /// The thermostat's fields by schema name (format 4 on).
-fn thermostat_fields(t: Option<carom_events::ThermostatState>) -> Vec<(&'static str, Vec<u64>)> {
-    use carom_events::Thermostat;
+fn thermostat_fields(t: Option<carom_engine::ThermostatState>) -> Vec<(&'static str, Vec<u64>)> {
+    use carom_engine::Thermostat;
     let (kind, a, b, rng, events, added, origin) = match t {
         None => (0, 0.0, 0.0, 0u128, 0, 0.0, 0.0),
         Some(t) => {
@@ -453,8 +453,8 @@ fn thermostat_fields(t: Option<carom_events::ThermostatState>) -> Vec<(&'static 
 
 /// The growth's fields by schema name (format 5 on).
 fn growth_fields(
-    g: &carom_events::Growth,
-    st: &carom_events::GrowthState,
+    g: &carom_engine::Growth,
+    st: &carom_engine::GrowthState,
 ) -> Vec<(&'static str, Vec<u64>)> {
     vec![
         ("growth_rate", f([g.rate])),
@@ -473,7 +473,7 @@ fn growth_fields(
 }
 
 /// The vibrating floor's fields by schema name (format 5 on).
-fn floor_fields(e: &carom_events::Checkpoint) -> Vec<(&'static str, Vec<u64>)> {
+fn floor_fields(e: &carom_engine::Checkpoint) -> Vec<(&'static str, Vec<u64>)> {
     let (a, w) = e
         .params
         .floor
@@ -491,7 +491,7 @@ fn floor_fields(e: &carom_events::Checkpoint) -> Vec<(&'static str, Vec<u64>)> {
 fn sample_checkpoint() -> LogCheckpoint {
     use super::DriverState;
     use carom_core::{Boundary, Restitution, SimBox, Species};
-    use carom_events::{box_size_for, Engine, EngineParams, Placement, SystemSpec, Velocities};
+    use carom_engine::{box_size_for, Engine, EngineParams, Placement, SystemSpec, Velocities};
     let species = vec![Species::reference(30), Species::new(8, 0.8, 3.0)];
     let spec = SystemSpec {
         sim_box: SimBox {
@@ -512,7 +512,7 @@ fn sample_checkpoint() -> LogCheckpoint {
     };
     let mut e = Engine::new(spec.build().unwrap(), params).unwrap();
     // An Andersen thermostat, so that its fields are not all zero.
-    let andersen = carom_events::Thermostat::Andersen {
+    let andersen = carom_engine::Thermostat::Andersen {
         kt: 1.5,
         rate: 0.25,
     };

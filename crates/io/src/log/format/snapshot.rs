@@ -3,7 +3,7 @@
 
 use super::cdr::{CdrError, CdrReader, CdrWriter};
 use carom_core::DVec2;
-use carom_events::State;
+use carom_engine::State;
 
 /// `ros2msg` text of the schema `carom_msgs/msg/Snapshot`.
 pub const SNAPSHOT_MSG: &str = "\

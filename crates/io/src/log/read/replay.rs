@@ -260,7 +260,7 @@ mod tests {
         let facts = RunFacts::new(
             &[Species::new(1, 0.5, 1.0), Species::new(1, 0.7, 3.0)],
             &SimBox::walled(10.0, 10.0, 1.0),
-            &carom_events::EngineParams::default(),
+            &carom_engine::EngineParams::default(),
             &crate::LogOptions::default(),
         );
         let mut r = Replay::new(Some(&facts));
@@ -303,7 +303,7 @@ mod tests {
         RunFacts::new(
             &[Species::new(1, 0.5, 2.0), Species::new(1, 0.7, 3.0)],
             &SimBox::walled(10.0, 10.0, 0.9),
-            &carom_events::EngineParams {
+            &carom_engine::EngineParams {
                 restitution: carom_core::Restitution::Normal(0.8),
                 ..Default::default()
             },
@@ -365,7 +365,7 @@ mod tests {
     /// must give each label its own velocity, mass and radius.
     #[test]
     fn a_checkpoint_gives_each_labelled_disc_its_velocity_and_species() {
-        use carom_events::{box_size_for, Engine, Placement, SystemSpec, Velocities};
+        use carom_engine::{box_size_for, Engine, Placement, SystemSpec, Velocities};
         let species = vec![Species::new(6, 0.5, 2.0), Species::new(6, 0.7, 3.0)];
         let size = box_size_for(&species, 0.3, 1.0);
         let spec = SystemSpec {

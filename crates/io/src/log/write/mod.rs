@@ -22,7 +22,7 @@ use crate::log::format::{
     log_time_ns, CdrWriter, CollisionRecord, DriverState, LogCheckpoint, Snapshot, Thermo,
     CH_CHECKPOINT, CH_COLLISIONS, CH_SNAPSHOT, CH_THERMO, METADATA_SUMMARY,
 };
-use carom_events::{Checkpoint, PairCollision, State, WallCollision};
+use carom_engine::{Checkpoint, PairCollision, State, WallCollision};
 use mcap::records::Metadata;
 use sink::{Backend, Cmd, Sink, Spent, QUEUE_DEPTH};
 use std::collections::BTreeMap;

@@ -6,7 +6,7 @@
 //! reference is in `engine_gravity_reference.rs`.
 
 use carom_core::{Boundary, DVec2, Restitution, SimBox, Species, WallSide};
-use carom_events::{
+use carom_engine::{
     box_size_for, Engine, EngineError, EngineParams, Event, Placement, State, SystemSpec,
     Velocities,
 };
@@ -44,7 +44,7 @@ fn discs(sim_box: SimBox, positions: Vec<DVec2>, velocities: Vec<DVec2>) -> Stat
 fn wall_hits(
     e: &mut Engine,
     n: usize,
-) -> (Vec<carom_events::WallCollision>, Vec<(f64, DVec2, DVec2)>) {
+) -> (Vec<carom_engine::WallCollision>, Vec<(f64, DVec2, DVec2)>) {
     let (mut hits, mut seen) = (Vec::new(), Vec::new());
     while hits.len() < n {
         match e
@@ -328,7 +328,7 @@ fn gravity_needs_walls_along_y_and_a_finite_g_at_least_0() {
 /// change would part by far more.
 #[test]
 fn a_thermostat_in_a_field_counts_the_energy_it_adds() {
-    use carom_events::Thermostat;
+    use carom_engine::Thermostat;
     for (k, thermostat) in [
         Thermostat::Andersen { kt: 2.0, rate: 0.2 },
         Thermostat::Driven {

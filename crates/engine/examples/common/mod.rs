@@ -1,6 +1,6 @@
 //! What the profiling examples share: their numeric arguments, CPU time and a
 //! fingerprint of the final state.
-use carom_events::State;
+use carom_engine::State;
 
 /// CPU time of this thread so far (s), from /proc/self/schedstat (Linux).
 pub fn cpu_seconds() -> f64 {

@@ -1,4 +1,4 @@
-//! Memory probe: `cargo run --release -p carom-events --example memlat`.
+//! Memory probe: `cargo run --release -p carom-engine --example memlat`.
 //!
 //! Measures the latency of dependent random loads (a pointer chase over one random
 //! cycle through every cache line of a buffer) for buffers from 1 MB to 256 MB. A

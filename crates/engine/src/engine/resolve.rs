@@ -98,7 +98,7 @@ impl Engine {
     /// pair collisions keeps |r0| ≈ L + |v| t small in a fluid, but a cooled
     /// granular cluster drifting with the rounding residue of its momentum (speeds of
     /// 10⁻¹⁷ at t ≈ 10²³, few collisions) moved 4·10⁶ box lengths on one clock, and
-    /// its contacts were off by 10⁻⁹ (`crates/events/tests/engine_reference.rs`, random dynamics).
+    /// its contacts were off by 10⁻⁹ (`crates/engine/tests/engine_reference.rs`, random dynamics).
     /// Called where an origin changes: a velocity change, a wrap across a periodic
     /// edge.
     #[inline]
@@ -235,7 +235,7 @@ impl Engine {
         // The TC model covers wall collisions as well (physics.md §4: a collision is
         // elastic if the disc collided less than t_c ago), as in Luding & McNamara:
         // without it, discs wedged between inelastic walls collapse under the TC
-        // model just as they would without it (`crates/events/tests/inelastic.rs`).
+        // model just as they would without it (`crates/engine/tests/inelastic.rs`).
         let now = self.clock;
         let e = if self.within_tc(i, now) { 1.0 } else { wall_e };
         if self.params.tc > 0.0 {

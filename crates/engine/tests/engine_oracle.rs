@@ -15,7 +15,7 @@
 
 mod engine_common;
 use carom_core::{Boundary, DVec2, SimBox, Species, WallSide};
-use carom_events::{
+use carom_engine::{
     box_size_for, Engine, EngineParams, Event, Placement, State, SystemSpec, Velocities,
 };
 use engine_common::oracle::{earliest, Key, Oracle};

@@ -1,9 +1,9 @@
-//! Profiling driver: `cargo run --release -p carom-events --example profile -- N ETA COLLISIONS`.
+//! Profiling driver: `cargo run --release -p carom-engine --example profile -- N ETA COLLISIONS`.
 //! Equilibrates 5 collisions per disc, then runs COLLISIONS more and prints event
 //! counts per collision (for use under `valgrind --tool=cachegrind` or `perf`).
 //! An optional fourth argument `on` or `off` forces fetching ahead on or off
 //! (default: the engine's own choice for N).
-use carom_events::{Engine, EngineParams, SystemSpec};
+use carom_engine::{Engine, EngineParams, SystemSpec};
 
 mod common;
 use common::{arg, cpu_seconds};

@@ -37,7 +37,7 @@
 
 use carom_core::boundary::{Boundary, SimBox};
 use carom_core::{DVec2, Species};
-use carom_events::{
+use carom_engine::{
     box_size_for, Engine, EngineError, EngineParams, InitError, Placement, State, SystemSpec,
     Velocities,
 };
@@ -755,7 +755,7 @@ fn relaxed_placement_prepares_dense_mixtures() {
 
 #[test]
 fn the_engine_runs_from_a_relaxed_dense_mixture() {
-    use carom_events::{Engine, EngineParams, InvariantChecker};
+    use carom_engine::{Engine, EngineParams, InvariantChecker};
     let sp = SystemSpec {
         placement: Placement::Relaxed,
         ..spec(glass(500), 0.80, 1.0, Kind::Periodic, 3)
@@ -1385,7 +1385,7 @@ fn bad_boxes_are_errors_naming_the_field() {
 /// discs present.
 #[test]
 fn a_species_with_no_discs_changes_nothing() {
-    use carom_events::{Engine, EngineParams};
+    use carom_engine::{Engine, EngineParams};
     let with_empty = |extra: bool| {
         let mut species = mono(400);
         if extra {
@@ -1410,7 +1410,7 @@ fn a_species_with_no_discs_changes_nothing() {
 /// the run is quick.
 #[test]
 fn a_dilute_gas_in_a_huge_box_gets_few_cells() {
-    use carom_events::{Engine, EngineParams};
+    use carom_engine::{Engine, EngineParams};
     let mut s = spec(mono(10), 0.5, 1.0, Kind::Periodic, 3);
     s.sim_box.size = DVec2::new(1e5, 1e5);
     s.placement = Placement::Random;

@@ -7,7 +7,7 @@
 
 use carom_core::observables::{degrees_of_freedom, packing_fraction, temperature};
 use carom_core::{Boundary, DVec2, Restitution, SimBox, Species};
-use carom_events::{
+use carom_engine::{
     box_size_for, Engine, EngineError, EngineParams, Event, Growth, GrowthEnd, Placement, State,
     SystemSpec, Velocities,
 };

@@ -29,7 +29,7 @@
 
 mod engine_common;
 use carom_core::{Axis, Boundary, SimBox, Species, WallSide};
-use carom_events::{
+use carom_engine::{
     box_size_for, Engine, EngineError, EngineParams, Event, InvariantChecker, Placement,
     SystemSpec, Velocities,
 };

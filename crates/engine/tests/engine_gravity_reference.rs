@@ -22,7 +22,7 @@
 use carom_core::collision::resolve;
 use carom_core::kinematics::contact_time;
 use carom_core::{Axis, Boundary, DVec2, Restitution, SimBox, Species, WallSide};
-use carom_events::{
+use carom_engine::{
     box_size_for, Engine, EngineParams, Event, Placement, State, SystemSpec, Velocities,
 };
 

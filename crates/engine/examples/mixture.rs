@@ -1,11 +1,11 @@
 //! Mixture profiling driver:
-//! `cargo run --release -p carom-events --example mixture -- N_SMALL N_LARGE RATIO ETA COLLISIONS`.
+//! `cargo run --release -p carom-engine --example mixture -- N_SMALL N_LARGE RATIO ETA COLLISIONS`.
 //! N_SMALL discs of diameter 1 and N_LARGE of diameter RATIO (masses as areas) at
 //! packing fraction ETA in a square periodic box (relaxed placement), equilibrated
 //! for 5 collisions per disc; prints collisions per second of CPU time over
 //! COLLISIONS more, and a hash of the final state.
 use carom_core::{Boundary, Species};
-use carom_events::{Engine, EngineParams, Placement, SystemSpec};
+use carom_engine::{Engine, EngineParams, Placement, SystemSpec};
 
 mod common;
 use common::{arg, cpu_seconds};

@@ -36,7 +36,7 @@
 use carom_core::boundary::Boundary;
 use carom_core::collision::reduced_mass;
 use carom_core::{DVec2, Restitution, Species};
-use carom_events::{Engine, EngineError, EngineParams, Event, InvariantChecker, State, SystemSpec};
+use carom_engine::{Engine, EngineError, EngineParams, Event, InvariantChecker, State, SystemSpec};
 
 fn state(n: usize, eta: f64, boundary: [Boundary; 2], seed: u64) -> State {
     let species = vec![Species::reference(n)];

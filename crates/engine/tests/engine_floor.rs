@@ -6,7 +6,7 @@
 
 use carom_core::vibrating_wall::Floor;
 use carom_core::{Boundary, DVec2, Restitution, SimBox, Species};
-use carom_events::{
+use carom_engine::{
     Engine, EngineError, EngineParams, Event, Growth, InvariantChecker, Placement, State,
     SystemSpec, Velocities,
 };
@@ -213,7 +213,7 @@ fn bad_floors_are_refused() {
 /// within 3 standard errors of the difference (and K + U ends where it started
 /// within that error times the span).
 #[test]
-#[ignore = "long validation: cargo test --release -p carom-events --test engine_floor -- --ignored"]
+#[ignore = "long validation: cargo test --release -p carom-engine --test engine_floor -- --ignored"]
 fn a_shaken_bed_reaches_a_steady_state_where_floor_power_equals_dissipation() {
     let mut e = bed(21);
     e.run_until(200.0).unwrap();

@@ -5,7 +5,7 @@
 
 mod engine_common;
 use carom_core::{Boundary, DVec2, SimBox};
-use carom_events::{Engine, EngineParams, Event, State, SystemSpec};
+use carom_engine::{Engine, EngineParams, Event, State, SystemSpec};
 use engine_common::{lattice_spec, mixture};
 
 /// The unwrapped position of every disc by its own flights: the position at the

@@ -4,7 +4,7 @@
 //! change at all to a run without one.
 
 use carom_core::{DVec2, Restitution};
-use carom_events::{
+use carom_engine::{
     Engine, EngineError, EngineParams, Event, SystemSpec, Thermostat, Velocities, PAUSE_TAG,
     THERMOSTAT_TAG,
 };
@@ -332,7 +332,7 @@ fn bad_thermostats_are_refused() {
 /// invariant checker's 10⁻¹² of Σ m|v|).
 #[test]
 fn thermostatted_runs_keep_the_invariants() {
-    use carom_events::InvariantChecker;
+    use carom_engine::InvariantChecker;
     for (thermostat, restitution) in [
         (
             Thermostat::Andersen { kt: 3.0, rate: 1.0 },

@@ -12,7 +12,7 @@
 //! checker's 1e-12. 10⁵ collisions per system.
 
 use carom_core::{SimBox, Species};
-use carom_events::{Engine, EngineParams, InvariantChecker, SystemSpec};
+use carom_engine::{Engine, EngineParams, InvariantChecker, SystemSpec};
 
 mod engine_common;
 use engine_common::{lattice_spec, mono};

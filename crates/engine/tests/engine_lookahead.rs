@@ -8,7 +8,7 @@
 //! inelastic run with the TC model cover every event kind the look-ahead reads.
 
 use carom_core::{Boundary, Restitution, SimBox, Species};
-use carom_events::{Engine, EngineParams, SystemSpec};
+use carom_engine::{Engine, EngineParams, SystemSpec};
 
 mod engine_common;
 use engine_common::{lattice_spec, mono};

@@ -1,4 +1,4 @@
-//! # carom-events
+//! # carom-engine
 //!
 //! The exact event-driven engine for hard discs: discs fly straight between events,
 //! a calendar of predicted event times says what happens next, and each collision
@@ -16,7 +16,7 @@
 //! nothing about files.
 //!
 //! ```
-//! use carom_events::{Engine, EngineParams, Event, SystemSpec};
+//! use carom_engine::{Engine, EngineParams, Event, SystemSpec};
 //!
 //! // 100 discs of diameter 1 at packing fraction 0.3 in a periodic box.
 //! let state = SystemSpec::periodic_fluid(100, 0.3, 7).build().unwrap();

@@ -2,7 +2,7 @@
 #![allow(dead_code)]
 
 use carom_core::{SimBox, Species};
-use carom_events::{Placement, SystemSpec, Velocities};
+use carom_engine::{Placement, SystemSpec, Velocities};
 
 /// `species` on a lattice in `sim_box`, Maxwell–Boltzmann velocities at T = 1.
 pub fn lattice_spec(species: Vec<Species>, sim_box: SimBox, seed: u64) -> SystemSpec {

@@ -9,7 +9,7 @@
 use carom_core::collision::elastic_seed;
 use carom_core::kinematics::contact_time_seed;
 use carom_core::{Boundary, DVec2, WallSide};
-use carom_events::State;
+use carom_engine::State;
 
 /// An event named independently of who predicted it: pairs unordered (i < j), walls
 /// by disc, axis and side.

@@ -18,7 +18,7 @@
 //! systematic energy drift from normalising the contact normal before the
 //! collision rule; see `carom_core::collision`.)
 
-use carom_events::{Engine, EngineParams, Event, InvariantChecker, State, SystemSpec};
+use carom_engine::{Engine, EngineParams, Event, InvariantChecker, State, SystemSpec};
 
 const N: usize = 1000;
 const ETA: f64 = 0.5;
@@ -162,7 +162,7 @@ fn elastic_run_1e7_keeps_invariants_and_is_reproducible() {
 #[test]
 fn size_classes_keep_invariants_and_are_reproducible() {
     use carom_core::{Boundary, SimBox, Species};
-    use carom_events::{box_size_for, Placement, Velocities};
+    use carom_engine::{box_size_for, Placement, Velocities};
     let species = vec![Species::reference(2000), Species::new(20, 4.0, 64.0)];
     let spec = SystemSpec {
         sim_box: SimBox {

@@ -11,7 +11,7 @@
 //! * Across several clock restarts, observations scheduled at exact times are
 //!   delivered at exactly those times, and event times never decrease.
 
-use carom_events::{Engine, EngineParams, Event, InvariantChecker, State, SystemSpec};
+use carom_engine::{Engine, EngineParams, Event, InvariantChecker, State, SystemSpec};
 
 const N: usize = 400;
 

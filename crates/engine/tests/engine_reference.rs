@@ -59,7 +59,7 @@ use carom_core::boundary::{wall_time, Boundary, SimBox, WallSide};
 use carom_core::collision::resolve;
 use carom_core::kinematics::contact_time;
 use carom_core::{Axis, DVec2, Restitution, Species};
-use carom_events::{
+use carom_engine::{
     box_size_for, Engine, EngineError, EngineParams, Event, Placement, State, SystemSpec,
     Velocities,
 };
