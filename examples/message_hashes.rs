@@ -11,7 +11,9 @@
 use carom::io::{LogReader, TOPICS};
 
 fn main() {
-    let path = std::env::args().nth(1).expect("usage: message_hashes LOG.mcap");
+    let path = std::env::args()
+        .nth(1)
+        .expect("usage: message_hashes LOG.mcap");
     let mut log = LogReader::open(path.as_ref()).unwrap_or_else(|e| panic!("{e}"));
     let mut hashes = vec![(0u64, 0xcbf2_9ce4_8422_2325u64); TOPICS.len()];
     let mix = |h: &mut u64, bytes: &[u8]| {

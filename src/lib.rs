@@ -11,13 +11,13 @@
 //! `frames` (choosing snapshots), `render` (pictures), `export` (GSD, XYZ) and
 //! `sweep` (many runs from one plan, locally or on Slurm).
 
-pub mod analysis;
 pub mod export;
 pub mod frames;
 pub mod render;
-pub mod run;
-pub mod sweep;
 
+pub use carom_analysis as analysis;
 pub use carom_core as core;
 pub use carom_engine as engine;
 pub use carom_io as io;
+pub use carom_run as run;
+pub use carom_run::sweep;

@@ -13,8 +13,9 @@ use std::time::{Duration, Instant};
 
 use carom::engine::{Placement, PlacementProgress};
 use carom::io::{load_config, ConfigError, ReadProgress, Stop, StopReason};
+use carom::run::Bytes;
 use carom::run::{Control, Progress, ResumeOptions, ResumePass, RunError, RunSummary};
-use indicatif::{DecimalBytes, ProgressBar, ProgressStyle};
+use indicatif::{ProgressBar, ProgressStyle};
 
 use super::output::say;
 use super::reading::ReadDisplay;
@@ -144,10 +145,10 @@ impl Display {
             stop_text(&p.stop),
             p.collisions,
             p.collisions_per_second,
-            DecimalBytes(p.log_bytes)
+            Bytes(p.log_bytes)
         );
         if let Some(b) = projected.filter(|_| p.fraction < 1.0) {
-            msg += &format!(" → ~{}", DecimalBytes(b as u64));
+            msg += &format!(" → ~{}", Bytes(b as u64));
         }
         self.warn_if_disk_too_small(p, projected);
         if let Some(bar) = &self.bar {
@@ -189,8 +190,8 @@ impl Display {
                  finish the log, which `carom resume {}` then continues (with --out on \
                  another disk); to avoid that, log fewer collisions (log.collision_every, \
                  log.collisions = false) or stop sooner",
-                DecimalBytes(total as u64),
-                DecimalBytes(free),
+                Bytes(total as u64),
+                Bytes(free),
                 self.log.display()
             ));
         }

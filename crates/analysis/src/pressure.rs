@@ -67,8 +67,8 @@ pub(super) fn report(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::analysis::description::RunDescription;
-    use crate::analysis::AnalysisOptions;
+    use crate::description::RunDescription;
+    use crate::AnalysisOptions;
     use carom_core::{SimBox, Species};
 
     /// 16 bins over [2, 10], 0.5 wide.

@@ -80,8 +80,8 @@ fn least_squares_slope(p: &[(f64, f64)]) -> f64 {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::analysis::description::RunDescription;
-    use crate::analysis::AnalysisOptions;
+    use crate::description::RunDescription;
+    use crate::AnalysisOptions;
     use carom_core::{Restitution, SimBox, Species};
 
     /// A gas that follows Haff's law exactly with Enskog's rate: 1/√kT = 1/√kT0 +

@@ -214,7 +214,7 @@ pub(super) fn maxwell_boltzmann(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::analysis::{AnalysisOptions, RunDescription};
+    use crate::{AnalysisOptions, RunDescription};
     use carom_core::{SimBox, Species};
 
     fn run() -> RunDescription {

@@ -217,7 +217,7 @@ mod derivation {
         lower[0] * x[0]
     }
 
-    pub(super) use crate::analysis::quadrature::gauss_legendre;
+    pub(super) use crate::quadrature::gauss_legendre;
 }
 
 #[cfg(test)]

@@ -1,5 +1,8 @@
+//! # carom-run
+//!
 //! The run driver: builds the engine, asks it for observations at exact times,
-//! hands every event to the MCAP log writer, and ends the log cleanly.
+//! hands every event to the MCAP log writer, and ends the log cleanly; and
+//! [`sweep`], many runs from one plan (a local pool of processes, or Slurm).
 //!
 //! Two entry points, both blocking until the run ends: [`run`], a fresh run from a
 //! [`RunSpec`](carom_io::RunSpec) into a new log file, and [`resume`], which
@@ -8,9 +11,9 @@
 //! the room on the log's disk).
 //!
 //! ```no_run
-//! use carom::run::{run, Control, Progress};
+//! use carom_run::{run, Control, Progress};
 //! use std::sync::atomic::AtomicBool;
-//! # fn spec() -> carom::io::RunSpec { unimplemented!() }
+//! # fn spec() -> carom_io::RunSpec { unimplemented!() }
 //! let stop = AtomicBool::new(false); // set it from a Ctrl-C handler
 //! let mut show = |p: &Progress| eprintln!("t = {:.3}, {} collisions", p.sim_time, p.collisions);
 //! let summary = run(&spec(), "out.mcap".as_ref(), Control::new(&stop, &mut show)).unwrap();
@@ -18,6 +21,7 @@
 //! ```
 
 mod bounds;
+mod bytes;
 mod control;
 mod disk;
 mod driver;
@@ -32,11 +36,14 @@ mod start;
 mod thermo;
 mod watchdog;
 
+pub mod sweep;
+
 use std::path::PathBuf;
 
 use carom_io::Stop;
 use carom_io::StopReason;
 
+pub use bytes::Bytes;
 pub use control::{Control, Progress, ResumePass};
 pub use disk::{disk_low, far_too_small, free_space_for, FreeSpace, FAR_BEYOND_FREE};
 pub use error::RunError;

@@ -549,7 +549,7 @@ mod tests {
     /// shipped example expands into its eight packing fractions × two replicas.
     #[test]
     fn the_schema_and_the_example_match_the_reader() {
-        let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+        let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("../..");
         let schema: Value = serde_json::from_str(
             &std::fs::read_to_string(root.join("data/sweep.schema.json")).unwrap(),
         )

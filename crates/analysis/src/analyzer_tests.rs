@@ -292,7 +292,7 @@ fn snapshots_count_from_the_window_start_within_a_rounding_tolerance() {
     assert_eq!(a.snapshots_seen, 4);
     assert_eq!(a.kt_series.len(), 4);
     // The same rule for positions (into g(r) and ψ6): a 16-disc lattice.
-    let (sim_box, x, y) = crate::analysis::test_lattice::triangular(4, 4, 2.0);
+    let (sim_box, x, y) = crate::test_lattice::triangular(4, 4, 2.0);
     let r = RunDescription {
         species: vec![Species::reference(16)],
         sim_box,
@@ -422,7 +422,7 @@ fn the_window_reports_the_closest_snapshots_in_collisions_per_disc() {
         (w.snapshots_seen, w.snapshot_times),
         (4, vec![2.0, 5.0, 6.5, 9.0])
     );
-    assert_eq!(w.max_velocities, crate::analysis::MAX_VELOCITIES);
+    assert_eq!(w.max_velocities, crate::MAX_VELOCITIES);
 }
 
 /// The contact theorem Z = 1 + (π/2) n Σ x_a x_b σ_ab² g_ab(σ⁺) holds for an
@@ -431,7 +431,7 @@ fn the_window_reports_the_closest_snapshots_in_collisions_per_disc() {
 #[test]
 fn the_contact_theorem_is_made_only_for_elastic_periodic_runs() {
     // Lattice spacing 1.1 σ: every disc has neighbours in the contact fit range.
-    let (periodic, x, y) = crate::analysis::test_lattice::triangular(4, 4, 1.1);
+    let (periodic, x, y) = crate::test_lattice::triangular(4, 4, 1.1);
     let walled = SimBox {
         boundary: [Boundary::Walls { restitution: 1.0 }; 2],
         ..periodic

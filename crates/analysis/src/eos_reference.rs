@@ -34,7 +34,7 @@ pub fn henderson_z(eta: f64) -> f64 {
 /// Li et al. (2022) as (source, N, η, Z, one standard error of Z), from the CSV
 /// shipped in `data/reference/`.
 pub fn li_2022() -> Vec<(String, usize, f64, f64, f64)> {
-    const CSV: &str = include_str!("../../data/reference/hard-disc-pressure.csv");
+    const CSV: &str = include_str!("../../../data/reference/hard-disc-pressure.csv");
     CSV.lines()
         .filter(|l| !l.starts_with('#') && !l.starts_with("source"))
         .filter_map(|l| {

@@ -101,8 +101,8 @@ pub enum RunError {
         "cannot resume into {out}: its disk has {} free, and the copy of {input} up to its \
          last checkpoint with the room to finish the log after it needs about {}; free some \
          space, or resume with --out on another disk",
-        indicatif::DecimalBytes(*.free),
-        indicatif::DecimalBytes(*.need)
+        crate::Bytes(*.free),
+        crate::Bytes(*.need)
     )]
     NoRoom {
         /// The log being resumed.

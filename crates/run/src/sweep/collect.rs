@@ -15,7 +15,7 @@ use rayon::prelude::*;
 use serde::Serialize;
 use serde_json::Value;
 
-use crate::analysis::{analyze_log, AnalysisOptions, ReadObserver};
+use carom_analysis::{analyze_log, AnalysisOptions, ReadObserver};
 use carom_io::ReadProgress;
 
 use super::{point_state, PointState, SweepDir, SweepError};

@@ -31,8 +31,8 @@ pub(super) fn report(a: &Analyzer, kt_used: Option<f64>) -> TemperatureReport {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::analysis::description::RunDescription;
-    use crate::analysis::AnalysisOptions;
+    use crate::description::RunDescription;
+    use crate::AnalysisOptions;
     use carom_core::{Boundary, SimBox, Species};
 
     fn analyzer(run: RunDescription, equilibrate: f64) -> Analyzer {

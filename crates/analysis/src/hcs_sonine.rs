@@ -137,7 +137,7 @@ fn s3(x: f64) -> f64 {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::analysis::inelastic::a2_theory;
+    use crate::inelastic::a2_theory;
 
     /// ⟨c^p⟩ under φ(1 + a2 S2 + a3 S3) with x = c² ~ Exp(1): ⟨x^n⟩ = n!, so
     /// ⟨x² S2⟩ = (24 − 4·6 + 2·2)/2 = 2, ⟨x³ S2⟩ = (120 − 96 + 12)/2 = 18,

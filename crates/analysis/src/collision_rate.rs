@@ -102,8 +102,8 @@ pub(super) fn enskog(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::analysis::description::RunDescription;
-    use crate::analysis::AnalysisOptions;
+    use crate::description::RunDescription;
+    use crate::AnalysisOptions;
     use carom_core::Species;
 
     /// A pressure report with only Z set (the Enskog check reads nothing else).

@@ -179,8 +179,8 @@ fn haff(a: &Analyzer, e: f64) -> Option<HaffReport> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::analysis::description::RunDescription;
-    use crate::analysis::AnalysisOptions;
+    use crate::description::RunDescription;
+    use crate::AnalysisOptions;
     use carom_core::Species;
 
     fn close(a: f64, b: f64, tol: f64) -> bool {
