@@ -26,7 +26,8 @@ fn stop_json(s: &Stop) -> Value {
 /// Whether the log's `carom.summary` record is there but damaged (the reader
 /// names it in the damage it reports, and then leaves it out).
 fn summary_damaged(i: &LogInfo) -> bool {
-    i.summary.is_none() && matches!(&i.end, LogEnd::Damaged { detail } if detail.contains(METADATA_SUMMARY))
+    i.summary.is_none()
+        && matches!(&i.end, LogEnd::Damaged { detail } if detail.contains(METADATA_SUMMARY))
 }
 
 fn end_text(e: &LogEnd) -> (bool, String) {
@@ -216,7 +217,7 @@ pub fn info(args: InfoArgs) -> Result<ExitCode, CliError> {
         }),
         None if summary_damaged(&i) => writeln!(
             s,
-            "  summary: DAMAGED (the {METADATA_SUMMARY} record fails its checksum); its values are not shown{}",
+            "  summary: DAMAGED (the {METADATA_SUMMARY} record: see the warning); its values are not shown{}",
             match i.thermo_counts {
                 Some([_, (t, pair, wall)]) => format!(
                     "; the last /thermo record says t = {}, {pair} pair + {wall} wall collisions",

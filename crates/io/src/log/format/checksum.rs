@@ -130,7 +130,10 @@ mod tests {
         m.insert("k".to_string(), "123456789".to_string());
         let bytes = canonical_bytes(&m);
         assert_eq!(crc32fast::hash(b"123456789"), 0xcbf4_3926);
-        assert_eq!(checksum_text(&m), format!("{:08x}", crc32fast::hash(&bytes)));
+        assert_eq!(
+            checksum_text(&m),
+            format!("{:08x}", crc32fast::hash(&bytes))
+        );
     }
 
     #[test]

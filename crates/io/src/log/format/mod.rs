@@ -28,9 +28,9 @@ mod snapshot;
 mod thermo;
 
 pub use cdr::CdrError;
-pub use checksum::{seal, verify, Checksum, CHECKSUM_KEY};
 pub(crate) use cdr::{CdrReader, CdrWriter};
 pub use checkpoint::{DriverState, LogCheckpoint, CHECKPOINT_FORMAT_VERSION, CHECKPOINT_MSG};
+pub use checksum::{seal, verify, Checksum, CHECKSUM_KEY};
 pub use collisions::{
     CollisionBatch, CollisionRecord, COLLISION_BATCH_MSG, KIND_PAIR, KIND_WALL, NO_DISC,
 };

@@ -50,7 +50,7 @@ use crate::log::format::{
     CHECKSUM_KEY, CH_COLLISIONS, COMPACT_COLLISIONS_CHANNEL, METADATA_RUN, METADATA_SUMMARY,
     TOPICS,
 };
-use mcap::records::Record;
+use mcap::records::{op, Record};
 use mcap::sans_io::{LinearReadEvent, LinearReader, LinearReaderOptions};
 use replay::Replay;
 use std::collections::{BTreeMap, HashMap};
@@ -199,6 +199,13 @@ pub(crate) fn parse_record(opcode: u8, data: &[u8]) -> Result<Record<'_>, String
         Ok(Err(e)) => Err(e.to_string()),
         Err(_) => Err("malformed record: a length beyond the end of its record".into()),
     }
+}
+
+/// The name of a metadata record whose body may be damaged past its name
+/// (the body starts with the name: u32 length, then its bytes).
+fn metadata_name(body: &[u8]) -> Option<&str> {
+    let len = u32::from_le_bytes(body.get(..4)?.try_into().ok()?) as usize;
+    std::str::from_utf8(body.get(4..4usize.checked_add(len)?)?).ok()
 }
 
 /// How the mcap crate's error for a failed data-section CRC begins.
@@ -399,6 +406,13 @@ impl<R: Read + Seek> LogReader<R> {
             || (self.in_summary_section && framing_clean)
     }
 
+    /// Whether the record just read, which does not parse, may be skipped: a
+    /// metadata or message-index record (carom writes nothing else outside the
+    /// chunks after `carom.run`).
+    fn damage_tolerable(&self) -> bool {
+        self.opcode == op::METADATA || self.opcode == op::MESSAGE_INDEX
+    }
+
     /// Turn a low-level failure into the end of reading: [`LogEnd::Damaged`], a
     /// warning, when every message has been read (see
     /// [`LogReader::all_messages_read`]), else truncated or an error.
@@ -468,6 +482,23 @@ impl<R: Read + Seek> LogReader<R> {
             }
             let rec = match parse_record(self.opcode, &self.record) {
                 Ok(r) => r,
+                // In a 2.3 log, a metadata or message-index record (outside the
+                // chunks) whose body is damaged but whose length held: reading
+                // goes on at the next record, and the data section's CRC decides
+                // (see `all_messages_read`).
+                Err(e) if self.run_sealed && self.damage_tolerable() => {
+                    let what = format!("a malformed record of opcode {:#04x} ({e})", self.opcode);
+                    if self.opcode == op::METADATA
+                        && metadata_name(&self.record) == Some(METADATA_SUMMARY)
+                    {
+                        self.summary_damage = Some(format!(
+                            "{METADATA_SUMMARY}: malformed ({e}); its values are not used"
+                        ));
+                    } else {
+                        self.odd_metadata.get_or_insert(what);
+                    }
+                    continue;
+                }
                 Err(e) => return self.fail(format!("malformed record: {e}")),
             };
             match rec {
@@ -533,8 +564,9 @@ impl<R: Read + Seek> LogReader<R> {
                     let check = verify(&m.metadata);
                     match (check.problem(), SummaryMetadata::from_map(&m.metadata)) {
                         (Some(problem), _) => {
-                            self.summary_damage =
-                                Some(format!("the {METADATA_SUMMARY} checksum {problem}; its values are not used"))
+                            self.summary_damage = Some(format!(
+                                "{METADATA_SUMMARY}: {problem}; its values are not used"
+                            ))
                         }
                         (None, Ok(_)) => self.summary = Some(m.metadata),
                         (None, Err(e)) => {
@@ -547,7 +579,7 @@ impl<R: Read + Seek> LogReader<R> {
                     // Another tool's record, or one of ours with a damaged name:
                     // said only if the file turns out damaged.
                     self.odd_metadata = Some(format!(
-                        "a metadata record named {:?}, which carom does not write",
+                        "a metadata record named {:?}, which carom does not write (a {METADATA_SUMMARY} record with a damaged name?)",
                         m.name
                     ));
                 }
