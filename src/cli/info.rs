@@ -1,11 +1,13 @@
 //! `carom info`: what a log holds: from a finished log's index, or from a scan of
-//! every message (which does not decode collisions) for a log cut short or with
-//! `--verify`.
+//! every message (which does not decode collisions) for a log cut short, a log
+//! whose index, footer or `carom.summary` record is damaged, or with `--verify`.
+//! A damaged summary (its checksum fails) is not shown: the counts from the last
+//! `/thermo` record stand in for it.
 
 use std::process::ExitCode;
 
 use carom::io::CH_SCENE;
-use carom::io::{scan_indexed, scan_observed, LogEnd, LogInfo, Stop, TOPICS};
+use carom::io::{scan_indexed, scan_observed, LogEnd, LogInfo, Stop, METADATA_SUMMARY, TOPICS};
 use std::fmt::Write;
 use std::io::Write as _;
 
@@ -21,11 +23,21 @@ fn stop_json(s: &Stop) -> Value {
     }
 }
 
+/// Whether the log's `carom.summary` record is there but damaged (the reader
+/// names it in the damage it reports, and then leaves it out).
+fn summary_damaged(i: &LogInfo) -> bool {
+    i.summary.is_none()
+        && matches!(&i.end, LogEnd::Damaged { detail } if detail.contains(METADATA_SUMMARY))
+}
+
 fn end_text(e: &LogEnd) -> (bool, String) {
     match e {
         LogEnd::Complete => (true, "complete".into()),
         LogEnd::Truncated { detail } => (false, format!("cut off ({detail})")),
-        LogEnd::Damaged { detail } => (false, format!("damaged after its last chunk ({detail})")),
+        LogEnd::Damaged { detail } => (
+            false,
+            format!("damaged outside its chunks, every message read ({detail})"),
+        ),
         LogEnd::Reading | LogEnd::Failed => (false, "unreadable end".into()),
     }
 }
@@ -135,6 +147,7 @@ pub fn info(args: InfoArgs) -> Result<ExitCode, CliError> {
     if args.json {
         let mut v = info_json(&path, &i);
         v["verified"] = Value::Bool(verified);
+        v["summary_damaged"] = Value::Bool(summary_damaged(&i));
         super::emit(&format!("{v}\n"))?;
         return Ok(status);
     }
@@ -202,6 +215,17 @@ pub fn info(args: InfoArgs) -> Result<ExitCode, CliError> {
                 Num(sm.kinetic_energy), Num(u), Num(sm.kinetic_energy + u)),
             None => Ok(()),
         }),
+        None if summary_damaged(&i) => writeln!(
+            s,
+            "  summary: DAMAGED (the {METADATA_SUMMARY} record: see the warning); its values are not shown{}",
+            match i.thermo_counts {
+                Some([_, (t, pair, wall)]) => format!(
+                    "; the last /thermo record says t = {}, {pair} pair + {wall} wall collisions",
+                    Num(t)
+                ),
+                None => String::new(),
+            }
+        ),
         None => match (&i.end, i.last_checkpoint_time) {
             (LogEnd::Damaged { .. }, _) => writeln!(s, "  summary: none readable"),
             (_, Some(_)) => writeln!(s, "  summary: none (the run did not finish; `carom resume` continues it)"),

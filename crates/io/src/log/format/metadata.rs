@@ -1,7 +1,10 @@
 //! The two MCAP metadata records of a carom log: `carom.run` (written first: what
 //! was run) and `carom.summary` (written last: how it ended). MCAP metadata are maps
-//! of strings to strings; this module is their typed form.
+//! of strings to strings; this module is their typed form. Each map carries its
+//! checksum (`crc32`, log format 2.3 on; see `checksum`): `to_map` seals it,
+//! and readers verify it before `from_map` (which ignores the key).
 
+use super::checksum::seal;
 use super::facts::RunFacts;
 use super::number::{f64_from_json, f64_from_text, f64_to_json, f64_to_text};
 use super::{LOG_FORMAT_VERSION, READABLE_MAJOR_VERSIONS};
@@ -203,7 +206,7 @@ pub fn log_options_from_json(v: &Value) -> Option<LogOptions> {
 }
 
 impl RunMetadata {
-    /// The record as an MCAP metadata map.
+    /// The record as an MCAP metadata map, sealed with its checksum.
     pub fn to_map(&self) -> BTreeMap<String, String> {
         let mut m = BTreeMap::new();
         m.insert("log_format".into(), self.log_format.clone());
@@ -229,6 +232,7 @@ impl RunMetadata {
         if let Some(f) = &self.run_facts {
             m.insert("run_facts".into(), f.to_json().to_string());
         }
+        seal(&mut m);
         m
     }
 
@@ -376,7 +380,7 @@ pub struct SummaryMetadata {
 
 impl SummaryMetadata {
     /// The record as an MCAP metadata map (floats in shortest round-trip form,
-    /// non-finite ones as `NaN`, `Infinity`, `-Infinity`).
+    /// non-finite ones as `NaN`, `Infinity`, `-Infinity`), sealed with its checksum.
     pub fn to_map(&self) -> BTreeMap<String, String> {
         let mut m = BTreeMap::new();
         let f = f64_to_text;
@@ -403,6 +407,7 @@ impl SummaryMetadata {
         if let Some(u) = self.potential_energy {
             m.insert("potential_energy".into(), f(u));
         }
+        seal(&mut m);
         m
     }
 

@@ -15,6 +15,7 @@
 
 mod cdr;
 mod checkpoint;
+mod checksum;
 mod collisions;
 mod compact;
 mod facts;
@@ -29,6 +30,7 @@ mod thermo;
 pub use cdr::CdrError;
 pub(crate) use cdr::{CdrReader, CdrWriter};
 pub use checkpoint::{DriverState, LogCheckpoint, CHECKPOINT_FORMAT_VERSION, CHECKPOINT_MSG};
+pub use checksum::{seal, verify, Checksum, CHECKSUM_KEY};
 pub use collisions::{
     CollisionBatch, CollisionRecord, COLLISION_BATCH_MSG, KIND_PAIR, KIND_WALL, NO_DISC,
 };
@@ -74,9 +76,12 @@ pub const METADATA_SUMMARY: &str = "carom.summary";
 /// runs in a field carry U and K + U, those of runs with growing discs the scale,
 /// η, the growth phase and Z, and such runs write an extra record after each
 /// rescale and at the end of growth ([`GrowthEvent`]); `carom.summary` may hold
-/// `potential_energy`; older files read with none. Readers accept 1.x (full
-/// records) and 2.x.
-pub const LOG_FORMAT_VERSION: &str = "2.2";
+/// `potential_energy`; older files read with none. 2.3: `carom.run` and
+/// `carom.summary` each carry a checksum (`crc32`, see `checksum`), so that a
+/// damaged summary is left out with a warning, a damaged `carom.run` is an error,
+/// and a failed data-section CRC in a log whose chunks and both records hold is a
+/// warning; older files read as before. Readers accept 1.x (full records) and 2.x.
+pub const LOG_FORMAT_VERSION: &str = "2.3";
 
 /// Major versions of the log format this carom reads.
 pub const READABLE_MAJOR_VERSIONS: [&str; 2] = ["1", "2"];

@@ -118,12 +118,14 @@ pub enum LogEnd {
         /// What the MCAP reader found at the cut.
         detail: String,
     },
-    /// Every message was read (each chunk's CRC holds, and the `carom.summary`
-    /// record, written after the last chunk, was reached, with the data section's
-    /// CRC holding), but what follows the data section is damaged: the index (MCAP
-    /// summary section), the footer or the end magic. A warning, not an error: the
-    /// index only repeats what the chunks hold, and readers read the chunks in
-    /// order.
+    /// Every message was read (each chunk's CRC holds, and the end of the data
+    /// section was reached: see the module doc of `read`), but something outside
+    /// the chunks is damaged: the index (MCAP summary section), the footer or the
+    /// end magic, a `carom.summary` record whose checksum fails (its values are
+    /// then not used), or, in a log whose metadata carry checksums (format 2.3
+    /// on), the framing of records outside the chunks (the data section's CRC).
+    /// A warning, not an error: the index only repeats what the chunks hold, and
+    /// readers read the chunks in order.
     Damaged {
         /// What is damaged.
         detail: String,
@@ -141,7 +143,7 @@ impl LogEnd {
                  read everything up to the last flush ({detail})"
             )),
             LogEnd::Damaged { detail } => Some(format!(
-                "the log's index or footer is damaged ({detail}); every message was read from \
+                "the log is damaged outside its chunks ({detail}); every message was read from \
                  the chunks in order, each chunk's CRC holding (`carom repair` writes an intact copy)"
             )),
             _ => None,

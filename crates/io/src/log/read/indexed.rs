@@ -6,7 +6,7 @@ use super::scan::simulated_times;
 use super::{record_length_limit, LogEnd, LogInfo, LogReader, RawMessage, ReadError};
 use crate::log::format::N_CHANNELS;
 use crate::log::format::{
-    SummaryMetadata, Thermo, CH_CHECKPOINT, CH_THERMO, METADATA_SUMMARY, TOPICS,
+    verify, Checksum, SummaryMetadata, Thermo, CH_CHECKPOINT, CH_THERMO, METADATA_SUMMARY, TOPICS,
 };
 use mcap::records::Record;
 use std::collections::HashMap;
@@ -22,7 +22,9 @@ use std::path::Path;
 /// thermo counts from the messages themselves, so the result equals [`scan`](crate::scan)'s for
 /// an intact file. Nothing else in the file is read or checked: damage elsewhere is
 /// found only by a later full read. `Ok(None)` when the file has no usable index (a
-/// run cut short; then use [`scan`](crate::scan)).
+/// run cut short, a damaged index or footer, no `carom.summary` record or one
+/// whose checksum fails; then use [`scan`](crate::scan), which says what is
+/// damaged). An error only when `carom.run` cannot be read, or the file itself.
 pub fn scan_indexed(path: &Path) -> Result<Option<LogInfo>, ReadError> {
     use mcap::sans_io::summary_reader::{SummaryReadEvent, SummaryReader, SummaryReaderOptions};
 
@@ -94,6 +96,10 @@ pub fn scan_indexed(path: &Path) -> Result<Option<LogInfo>, ReadError> {
     let Ok(Record::Metadata(m)) = super::parse_record(record[0], &record[9..]) else {
         return Ok(None);
     };
+    // A summary whose checksum fails is damage: the full scan says so.
+    if matches!(verify(&m.metadata), Checksum::Fails { .. }) {
+        return Ok(None);
+    }
     let Ok(carom_summary) = SummaryMetadata::from_map(&m.metadata) else {
         return Ok(None);
     };

@@ -9,10 +9,15 @@
 //! then end normally and [`LogReader::end`] says [`LogEnd::Truncated`] (with
 //! [`ReadOptions::strict`] the cut is an error instead). Damage inside a file that
 //! was finished properly is a [`ReadError::Corrupt`] error, returned after
-//! everything before the damage, unless it comes after the data section (the
-//! index, the footer), whose CRC held: then every message has been read and the
-//! end is [`LogEnd::Damaged`], a warning. [`salvage`] reads around damaged chunks
-//! (for `carom repair`). Nothing here panics on bad input.
+//! everything before the damage, unless every message has been read: then the end
+//! is [`LogEnd::Damaged`], a warning. That is so when the damage comes after the
+//! data section (the index, the footer) whose CRC held, and, in logs whose two
+//! metadata records carry checksums (format 2.3 on), when the data section's CRC
+//! fails but every chunk's CRC held and `carom.run`'s checksum held: the damage
+//! lies in the records outside the chunks, read without harm. A `carom.summary`
+//! whose checksum fails is left out (a warning); a `carom.run` whose checksum
+//! fails is an error (the run it describes cannot be trusted). [`salvage`] reads
+//! around damaged chunks (for `carom repair`). Nothing here panics on bad input.
 //!
 //! ```no_run
 //! use carom_io::{LogEvent, LogReader};
@@ -41,10 +46,11 @@ pub use scan::{last_checkpoint, last_checkpoint_observed, scan, scan_observed, L
 
 use crate::log::format::N_CHANNELS;
 use crate::log::format::{
-    CollisionBatch, RunMetadata, SummaryMetadata, CHANNELS, CH_COLLISIONS,
-    COMPACT_COLLISIONS_CHANNEL, METADATA_RUN, METADATA_SUMMARY, TOPICS,
+    verify, Checksum, CollisionBatch, MetadataError, RunMetadata, SummaryMetadata, CHANNELS,
+    CHECKSUM_KEY, CH_COLLISIONS, COMPACT_COLLISIONS_CHANNEL, METADATA_RUN, METADATA_SUMMARY,
+    TOPICS,
 };
-use mcap::records::Record;
+use mcap::records::{op, Record};
 use mcap::sans_io::{LinearReadEvent, LinearReader, LinearReaderOptions};
 use replay::Replay;
 use std::collections::{BTreeMap, HashMap};
@@ -119,6 +125,15 @@ pub struct LogReader<R: Read + Seek = BufReader<File>> {
     summary: Option<BTreeMap<String, String>>,
     /// Why the `carom.summary` record, when reached, could not be read.
     summary_damage: Option<String>,
+    /// Whether `carom.run` carries a checksum, which held (format 2.3 on).
+    run_sealed: bool,
+    /// A record in the data section of a kind carom does not write (damaged
+    /// framing can make one up), if any: what it was.
+    foreign: Option<String>,
+    /// A metadata record of a name carom does not write (a damaged name?).
+    odd_metadata: Option<String>,
+    /// Whether the data-end record was read with a data-section CRC that held.
+    data_end_verified: bool,
     /// Whether the last low-level failure was the file ending inside a record.
     cut: bool,
     has_end_magic: bool,
@@ -186,6 +201,13 @@ pub(crate) fn parse_record(opcode: u8, data: &[u8]) -> Result<Record<'_>, String
     }
 }
 
+/// The name of a metadata record whose body may be damaged past its name
+/// (the body starts with the name: u32 length, then its bytes).
+fn metadata_name(body: &[u8]) -> Option<&str> {
+    let len = u32::from_le_bytes(body.get(..4)?.try_into().ok()?) as usize;
+    std::str::from_utf8(body.get(4..4usize.checked_add(len)?)?).ok()
+}
+
 /// How the mcap crate's error for a failed data-section CRC begins.
 const DATA_CRC_FAILED: &str = "Data section CRC failed";
 
@@ -242,6 +264,10 @@ impl<R: Read + Seek> LogReader<R> {
             run_map: BTreeMap::new(),
             summary: None,
             summary_damage: None,
+            run_sealed: false,
+            foreign: None,
+            odd_metadata: None,
+            data_end_verified: false,
             cut: false,
             has_end_magic,
             in_summary_section: false,
@@ -271,18 +297,34 @@ impl<R: Read + Seek> LogReader<R> {
                 Ok(true) => {}
                 Ok(false) => return Err(self.not_carom("the file ends before any carom metadata")),
                 Err(detail) => {
-                    return Err(self.not_carom(format!("not a readable MCAP file ({detail})")))
+                    return Err(self.not_carom(format!(
+                        "not a readable MCAP file up to its `{METADATA_RUN}` record ({detail})"
+                    )))
                 }
             }
             match parse_record(self.opcode, &self.record) {
                 Ok(Record::Header(_)) => continue,
                 Ok(Record::Metadata(m)) if m.name == METADATA_RUN => {
-                    self.run = RunMetadata::from_map(&m.metadata).map_err(|source| {
-                        ReadError::Metadata {
-                            file: self.label.clone(),
-                            source,
-                        }
-                    })?;
+                    let error = |source| ReadError::Metadata {
+                        file: self.label.clone(),
+                        source,
+                    };
+                    let check = verify(&m.metadata);
+                    let parsed = RunMetadata::from_map(&m.metadata);
+                    // (A log of another major format is named as such first: its
+                    // records need not follow this version's checksum rule.)
+                    if let (Some(problem), false) = (
+                        check.problem(),
+                        matches!(&parsed, Err(e) if e.key == "log_format"),
+                    ) {
+                        return Err(error(MetadataError {
+                            record: METADATA_RUN,
+                            key: CHECKSUM_KEY,
+                            problem,
+                        }));
+                    }
+                    self.run = parsed.map_err(error)?;
+                    self.run_sealed = check == Checksum::Holds;
                     self.run_map = m.metadata;
                     return Ok(());
                 }
@@ -292,7 +334,11 @@ impl<R: Read + Seek> LogReader<R> {
                         other.opcode()
                     )))
                 }
-                Err(e) => return Err(self.not_carom(format!("malformed first record: {e}"))),
+                Err(e) => {
+                    return Err(self.not_carom(format!(
+                        "malformed record where the `{METADATA_RUN}` record belongs: {e}"
+                    )))
+                }
             }
         }
     }
@@ -339,28 +385,64 @@ impl<R: Read + Seek> LogReader<R> {
         }
     }
 
-    /// Turn a low-level failure into the end of reading. Damage after the last
-    /// chunk (once the `carom.summary` record, written after it, or the summary
-    /// section has been reached) loses no message, unless the data section's CRC
-    /// failed: the end is [`LogEnd::Damaged`], a warning. (A log without that
-    /// record, as a repaired cut log, cannot tell and fails as before.)
+    /// Whether every message has been read by the time of a failure, `data_crc`
+    /// saying whether it is the data section's CRC that failed (which the MCAP
+    /// reader checks at the data-end record, after the last chunk).
+    ///
+    /// A failed data-section CRC alone proves nothing about where the damage is:
+    /// it covers the records outside the chunks too, the run's configuration
+    /// among them. In a log whose `carom.run` checksum held (format 2.3 on), with
+    /// every chunk's CRC held (else reading would have stopped there) and no
+    /// record of a kind carom does not write, the damage lies in the framing of
+    /// records read without harm (or in `carom.summary`, whose checksum then
+    /// fails): every message counts. Older logs fail as before.
+    ///
+    /// Any other failure comes after the data section once the `carom.summary`
+    /// record, written after the last chunk, or a data-end record whose CRC held
+    /// has been read (a data-end record misread out of damaged bytes fails its
+    /// CRC), or, in a 2.3 log as above, any data-end record.
+    fn all_messages_read(&self, data_crc: bool) -> bool {
+        let framing_clean = self.run_sealed && self.foreign.is_none();
+        if data_crc {
+            return framing_clean;
+        }
+        self.summary.is_some()
+            || self.summary_damage.is_some()
+            || self.data_end_verified
+            || (self.in_summary_section && framing_clean)
+    }
+
+    /// Whether the record just read, which does not parse, may be skipped: a
+    /// metadata or message-index record (carom writes nothing else outside the
+    /// chunks after `carom.run`).
+    fn damage_tolerable(&self) -> bool {
+        self.opcode == op::METADATA || self.opcode == op::MESSAGE_INDEX
+    }
+
+    /// Turn a low-level failure into the end of reading: [`LogEnd::Damaged`], a
+    /// warning, when every message has been read (see
+    /// [`LogReader::all_messages_read`]), else truncated or an error.
     fn fail(&mut self, detail: String) -> Result<Found, ReadError> {
         // (A file that simply ends there was cut while being finished: truncated.)
         let cut = self.cut && !self.has_end_magic;
-        // Only the `carom.summary` record proves that the last chunk was read: a
-        // data-end record can be misread out of damaged bytes.
-        // A failed data-section CRC proves nothing about where the damage is: it
-        // covers the records outside the chunks too (the run's configuration, which
-        // decoding uses), so it stays an error (`carom repair` copies the chunks).
         let data_crc = detail.starts_with(DATA_CRC_FAILED);
-        if !cut && !data_crc && (self.summary.is_some() || self.summary_damage.is_some()) {
-            let detail = match &self.summary_damage {
-                Some(d) => format!("{d}; {detail}"),
-                None => detail,
-            };
+        if !cut && self.all_messages_read(data_crc) {
+            let detail = [
+                self.summary_damage.clone(),
+                self.odd_metadata.clone(),
+                Some(detail),
+            ]
+            .into_iter()
+            .flatten()
+            .collect::<Vec<_>>()
+            .join("; ");
             self.end = LogEnd::Damaged { detail };
             return Ok(Found::End);
         }
+        let detail = match &self.foreign {
+            Some(f) => format!("{detail} (after {f})"),
+            None => detail,
+        };
         if !self.has_end_magic && !self.strict {
             self.end = LogEnd::Truncated { detail };
             return Ok(Found::End);
@@ -406,6 +488,23 @@ impl<R: Read + Seek> LogReader<R> {
             }
             let rec = match parse_record(self.opcode, &self.record) {
                 Ok(r) => r,
+                // In a 2.3 log, a metadata or message-index record (outside the
+                // chunks) whose body is damaged but whose length held: reading
+                // goes on at the next record, and the data section's CRC decides
+                // (see `all_messages_read`).
+                Err(e) if self.run_sealed && self.damage_tolerable() => {
+                    let what = format!("a malformed record of opcode {:#04x} ({e})", self.opcode);
+                    if self.opcode == op::METADATA
+                        && metadata_name(&self.record) == Some(METADATA_SUMMARY)
+                    {
+                        self.summary_damage = Some(format!(
+                            "{METADATA_SUMMARY}: malformed ({e}); its values are not used"
+                        ));
+                    } else {
+                        self.odd_metadata.get_or_insert(what);
+                    }
+                    continue;
+                }
                 Err(e) => return self.fail(format!("malformed record: {e}")),
             };
             match rec {
@@ -468,15 +567,37 @@ impl<R: Read + Seek> LogReader<R> {
                 Record::Metadata(m) if m.name == METADATA_SUMMARY => {
                     // A damaged summary is left out (with a warning at the end),
                     // not an error: the messages are all there.
-                    match SummaryMetadata::from_map(&m.metadata) {
-                        Ok(_) => self.summary = Some(m.metadata),
-                        Err(e) => {
+                    let check = verify(&m.metadata);
+                    match (check.problem(), SummaryMetadata::from_map(&m.metadata)) {
+                        (Some(problem), _) => {
+                            self.summary_damage = Some(format!(
+                                "{METADATA_SUMMARY}: {problem}; its values are not used"
+                            ))
+                        }
+                        (None, Ok(_)) => self.summary = Some(m.metadata),
+                        (None, Err(e)) => {
                             self.summary_damage =
-                                Some(format!("the carom.summary record is unreadable: {e}"))
+                                Some(format!("the {METADATA_SUMMARY} record is unreadable: {e}"))
                         }
                     }
                 }
-                Record::DataEnd(_) => self.in_summary_section = true,
+                Record::Metadata(m) if m.name != METADATA_RUN => {
+                    // Another tool's record, or one of ours with a damaged name:
+                    // said only if the file turns out damaged.
+                    self.odd_metadata = Some(format!(
+                        "a metadata record named {:?}, which carom does not write (a {METADATA_SUMMARY} record with a damaged name?)",
+                        m.name
+                    ));
+                }
+                Record::DataEnd(d) => {
+                    self.in_summary_section = true;
+                    // (The MCAP reader has checked a non-zero CRC.)
+                    self.data_end_verified = d.data_section_crc != 0;
+                }
+                Record::Header(_)
+                | Record::Metadata(_)
+                | Record::MessageIndex(_)
+                | Record::Chunk { .. } => {}
                 // carom writes no such record: damaged bytes (a chunk whose opcode
                 // was hit would otherwise be skipped, and its messages lost unseen).
                 Record::Unknown { opcode, .. } => {
@@ -484,7 +605,16 @@ impl<R: Read + Seek> LogReader<R> {
                         "a record of unknown opcode {opcode:#04x} in the data section"
                     ))
                 }
-                _ => {}
+                // Records carom does not write in the data section (attachments,
+                // index records): another writer's, or misread out of damage.
+                other => {
+                    self.foreign.get_or_insert_with(|| {
+                        format!(
+                            "a record of opcode {:#04x}, which carom does not write in the data section",
+                            other.opcode()
+                        )
+                    });
+                }
             }
         }
     }

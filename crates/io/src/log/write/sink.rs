@@ -4,8 +4,8 @@
 
 use super::options::{WriteError, WriterOptions};
 use crate::log::format::{
-    log_time_ns, CdrWriter, CollisionBatch, CollisionRecord, CompactBatch, CHANNELS, CH_COLLISIONS,
-    COMPACT_COLLISIONS_CHANNEL, METADATA_RUN,
+    log_time_ns, seal, CdrWriter, CollisionBatch, CollisionRecord, CompactBatch, CHANNELS,
+    CH_COLLISIONS, COMPACT_COLLISIONS_CHANNEL, METADATA_RUN, METADATA_SUMMARY,
 };
 use crate::log::format::{CH_SCENE, N_CHANNELS};
 use crate::options::CollisionDetail;
@@ -55,6 +55,16 @@ pub(super) enum Cmd {
     /// answer goes back once it has.
     Sync(SyncSender<()>),
     Finish,
+}
+
+/// `m` as written: a `carom.run` or `carom.summary` record with its checksum
+/// (whatever map the caller built or copied; see `format::checksum`), any
+/// other record as it is.
+fn sealed(mut m: Metadata) -> Metadata {
+    if m.name == METADATA_RUN || m.name == METADATA_SUMMARY {
+        seal(&mut m.metadata);
+    }
+    m
 }
 
 /// The file side: owns the MCAP writer.
@@ -115,10 +125,10 @@ impl Sink {
             .library(format!("carom-io {}", env!("CARGO_PKG_VERSION")))
             .create(BufWriter::with_capacity(1 << 20, file))
             .map_err(mcap_err)?;
-        mcap.write_metadata(&Metadata {
+        mcap.write_metadata(&sealed(Metadata {
             name: METADATA_RUN.into(),
             metadata: run_metadata.clone(),
-        })
+        }))
         .map_err(mcap_err)?;
         let compact = (opts.collision_detail == CollisionDetail::Compact
             && opts.collision_every == 1)
@@ -229,7 +239,7 @@ impl Sink {
                 }
             }
             Cmd::Metadata(m) => {
-                let r = self.mcap.write_metadata(&m);
+                let r = self.mcap.write_metadata(&sealed(m));
                 r.map_err(|e| self.err(e))?;
                 self.dirty = true;
             }
