@@ -43,7 +43,7 @@ pub fn repair(args: RepairArgs) -> Result<ExitCode, CliError> {
         LogEnd::Complete => "the input was already complete; copied whole".to_string(),
         LogEnd::Truncated { detail } => format!("the input was cut ({detail})"),
         LogEnd::Damaged { detail } => {
-            format!("every message was read; the input's index or footer was damaged ({detail})")
+            format!("every message was read; the input was damaged outside its chunks ({detail})")
         }
         _ if !r.lost.is_empty() => format!(
             "the input is damaged: {} part(s) lost, every chunk whose CRC holds copied",

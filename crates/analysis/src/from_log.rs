@@ -51,7 +51,8 @@ pub trait ReadObserver {
 }
 
 /// Analyse the log `path` with `opts`, telling `observer` how reading goes.
-/// Returns the report and whether the log is complete (not cut short).
+/// Returns the report and whether every message was read (the log is not cut
+/// short; it may be damaged outside its chunks, which the observer is told).
 pub fn analyze_log(
     path: &Path,
     opts: AnalysisOptions,
@@ -67,7 +68,8 @@ pub fn analyze_log(
     if let Some(w) = info.end.warning() {
         observer.warn(&format!("warning: {w}"));
     }
-    let complete = info.end == LogEnd::Complete;
+    let complete = matches!(info.end, LogEnd::Complete | LogEnd::Damaged { .. });
+    let warned = matches!(info.end, LogEnd::Damaged { .. });
     // Decompression on a second core, ahead of the analysis on this one.
     let mut reader = LogReader::open(path)?;
     observer.pass("reading");
@@ -157,7 +159,7 @@ pub fn analyze_log(
     }
     // Reading, decompressing and decoding on other threads, the analysis here.
     // A truncated tail ends the stream (the scan already warned).
-    for item in decode_ahead(reader, shown) {
+    for item in decode_ahead(reader, shown, warned) {
         let (m, progress) = item?;
         if let Some(p) = progress {
             observer.progress(p);
@@ -190,9 +192,11 @@ pub fn analyze_log(
 /// Messages read and decoded on a thread of their own (the records themselves
 /// read ahead on another), handed over in order with the reading progress when
 /// it changed; the first error ends the stream. At most [`AHEAD`] messages wait.
+/// Damage after the last chunk is told once, unless `warned` already.
 fn decode_ahead(
     mut reader: LogReader,
     mut shown: u64,
+    warned: bool,
 ) -> impl Iterator<Item = Result<(LogMessage, Option<ReadProgress>), ReadError>> {
     let (tx, rx) = std::sync::mpsc::sync_channel(AHEAD);
     std::thread::spawn(move || loop {
@@ -201,7 +205,9 @@ fn decode_ahead(
             Ok(Some(m)) => Ok((m, progress)),
             Ok(None) => {
                 // Damage after the last chunk shows only to this full read.
-                if let (LogEnd::Damaged { .. }, Some(w)) = (reader.end(), reader.end().warning()) {
+                if let (LogEnd::Damaged { .. }, Some(w), false) =
+                    (reader.end(), reader.end().warning(), warned)
+                {
                     use std::io::Write as _;
                     let _ = writeln!(std::io::stderr(), "warning: {w}");
                 }
