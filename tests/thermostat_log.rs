@@ -99,6 +99,17 @@ fn analyze_reports_the_thermostat_in_place_of_the_energy_budget() {
     assert!((measured / predicted - 1.0).abs() < 0.15, "{t:?}");
     let i = r.inelastic.as_ref().unwrap();
     assert!(i.energy.is_none() && i.haff.is_none(), "{i:?}");
+    // What the thermostat took out is listed, with the thermostat as the reason.
+    let why = |q: &str| {
+        r.not_computed
+            .iter()
+            .find(|n| n.quantity == q)
+            .map(|n| n.why.clone())
+            .unwrap_or_else(|| panic!("{q} not listed: {:?}", r.not_computed))
+    };
+    for q in ["inelastic.energy", "inelastic.haff", "transport"] {
+        assert!(why(q).contains("thermostat"), "{q}: {}", why(q));
+    }
     std::fs::remove_file(&path).unwrap();
 
     let spec = example("thermostatted-fluid.json");
@@ -108,6 +119,12 @@ fn analyze_reports_the_thermostat_in_place_of_the_energy_budget() {
     let t = r.thermostat.as_ref().expect("a thermostat report");
     assert_eq!((t.kind, t.target_kt), ("andersen", Some(2.0)));
     assert!(r.transport.is_none());
+    let transport = r.not_computed.iter().find(|n| n.quantity == "transport");
+    assert!(
+        transport.is_some_and(|n| n.why.contains("thermostat")),
+        "{:?}",
+        r.not_computed
+    );
     std::fs::remove_file(&path).unwrap();
 
     // The same run without its thermostat: no report, and compact collisions.

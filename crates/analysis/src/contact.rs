@@ -60,7 +60,8 @@ pub struct PairReport {
 /// The contact value with its error.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct ContactValue {
-    /// g(σ⁺) extrapolated from the straight line in ln g over [σ, σ + 0.1 σ].
+    /// g(σ⁺) extrapolated from the least-squares parabola in ln g over [σ, σ + 0.2 σ]
+    /// ([`CONTACT_FIT_SIGMA`]).
     pub value: f64,
     /// Its standard error (spread of the per-block fits); `null` when a time
     /// block has too few pairs near contact to fit, then `no_error` says so.

@@ -186,6 +186,8 @@ pub fn analyze_log(
             super::floor::apply(f, spec.params.gravity, &totals, from, &mut report);
         }
     }
+    // What those took out is said with its reason too.
+    report.not_computed = super::not_computed::explain(&report);
     Ok((report, complete))
 }
 

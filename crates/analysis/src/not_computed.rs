@@ -87,7 +87,10 @@ pub fn explain(r: &Report) -> Vec<NotComputed> {
     inelastic(r, &mut say);
     if r.transport.is_none() {
         let c = &r.collision_rate;
-        let why = if !r.elastic {
+        let why = if r.thermostat.is_some() {
+            "a thermostat changes the velocities between collisions, which the replay of \
+             the logged collisions does not see"
+        } else if !r.elastic {
             "needs elastic collisions"
         } else if !periodic {
             "needs a periodic box"
@@ -119,6 +122,12 @@ fn inelastic(r: &Report, say: &mut dyn FnMut(&'static str, String)) {
                 r.window.equilibrate, r.window.t_end, r.window.snapshots_seen
             ),
         );
+    }
+    if r.thermostat.is_some() {
+        let why = "the thermostat feeds energy in; the energy budget and Haff's law assume none";
+        say("inelastic.energy", why.into());
+        say("inelastic.haff", why.into());
+        return;
     }
     if i.energy.is_none() && r.gravity.is_none() {
         say(

@@ -51,12 +51,21 @@ pub fn repair(input: &Path, out: &Path) -> Result<Repaired, RunError> {
     let mut name = out.file_name().unwrap_or_default().to_os_string();
     name.push(".repair-tmp");
     let tmp = out.with_file_name(name);
-    let result = match copy(LogReader::open(input)?, &tmp, Vec::new()) {
-        Err(RunError::Read(ReadError::Corrupt { .. })) => {
-            let s = salvage(input)?;
-            copy(s.reader, &tmp, s.lost)
-        }
-        other => other,
+    let result = match LogReader::open(input) {
+        Ok(reader) => match copy(reader, &tmp, Vec::new()) {
+            Err(RunError::Read(ReadError::Corrupt { .. })) => {
+                let s = salvage(input)?;
+                copy(s.reader, &tmp, s.lost)
+            }
+            other => other,
+        },
+        // A damaged start (the magic, the header record): what follows may hold.
+        // A file salvage cannot read either keeps its first error.
+        Err(first @ ReadError::NotCarom { .. }) => match salvage(input) {
+            Ok(s) => copy(s.reader, &tmp, s.lost),
+            Err(_) => Err(first.into()),
+        },
+        Err(e) => Err(e.into()),
     };
     match result {
         Ok(mut r) => {

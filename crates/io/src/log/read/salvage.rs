@@ -13,7 +13,7 @@
 //! streaming).
 
 use super::{parse_record, record_length_limit, LogReader, ReadError, ReadOptions};
-use crate::log::format::METADATA_SUMMARY;
+use crate::log::format::{METADATA_RUN, METADATA_SUMMARY};
 use mcap::records::{op, Record};
 use mcap::sans_io::{LinearReadEvent, LinearReader, LinearReaderOptions};
 use std::io::Cursor;
@@ -114,14 +114,14 @@ fn record_holds(bytes: &[u8], pos: usize, op: u8, end: usize, limit: usize) -> b
 }
 
 /// Whether the record at `pos` can start again after damage: a chunk that holds,
-/// or the `carom.summary` record.
+/// or one of carom's metadata records (`carom.run` after a damaged header).
 fn resumes_at(bytes: &[u8], pos: usize, limit: usize) -> Option<(u8, usize)> {
     let (op, end) = header_at(bytes, pos, limit)?;
     let ok = match op {
         op::CHUNK => plausible_chunk(bytes, pos, end) && chunk_holds(&bytes[pos..end], limit),
         op::METADATA => matches!(
             parse_record(op, &bytes[pos + 9..end]),
-            Ok(Record::Metadata(m)) if m.name == METADATA_SUMMARY
+            Ok(Record::Metadata(m)) if m.name == METADATA_SUMMARY || m.name == METADATA_RUN
         ),
         _ => false,
     };
