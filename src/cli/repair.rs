@@ -49,7 +49,9 @@ pub fn repair(args: RepairArgs) -> Result<ExitCode, CliError> {
             "the input is damaged: {} part(s) lost, every chunk whose CRC holds copied",
             r.lost.len()
         ),
-        _ => "the input ended unreadably".to_string(),
+        _ => "the input was damaged outside its chunks (its start, or a record's framing); \
+              every message was read around the damage"
+            .to_string(),
     };
     for l in &r.lost {
         let _ = writeln!(

@@ -416,6 +416,8 @@ pub fn run_record(m: &RunMetadata) -> BTreeMap<String, String> {
             put(k, v.clone());
         }
     }
+    // Its checksum over exactly these fields (log format 2.3).
+    carom::io::seal(&mut r);
     r
 }
 
@@ -464,6 +466,7 @@ pub fn summary_record(s: &SummaryMetadata) -> BTreeMap<String, String> {
     ] {
         put(k, n.to_string());
     }
+    carom::io::seal(&mut r);
     r
 }
 

@@ -38,6 +38,7 @@ pub use log::format::{
     KIND_WALL, LOG_FORMAT_VERSION, METADATA_RUN, METADATA_SUMMARY, NO_DISC, SNAPSHOT_MSG,
     THERMO_JSON_SCHEMA, TOPICS,
 };
+pub use log::format::{seal, CHECKSUM_KEY};
 pub use log::format::{
     wall_code, wall_of, CompactBatch, COMPACT_COLLISIONS_CHANNEL, COMPACT_COLLISION_BATCH_MSG,
     READABLE_MAJOR_VERSIONS, WALL_CODE_BASE,

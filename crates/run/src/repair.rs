@@ -31,7 +31,8 @@ pub struct Repaired {
     /// Its size in bytes.
     pub bytes: u64,
     /// How the input ended (`Complete`, `Truncated` with where it was cut,
-    /// `Damaged` after its last chunk, or `Failed` when chunks were lost).
+    /// `Damaged` after its last chunk, or `Failed` when it was read around
+    /// damage: chunks lost, or a damaged start or record framing).
     pub input_end: LogEnd,
     /// The parts of the input that could not be read (damaged chunks), empty
     /// unless the input was damaged before its end.
@@ -51,18 +52,23 @@ pub fn repair(input: &Path, out: &Path) -> Result<Repaired, RunError> {
     let mut name = out.file_name().unwrap_or_default().to_os_string();
     name.push(".repair-tmp");
     let tmp = out.with_file_name(name);
+    // Read around the damage: the input's reading failed, whatever the salvaged
+    // reader's own end says.
+    let around = |s: carom_io::Salvaged| {
+        copy(s.reader, &tmp, s.lost).map(|r| Repaired {
+            input_end: LogEnd::Failed,
+            ..r
+        })
+    };
     let result = match LogReader::open(input) {
         Ok(reader) => match copy(reader, &tmp, Vec::new()) {
-            Err(RunError::Read(ReadError::Corrupt { .. })) => {
-                let s = salvage(input)?;
-                copy(s.reader, &tmp, s.lost)
-            }
+            Err(RunError::Read(ReadError::Corrupt { .. })) => around(salvage(input)?),
             other => other,
         },
         // A damaged start (the magic, the header record): what follows may hold.
         // A file salvage cannot read either keeps its first error.
         Err(first @ ReadError::NotCarom { .. }) => match salvage(input) {
-            Ok(s) => copy(s.reader, &tmp, s.lost),
+            Ok(s) => around(s),
             Err(_) => Err(first.into()),
         },
         Err(e) => Err(e.into()),
@@ -128,11 +134,7 @@ fn copy<R: Read + Seek>(
         out: out.to_path_buf(),
         messages,
         bytes,
-        input_end: if lost.is_empty() {
-            reader.end().clone()
-        } else {
-            LogEnd::Failed
-        },
+        input_end: reader.end().clone(),
         lost,
         dropped_batches,
     })
