@@ -13,10 +13,12 @@
 //! The engine is split by phase, one `impl` block per file: prediction and the
 //! neighbour scan (`predict`), resolution of collisions, wall hits and crossings
 //! (`resolve`), the clock and renumbering (`clock`), fetching ahead (`lookahead`),
-//! the checkpoint (`checkpoint`) and uniform gravity (`gravity`: the same paths,
-//! with the fall added where a disc's own height matters; the event loop is
-//! compiled twice, with and without it). Growing discs (`growth`, physics.md §17)
-//! run in a third copy of the loop. See docs/performance.md, "engine".
+//! the checkpoint (`checkpoint`). How discs move between events is one seam,
+//! the law of motion (`motion`: straight, falling in a field with an optional
+//! vibrating floor, growing), chosen once per engine; the event loop is compiled
+//! once per law, so the straight loop is compiled as if the others did not exist.
+//! The laws' engine-side work is in `gravity`, `floor`, `resting` and `growth`.
+//! See docs/performance.md, "engine".
 
 mod body;
 mod checkpoint;
@@ -25,6 +27,7 @@ mod floor;
 mod gravity;
 mod growth;
 mod lookahead;
+mod motion;
 mod pause;
 mod predict;
 mod resolve;
@@ -44,6 +47,7 @@ use carom_core::vibrating_wall::Floor;
 use carom_core::{DVec2, Restitution, SimBox, Species};
 use clock::{origin_limit, reorder_interval};
 pub use growth::{Growth, GrowthEnd, GrowthState};
+use motion::{Falling, Growing, Motion, Straight};
 use ordered_float::NotNan;
 pub use pause::PAUSE_TAG;
 use std::cmp::Reverse;
@@ -471,16 +475,17 @@ impl Engine {
         } else if self.params.growth.rate != 0.0 {
             self.next_event_growing()
         } else {
-            self.next_event_in::<false, false>()
+            self.next_event_in::<Straight>()
         }
     }
 
-    /// [`Engine::next_event`] in a field (engine::gravity): a copy of the loop of
-    /// its own, so that the loop without one is compiled as if fields did not exist.
+    /// [`Engine::next_event`] in a field (engine::motion::Falling): a copy of the
+    /// loop of its own, so that the loop without one is compiled as if fields did
+    /// not exist.
     #[cold]
     #[inline(never)]
     fn next_event_falling(&mut self) -> Result<Option<Event>, EngineError> {
-        self.next_event_in::<true, false>()
+        self.next_event_in::<Falling>()
     }
 
     /// [`Engine::next_event`] with growing discs (engine::growth), a copy of the
@@ -488,16 +493,14 @@ impl Engine {
     #[cold]
     #[inline(never)]
     fn next_event_growing(&mut self) -> Result<Option<Event>, EngineError> {
-        self.next_event_in::<false, true>()
+        self.next_event_in::<Growing>()
     }
 
-    /// [`Engine::next_event`] with the discs falling in the field (`FALL`) or
-    /// flying straight: a compile-time choice threaded through resolution and
+    /// [`Engine::next_event`] with the discs moving by the law `M`
+    /// (engine::motion): a compile-time choice threaded through resolution and
     /// prediction.
     #[inline(always)]
-    fn next_event_in<const FALL: bool, const GROW: bool>(
-        &mut self,
-    ) -> Result<Option<Event>, EngineError> {
+    fn next_event_in<M: Motion>(&mut self) -> Result<Option<Event>, EngineError> {
         loop {
             self.tuner.left -= 1;
             if self.tuner.left == 0 {
@@ -525,8 +528,7 @@ impl Engine {
             if self.look_ahead && self.queue.moved_on() {
                 self.look_ahead();
             }
-            if GROW {
-                let due = self.growth_due();
+            if let Some(due) = M::growth_due(self) {
                 let scheduled_first = self
                     .scheduled
                     .peek()
@@ -574,30 +576,24 @@ impl Engine {
                     if self.bodies[j].count != b.partner_count {
                         self.move_clock(t);
                         self.stats.stale_events += 1;
-                        self.predict::<FALL, GROW>(i);
+                        self.predict::<M>(i);
                         continue;
                     }
                     self.advance_clock(t)?;
-                    return Ok(Some(Event::Pair(self.collide::<FALL, GROW>(
-                        i,
-                        j,
-                        aux.image(),
-                    ))));
+                    return Ok(Some(Event::Pair(self.collide::<M>(i, j, aux.image()))));
                 }
                 Pending::Wall => {
                     self.advance_clock(t)?;
-                    return Ok(Some(Event::Wall(
-                        self.hit_wall::<FALL, GROW>(i, aux.face()),
-                    )));
+                    return Ok(Some(Event::Wall(self.hit_wall::<M>(i, aux.face()))));
                 }
                 Pending::Cell => {
                     self.move_clock(t);
-                    self.cross::<FALL, GROW>(i, aux.face());
+                    self.cross::<M>(i, aux.face());
                 }
                 Pending::Recheck => {
                     // The floor search stopped short (engine::floor): search on.
                     self.move_clock(t);
-                    self.predict::<FALL, GROW>(i);
+                    self.predict::<M>(i);
                 }
                 Pending::None => unreachable!("a disc with no event has time +∞"),
             }
