@@ -3,7 +3,7 @@
 //! The bottom wall moves as h(t') = A (1 − cos ω t'), t' the time since it was set
 //! (`floor_origin`, in reported time, so the phase survives the clock's restarts
 //! and a checkpoint). An engine with a floor runs the event loop compiled for a
-//! field (`FALL`, engine::gravity), with g = 0 when there is none: the plain loop
+//! field (`engine::motion::Falling`, engine::gravity), with g = 0 when there is none: the plain loop
 //! never sees the floor. For a disc in a cell row the floor's band can reach
 //! (lower edge below 2A + a), the floor contact is searched by conservative
 //! advancement (`carom_core::vibrating_wall`) up to the disc's other boundary
@@ -12,10 +12,10 @@
 //! v' = w − e (v − w), and the kinetic energy it gives goes to `Stats::floor_work`.
 
 use super::body::{Face, Pending};
+use super::gravity::{keep, Vertical};
 use super::Engine;
 use crate::error::EngineError;
 use crate::event::WallCollision;
-use carom_core::boundary::wall_time;
 use carom_core::collision::apply_wall_impulse;
 use carom_core::gravity::{crossing_time_falling, rise_time};
 use carom_core::vibrating_wall::{bounce, FloorContact};
@@ -96,41 +96,20 @@ impl Engine {
         v: DVec2,
     ) -> (f64, Pending, Face) {
         let fl = self.params.floor.expect("called with a floor");
-        let (g, now) = (self.params.gravity, self.clock);
+        let g = self.params.gravity;
         let b = &self.bodies[i];
-        let c = b.link.coords();
         let grid = self.grids.get(self.grids.class(b.species));
         let radius = self.species[b.species as usize].radius;
-        let mut out = (f64::INFINITY, Pending::None, Face::new(0, false));
-        let keep = |out: &mut (f64, Pending, Face), dt: f64, k: Pending, f: Face| {
-            if dt < out.0 {
-                *out = (dt, k, f);
-            }
-        };
-        let (dt, up) = grid.crossing_time(0, c[0], p.x, v.x);
-        keep(&mut out, dt, Pending::Cell, Face::new(0, up));
-        if let Boundary::Walls { .. } = self.sim_box.boundary[0] {
-            if let Some((dt, side)) = wall_time(p.x, v.x, radius, self.sim_box.size.x) {
-                keep(
-                    &mut out,
-                    dt,
-                    Pending::Wall,
-                    Face::new(0, side == WallSide::High),
-                );
-            }
-        }
-        let y = p.y - 0.5 * g * now * now;
-        let u = v.y - g * now;
-        let row = c[1];
-        let last = row + 1 == grid.n[1];
-        let lower = row as f64 * grid.width.y;
-        let upper = if last {
-            grid.size.y
-        } else {
-            (row + 1) as f64 * grid.width.y
-        };
+        let mut out = self.side_event(i, p, v);
+        let Vertical {
+            y,
+            u,
+            row,
+            edges,
+            inner,
+        } = self.vertical(i, p, v);
         let (dt, up) = if g > 0.0 {
-            crossing_time_falling(y, u, [lower, upper], [row > 0, !last], g)
+            crossing_time_falling(y, u, edges, inner, g)
         } else {
             grid.crossing_time(1, row, y, u)
         };
@@ -141,8 +120,8 @@ impl Engine {
             Pending::Wall,
             Face::new(1, true),
         );
-        if lower < 2.0 * fl.amplitude + radius {
-            let phase = self.floor_phase(now);
+        if edges[0] < 2.0 * fl.amplitude + radius {
+            let phase = self.floor_phase(self.clock);
             match fl.contact_time(y, u, radius, g, phase, out.0) {
                 FloorContact::At(dt) => keep(&mut out, dt, Pending::Wall, Face::new(1, false)),
                 FloorContact::NotBefore(dt) => {
@@ -189,7 +168,7 @@ impl Engine {
         self.stats.wall_collisions += 1;
         self.stats.wall_impulse[1][0] += dp.abs();
         self.stats.floor_work += work;
-        self.predict::<true, false>(i);
+        self.predict::<super::motion::Falling>(i);
         WallCollision {
             time: self.reported,
             i: self.label[i],

@@ -46,6 +46,30 @@ impl Body {
     }
 }
 
+/// A disc's vertical motion now and its cell row, as the field's and the
+/// floor's boundary events need them.
+pub(super) struct Vertical {
+    /// True height (length).
+    pub(super) y: f64,
+    /// True vertical velocity (length/time).
+    pub(super) u: f64,
+    /// The cell row.
+    pub(super) row: u32,
+    /// The row's lower and upper edges (length).
+    pub(super) edges: [f64; 2],
+    /// Whether each edge is a cell edge rather than the box's.
+    pub(super) inner: [bool; 2],
+}
+
+/// Keep the event (time from now `dt`, kind, face) in `out` if it comes before
+/// the one there.
+#[inline]
+pub(super) fn keep(out: &mut (f64, Pending, Face), dt: f64, kind: Pending, face: Face) {
+    if dt < out.0 {
+        *out = (dt, kind, face);
+    }
+}
+
 /// Whether a field `g` (length/time², along −y) is allowed in `sim_box`: finite,
 /// ≥ 0, and with hard walls along y when it is not 0 (a periodic y would let
 /// discs fall for ever).
@@ -80,7 +104,7 @@ impl Engine {
     }
 
     /// Disc `i`'s earliest cell crossing or wall hit from now in the field, as
-    /// [`Engine::boundary_event`] gives it without one: along x on its straight
+    /// [`Engine::boundary_event_straight`] gives it without one: along x on its straight
     /// path, along y on its parabola (`carom_core::gravity`), and along y never
     /// while it rests on the floor. `p` is the disc's path point now (not its
     /// position), `v` its path velocity.
@@ -95,32 +119,58 @@ impl Engine {
         if self.params.floor.is_some() {
             return self.boundary_event_floor(i, p, v);
         }
-        let (g, now) = (self.params.gravity, self.clock);
+        let mut out = self.side_event(i, p, v);
+        if self.bodies[i].resting() {
+            return out;
+        }
+        let g = self.params.gravity;
+        let y = self.vertical(i, p, v);
+        // y has walls (checked when the engine is built): the first and last rows'
+        // outer edges are the box's.
+        let (dt, up) = crossing_time_falling(y.y, y.u, y.edges, y.inner, g);
+        keep(&mut out, dt, Pending::Cell, Face::new(1, up));
+        let radius = self.species[self.bodies[i].species as usize].radius;
+        let (dt, side) = wall_time_falling(y.y, y.u, radius, self.sim_box.size.y, g);
+        keep(
+            &mut out,
+            dt,
+            Pending::Wall,
+            Face::new(1, side == WallSide::High),
+        );
+        out
+    }
+
+    /// Disc `i`'s earliest event along x, on its straight path (`p` its path
+    /// point now, `v` its path velocity): its cell crossing, or a wall hit if
+    /// that comes first.
+    pub(super) fn side_event(&self, i: usize, p: DVec2, v: DVec2) -> (f64, Pending, Face) {
         let b = &self.bodies[i];
-        let resting = b.resting();
         let c = b.link.coords();
         let grid = self.grids.get(self.grids.class(b.species));
         let radius = self.species[b.species as usize].radius;
-        let mut best = f64::INFINITY;
-        let (mut kind, mut face) = (Pending::None, Face::new(0, false));
-        let mut keep = |dt: f64, k: Pending, f: Face| {
-            if dt < best {
-                (best, kind, face) = (dt, k, f);
-            }
-        };
         let (dt, up) = grid.crossing_time(0, c[0], p.x, v.x);
-        keep(dt, Pending::Cell, Face::new(0, up));
+        let mut out = (f64::INFINITY, Pending::None, Face::new(0, false));
+        keep(&mut out, dt, Pending::Cell, Face::new(0, up));
         if let Boundary::Walls { .. } = self.sim_box.boundary[0] {
             if let Some((dt, side)) = wall_time(p.x, v.x, radius, self.sim_box.size.x) {
-                keep(dt, Pending::Wall, Face::new(0, side == WallSide::High));
+                keep(
+                    &mut out,
+                    dt,
+                    Pending::Wall,
+                    Face::new(0, side == WallSide::High),
+                );
             }
         }
-        if resting {
-            return (best, kind, face);
-        }
-        let y = p.y - 0.5 * g * now * now;
-        let u = v.y - g * now;
-        let row = c[1];
+        out
+    }
+
+    /// Disc `i`'s true height and vertical velocity now in the field, and its
+    /// cell row's edges (`p` its path point now, `v` its path velocity).
+    pub(super) fn vertical(&self, i: usize, p: DVec2, v: DVec2) -> Vertical {
+        let (g, now) = (self.params.gravity, self.clock);
+        let b = &self.bodies[i];
+        let grid = self.grids.get(self.grids.class(b.species));
+        let row = b.link.coords()[1];
         let last = row + 1 == grid.n[1];
         let lower = row as f64 * grid.width.y;
         let upper = if last {
@@ -128,24 +178,12 @@ impl Engine {
         } else {
             (row + 1) as f64 * grid.width.y
         };
-        // y has walls (checked when the engine is built): the first and last rows'
-        // outer edges are the box's.
-        let (dt, up) = crossing_time_falling(y, u, [lower, upper], [row > 0, !last], g);
-        keep(dt, Pending::Cell, Face::new(1, up));
-        let (dt, side) = wall_time_falling(y, u, radius, self.sim_box.size.y, g);
-        keep(dt, Pending::Wall, Face::new(1, side == WallSide::High));
-        (best, kind, face)
-    }
-
-    /// Disc `i`'s earliest event from now, predicted in the field or without one,
-    /// as the engine's parameters say (for callers outside the event loop).
-    pub(super) fn predict_any(&mut self, i: usize) {
-        if self.params.gravity != 0.0 || self.params.floor.is_some() {
-            self.predict::<true, false>(i);
-        } else if self.params.growth.rate != 0.0 {
-            self.predict::<false, true>(i);
-        } else {
-            self.predict::<false, false>(i);
+        Vertical {
+            y: p.y - 0.5 * g * now * now,
+            u: v.y - g * now,
+            row,
+            edges: [lower, upper],
+            inner: [row > 0, !last],
         }
     }
 

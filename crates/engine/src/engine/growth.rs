@@ -293,7 +293,7 @@ impl Engine {
             }
         }
         for i in 0..n {
-            self.predict::<false, true>(i);
+            self.predict::<super::motion::Growing>(i);
         }
         self.quiet_work(n.max(1))
     }

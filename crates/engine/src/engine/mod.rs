@@ -13,10 +13,12 @@
 //! The engine is split by phase, one `impl` block per file: prediction and the
 //! neighbour scan (`predict`), resolution of collisions, wall hits and crossings
 //! (`resolve`), the clock and renumbering (`clock`), fetching ahead (`lookahead`),
-//! the checkpoint (`checkpoint`) and uniform gravity (`gravity`: the same paths,
-//! with the fall added where a disc's own height matters; the event loop is
-//! compiled twice, with and without it). Growing discs (`growth`, physics.md §17)
-//! run in a third copy of the loop. See docs/performance.md, "engine".
+//! the checkpoint (`checkpoint`). How discs move between events is one seam,
+//! the law of motion (`motion`: straight, falling in a field with an optional
+//! vibrating floor, growing), chosen once per engine; the event loop is compiled
+//! once per law, so the straight loop is compiled as if the others did not exist.
+//! The laws' engine-side work is in `gravity`, `floor`, `resting` and `growth`.
+//! See docs/performance.md, "engine".
 
 mod body;
 mod checkpoint;
@@ -25,16 +27,17 @@ mod floor;
 mod gravity;
 mod growth;
 mod lookahead;
+mod motion;
 mod pause;
 mod predict;
 mod resolve;
 mod resting;
+mod step;
 mod thermostat;
 
 use crate::cells::Link;
 use crate::classes::Grids;
 use crate::error::EngineError;
-use crate::event::Event;
 use crate::memory;
 use crate::queue::{EventQueue, Time};
 use crate::state::State;
@@ -433,207 +436,6 @@ impl Engine {
             + (self.label.capacity() + self.index_of.capacity()) * 4
             + self.queue.heap_bytes()
             + self.grids.heap_bytes()
-    }
-
-    /// Ask for an [`Event::Scheduled`] with `tag` at time `time` (≥ now). Events at the
-    /// same time are delivered in the order they were scheduled, before any collision
-    /// at that time. The tag [`crate::THERMOSTAT_TAG`] is the thermostat's own.
-    pub fn schedule(&mut self, time: f64, tag: u64) -> Result<(), EngineError> {
-        if time.is_nan() || time < self.reported || time.is_infinite() {
-            return Err(EngineError::ScheduleInPast {
-                time,
-                now: self.reported,
-            });
-        }
-        if tag == crate::THERMOSTAT_TAG || tag == PAUSE_TAG {
-            return Err(EngineError::BadThermostat(format!(
-                "tag {tag} is the engine's own (allowed: any tag but the thermostat's and \
-                 the pause's)"
-            )));
-        }
-        self.push_scheduled(time, tag);
-        Ok(())
-    }
-
-    /// Process events until the next observable one and return it; `None` when
-    /// nothing will ever happen again (all discs at rest and nothing scheduled).
-    /// After long unobservable work (thermostat events, growth rescales) it returns
-    /// a pause, an [`Event::Scheduled`] with tag [`PAUSE_TAG`], so that the caller
-    /// can stop or report progress (`engine::pause`); just call again.
-    ///
-    /// Cell crossings are not observable, so in a system whose discs move but never
-    /// collide again (a lone disc in a periodic box) this call returns only at the
-    /// next scheduled event: schedule a stop ([`Engine::schedule`], or use
-    /// [`Engine::run_until`]) rather than waiting for collisions that never come.
-    pub fn next_event(&mut self) -> Result<Option<Event>, EngineError> {
-        if self.params.gravity != 0.0 || self.params.floor.is_some() {
-            self.next_event_falling()
-        } else if self.params.growth.rate != 0.0 {
-            self.next_event_growing()
-        } else {
-            self.next_event_in::<false, false>()
-        }
-    }
-
-    /// [`Engine::next_event`] in a field (engine::gravity): a copy of the loop of
-    /// its own, so that the loop without one is compiled as if fields did not exist.
-    #[cold]
-    #[inline(never)]
-    fn next_event_falling(&mut self) -> Result<Option<Event>, EngineError> {
-        self.next_event_in::<true, false>()
-    }
-
-    /// [`Engine::next_event`] with growing discs (engine::growth), a copy of the
-    /// loop of its own like [`Engine::next_event_falling`].
-    #[cold]
-    #[inline(never)]
-    fn next_event_growing(&mut self) -> Result<Option<Event>, EngineError> {
-        self.next_event_in::<false, true>()
-    }
-
-    /// [`Engine::next_event`] with the discs falling in the field (`FALL`) or
-    /// flying straight: a compile-time choice threaded through resolution and
-    /// prediction.
-    #[inline(always)]
-    fn next_event_in<const FALL: bool, const GROW: bool>(
-        &mut self,
-    ) -> Result<Option<Event>, EngineError> {
-        loop {
-            self.tuner.left -= 1;
-            if self.tuner.left == 0 {
-                self.tune_look_ahead();
-            }
-            if self.stats.pair_collisions >= self.next_reorder {
-                // The renumbering is not the look-ahead's doing: leave its time out
-                // of the tuner's window.
-                let started = self.tuner.active().then(std::time::Instant::now);
-                self.reorder();
-                if let Some(t) = started {
-                    self.tuner.exclude(t.elapsed());
-                }
-                self.next_reorder += reorder_interval(self.len());
-            }
-            let (t, who) = self.queue.peek(self.bodies.as_slice());
-            // Start fetching the records (and cell coordinates) of the likely next
-            // events while this one is processed: at large N each is a cache miss.
-            // A prefetch hint only; nothing depends on it.
-            for d in self.queue.upcoming() {
-                if let Some(b) = self.bodies.get(d as usize) {
-                    memory::prefetch(b);
-                }
-            }
-            if self.look_ahead && self.queue.moved_on() {
-                self.look_ahead();
-            }
-            if GROW {
-                let due = self.growth_due();
-                let scheduled_first = self
-                    .scheduled
-                    .peek()
-                    .is_some_and(|r| (r.0 .0.into_inner() - self.epoch).max(self.clock) <= due);
-                if due <= t.into_inner() && !scheduled_first {
-                    self.move_clock(due);
-                    if self.growth_event() {
-                        return Ok(self.pause());
-                    }
-                    continue;
-                }
-            }
-            if let Some(&Reverse((ts, _, tag))) = self.scheduled.peek() {
-                // Scheduled times are the caller's; on the internal clock, never
-                // before now (rounding of the difference).
-                let ts = ts.into_inner();
-                let internal = (ts - self.epoch).max(self.clock);
-                if internal <= t.into_inner() {
-                    self.scheduled.pop();
-                    self.move_clock(internal);
-                    self.reported = self.reported.max(ts);
-                    if tag == crate::THERMOSTAT_TAG {
-                        if self.thermostat_event()? {
-                            return Ok(self.pause());
-                        }
-                        continue;
-                    }
-                    return Ok(Some(Event::Scheduled {
-                        time: self.reported,
-                        tag,
-                    }));
-                }
-            }
-            let t = t.into_inner();
-            if t == f64::INFINITY {
-                return Ok(None);
-            }
-            debug_assert!(t >= self.clock, "event in the past: {t} < {}", self.clock);
-            let i = who as usize;
-            let b = &self.bodies[i];
-            let (pending, aux) = (b.pending, b.aux);
-            match pending {
-                Pending::Pair => {
-                    let j = b.partner as usize;
-                    if self.bodies[j].count != b.partner_count {
-                        self.move_clock(t);
-                        self.stats.stale_events += 1;
-                        self.predict::<FALL, GROW>(i);
-                        continue;
-                    }
-                    self.advance_clock(t)?;
-                    return Ok(Some(Event::Pair(self.collide::<FALL, GROW>(
-                        i,
-                        j,
-                        aux.image(),
-                    ))));
-                }
-                Pending::Wall => {
-                    self.advance_clock(t)?;
-                    return Ok(Some(Event::Wall(
-                        self.hit_wall::<FALL, GROW>(i, aux.face()),
-                    )));
-                }
-                Pending::Cell => {
-                    self.move_clock(t);
-                    self.cross::<FALL, GROW>(i, aux.face());
-                }
-                Pending::Recheck => {
-                    // The floor search stopped short (engine::floor): search on.
-                    self.move_clock(t);
-                    self.predict::<FALL, GROW>(i);
-                }
-                Pending::None => unreachable!("a disc with no event has time +∞"),
-            }
-        }
-    }
-
-    /// Run until time `t_end` (≥ now): the engine stops with every disc's state known
-    /// at exactly `t_end`. Returns the number of collisions (pair + wall) processed.
-    pub fn run_until(&mut self, t_end: f64) -> Result<u64, EngineError> {
-        const STOP_TAG: u64 = u64::MAX;
-        self.schedule(t_end, STOP_TAG)?;
-        let mut collisions = 0;
-        while let Some(ev) = self.next_event()? {
-            match ev {
-                Event::Scheduled { tag: STOP_TAG, .. } => break,
-                Event::Scheduled { .. } => {}
-                _ => collisions += 1,
-            }
-        }
-        Ok(collisions)
-    }
-
-    /// Run `n` collisions (pair + wall), skipping scheduled events. Stops early if
-    /// nothing will ever happen again; returns the number processed. (Like
-    /// [`Engine::next_event`], it does not return while discs that never collide
-    /// again keep crossing cells.)
-    pub fn run_collisions(&mut self, n: u64) -> Result<u64, EngineError> {
-        let mut done = 0;
-        while done < n {
-            match self.next_event()? {
-                Some(Event::Scheduled { .. }) => {}
-                Some(_) => done += 1,
-                None => break,
-            }
-        }
-        Ok(done)
     }
 }
 

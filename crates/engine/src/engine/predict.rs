@@ -10,18 +10,16 @@
 //! the candidate (its time computed again from the two unchanged paths) stands for
 //! the six cells seen before, unless its partner changed velocity since. The hot
 //! comparisons run without branches (`select_unpredictable`): which neighbour
-//! wins is a coin toss. In a field, a pair of which exactly one disc rests on the
-//! floor meets at the root of a quartic instead (engine::resting, physics.md
-//! (15.10)). See docs/performance.md, "neighbour scan".
+//! wins is a coin toss. Contact and boundary times are the law of motion's
+//! (engine::motion): straight lines here, a field's or growing discs' roots
+//! there. See docs/performance.md, "neighbour scan".
 
 use super::body::{Aux, Body, Face, Image, Pending};
-use super::resting::contact_time_resting;
+use super::motion::Motion;
 use super::{time_key, Engine};
 use crate::classes::cells_along;
 use crate::NO_DISC;
 use carom_core::boundary::wall_time;
-use carom_core::growth::contact_time_growing;
-use carom_core::kinematics::contact_time_or_inf;
 use carom_core::{Boundary, DVec2, Species, WallSide};
 
 #[inline]
@@ -62,46 +60,27 @@ struct Scanner<'a> {
 }
 
 /// Test disc `j` (record `bj`) against disc i and keep it in `found` if it meets
-/// earlier than the best so far; `image` is the image through which j's cell is seen.
+/// earlier than the best so far, by the law of motion `M` (`law` its state now);
+/// `image` is the image through which j's cell is seen.
 ///
 /// Disc i itself needs no test of its own: its relative velocity is exactly zero,
 /// so b = 0 and it never meets (whichever image is seen); growing, it is skipped
 /// by its zero separation.
-///
-/// With `GROW` the radii are the reference radii of growing discs, scaled by
-/// `grow` = (s, γ): the contact distance is σ s and grows at σ γ (physics.md §17).
-/// With `FALL`, in the field `g`, a pair of which one disc rests on the floor meets
-/// at the root of (15.10) (engine::resting).
 #[inline(always)]
 #[allow(clippy::too_many_arguments)]
-fn test_pair<const FALL: bool, const GROW: bool>(
+fn test_pair<M: Motion>(
     me: &Scanner,
     species: &[Species],
     j: u32,
     bj: &Body,
     now: f64,
-    grow: (f64, f64),
-    g: f64,
+    law: M::Scan,
     image: Image,
     found: &mut Found,
 ) {
-    let bi = me.bi;
     let dr = bj.at(now) - me.ri;
     let sigma = me.radius + species[bj.species as usize].radius;
-    let dt = if GROW {
-        // Growing, disc i would meet itself (B = −σg < 0 at C = −σ² ≤ 0): it is
-        // the one disc at zero separation.
-        let t = contact_time_growing(dr, bj.v - bi.v, sigma * grow.0, sigma * grow.1);
-        if dr == DVec2::ZERO {
-            f64::INFINITY
-        } else {
-            t
-        }
-    } else if FALL && bi.resting() != bj.resting() {
-        contact_time_resting(bi, me.ri, bj, sigma, g, now)
-    } else {
-        contact_time_or_inf(dr, bj.v - bi.v, sigma)
-    };
+    let dt = M::pair_time(me.bi, me.ri, bj, dr, sigma, now, law);
     // Kept without a branch: whether a neighbour beats the best so far is a coin
     // toss for the branch predictor.
     let hit = dt < found.best;
@@ -113,42 +92,24 @@ fn test_pair<const FALL: bool, const GROW: bool>(
 /// The neighbour search's view of the engine: disc records (with the cell lists'
 /// links), species and the current time; the cells' first discs come from whichever
 /// grid is scanned.
-struct Block<'a> {
+struct Block<'a, M: Motion> {
     bodies: &'a [Body],
     species: &'a [Species],
     now: f64,
-    /// Scale and relative growth rate of the radii (s, γ) when they grow.
-    grow: (f64, f64),
-    /// The field g (length/time²) when discs fall (0 otherwise).
-    g: f64,
+    /// The law of motion's state now.
+    law: M::Scan,
 }
 
-impl Block<'_> {
+impl<M: Motion> Block<'_, M> {
     /// Look for the earliest collision (before `found.best`) of the disc `me` with the
     /// discs of the cell whose list starts at `first`, seen through the image with
     /// `image`.
     #[inline(always)]
-    fn scan_cell<const FALL: bool, const GROW: bool>(
-        &self,
-        me: &Scanner,
-        first: u32,
-        image: Image,
-        found: &mut Found,
-    ) {
+    fn scan_cell(&self, me: &Scanner, first: u32, image: Image, found: &mut Found) {
         let mut j = first;
         while j != NO_DISC {
             let bj = &self.bodies[j as usize];
-            test_pair::<FALL, GROW>(
-                me,
-                self.species,
-                j,
-                bj,
-                self.now,
-                self.grow,
-                self.g,
-                image,
-                found,
-            );
+            test_pair::<M>(me, self.species, j, bj, self.now, self.law, image, found);
             j = bj.link.next;
         }
     }
@@ -158,26 +119,25 @@ impl Engine {
     /// Find disc `i`'s earliest event from the current time and queue it: its next
     /// cell crossing or wall collision, or its earliest pair collision with a disc
     /// of its 3 × 3 block of cells (which becomes its pair candidate).
-    pub(super) fn predict<const FALL: bool, const GROW: bool>(&mut self, i: usize) {
+    pub(super) fn predict<M: Motion>(&mut self, i: usize) {
         let now = self.clock;
         let bi = self.bodies[i];
         let ri = bi.at(now);
         let mut found = Found::NOTHING;
-        self.scan::<FALL, GROW>(i, ri, [-1, 1], [-1, 1], &mut found);
+        self.scan::<M>(i, ri, [-1, 1], [-1, 1], &mut found);
         if !self.grids.single() {
-            self.scan_other_classes::<FALL>(i, ri, &mut found);
+            self.scan_other_classes::<M>(i, ri, &mut found);
         }
-        let boundary = self.boundary_event::<FALL, GROW>(i, ri, bi.v);
-        self.file_event::<FALL>(i, &found, boundary);
+        let boundary = M::boundary_event(self, i, ri, bi.v);
+        self.file_event::<M>(i, &found, boundary);
     }
 
     /// Make disc `i`'s earliest event pending and queue it: the pair candidate
     /// `found`, or the boundary event (time from now, kind, face) if that comes first.
     ///
-    /// The record's resting flag (engine::resting) is kept: with `FALL` only, as
-    /// only a field sets it.
+    /// The record's resting flag (engine::resting) is kept as the law says.
     #[inline(always)]
-    fn file_event<const FALL: bool>(
+    fn file_event<M: Motion>(
         &mut self,
         i: usize,
         found: &Found,
@@ -192,11 +152,7 @@ impl Engine {
         b.partner_count =
             std::hint::select_unpredictable(found.partner != NO_DISC, partner_count, 0);
         b.pending = std::hint::select_unpredictable(pair, Pending::Pair, kind);
-        b.aux = if FALL {
-            Aux::new(face, found.image).with_resting(b.aux.resting())
-        } else {
-            Aux::new(face, found.image)
-        };
+        b.aux = M::file_aux(b.aux, Aux::new(face, found.image));
         self.queue.set(
             self.bodies.as_mut_slice(),
             i as u32,
@@ -214,12 +170,7 @@ impl Engine {
     /// computed again, from the two paths as they are now; when the partner has, the
     /// candidate no longer says when the discs of the six cells seen before can
     /// meet, and the whole block is scanned again instead.
-    pub(super) fn predict_after_crossing<const FALL: bool, const GROW: bool>(
-        &mut self,
-        i: usize,
-        k: usize,
-        up: bool,
-    ) {
+    pub(super) fn predict_after_crossing<M: Motion>(&mut self, i: usize, k: usize, up: bool) {
         let now = self.clock;
         let bi = self.bodies[i];
         let ri = bi.at(now);
@@ -227,7 +178,7 @@ impl Engine {
         if bi.partner != NO_DISC {
             let bp = &self.bodies[bi.partner as usize];
             if bp.count != bi.partner_count {
-                self.predict::<FALL, GROW>(i);
+                self.predict::<M>(i);
                 return;
             }
             // Seeing the partner's image at r_j + s L is seeing i at r_i − s L.
@@ -237,18 +188,13 @@ impl Engine {
                 radius: self.species[bi.species as usize].radius,
                 ri: ri - image.shift(self.sim_box.size),
             };
-            test_pair::<FALL, GROW>(
+            test_pair::<M>(
                 &me,
                 &self.species,
                 bi.partner,
                 bp,
                 now,
-                if GROW {
-                    self.growth.now(now)
-                } else {
-                    (1.0, 0.0)
-                },
-                self.params.gravity,
+                M::scan(self),
                 image,
                 &mut candidate,
             );
@@ -260,12 +206,12 @@ impl Engine {
             ([-1, 1], [o, o])
         };
         // The strip's discs replace the candidate only when one meets earlier.
-        self.scan::<FALL, GROW>(i, ri, xs, ys, &mut candidate);
+        self.scan::<M>(i, ri, xs, ys, &mut candidate);
         if !self.grids.single() {
-            self.scan_other_classes::<FALL>(i, ri, &mut candidate);
+            self.scan_other_classes::<M>(i, ri, &mut candidate);
         }
-        let boundary = self.boundary_event::<FALL, GROW>(i, ri, bi.v);
-        self.file_event::<FALL>(i, &candidate, boundary);
+        let boundary = M::boundary_event(self, i, ri, bi.v);
+        self.file_event::<M>(i, &candidate, boundary);
     }
 
     /// Look for disc `i`'s earliest pair collision (before `found.best`, time from
@@ -277,16 +223,9 @@ impl Engine {
     /// Each cell is walked behind a branch on its emptiness (see
     /// docs/performance.md, "neighbour scan").
     #[inline(always)]
-    fn scan<const FALL: bool, const GROW: bool>(
-        &self,
-        i: usize,
-        ri: DVec2,
-        xs: [i32; 2],
-        ys: [i32; 2],
-        found: &mut Found,
-    ) {
+    fn scan<M: Motion>(&self, i: usize, ri: DVec2, xs: [i32; 2], ys: [i32; 2], found: &mut Found) {
         let grid = self.grids.get(self.grids.class(self.bodies[i].species));
-        let block = self.block::<FALL, GROW>();
+        let block = self.block::<M>();
         let bi = &self.bodies[i];
         let radius = self.species[bi.species as usize].radius;
         let c = bi.link.coords();
@@ -311,14 +250,14 @@ impl Engine {
                     head[first + 2 * nx + 2],
                 ];
                 for h in heads {
-                    block.scan_cell::<FALL, GROW>(&me, h, Image::SAME, found);
+                    block.scan_cell(&me, h, Image::SAME, found);
                 }
             } else {
                 // A strip: a column (x crossing) or a row (y crossing) of three.
                 let stride = if xs[0] == xs[1] { nx } else { 1 };
                 let heads = [head[first], head[first + stride], head[first + 2 * stride]];
                 for h in heads {
-                    block.scan_cell::<FALL, GROW>(&me, h, Image::SAME, found);
+                    block.scan_cell(&me, h, Image::SAME, found);
                 }
             }
         } else {
@@ -345,7 +284,7 @@ impl Engine {
                         radius,
                         ri: DVec2::new(ri.x - shift_x, ri.y - shift_y),
                     };
-                    block.scan_cell::<FALL, GROW>(&me, head[row + cx], Image::new(sx, sy), found);
+                    block.scan_cell(&me, head[row + cx], Image::new(sx, sy), found);
                 }
             }
         }
@@ -353,17 +292,12 @@ impl Engine {
 
     /// The neighbour search's view of the engine now (see [`Block`]).
     #[inline(always)]
-    fn block<const FALL: bool, const GROW: bool>(&self) -> Block<'_> {
+    fn block<M: Motion>(&self) -> Block<'_, M> {
         Block {
             bodies: &self.bodies,
             species: &self.species,
             now: self.clock,
-            grow: if GROW {
-                self.growth.now(self.clock)
-            } else {
-                (1.0, 0.0)
-            },
-            g: if FALL { self.params.gravity } else { 0.0 },
+            law: M::scan(self),
         }
     }
 
@@ -373,8 +307,8 @@ impl Engine {
     /// (see [`crate::classes`]). `ri` is its position now.
     ///
     /// Never with growing discs, which share one grid (engine::growth).
-    fn scan_other_classes<const FALL: bool>(&self, i: usize, ri: DVec2, found: &mut Found) {
-        let block = self.block::<FALL, false>();
+    fn scan_other_classes<M: Motion>(&self, i: usize, ri: DVec2, found: &mut Found) {
+        let block = self.block::<M>();
         let bi = &self.bodies[i];
         let radius = self.species[bi.species as usize].radius;
         let own_class = self.grids.class(bi.species);
@@ -402,7 +336,7 @@ impl Engine {
                         ri: DVec2::new(ri.x - sx as f64 * size.x, ri.y - sy as f64 * size.y),
                     };
                     let first = grid.head[cy as usize * nx + cx as usize];
-                    block.scan_cell::<FALL, false>(&me, first, Image::new(sx, sy), found);
+                    block.scan_cell(&me, first, Image::new(sx, sy), found);
                 }
             }
         }
@@ -412,18 +346,12 @@ impl Engine {
     /// kind, face), in the grid of its size class. `ri` is its position
     /// now, `v` its velocity.
     #[inline(always)]
-    fn boundary_event<const FALL: bool, const GROW: bool>(
+    pub(super) fn boundary_event_straight(
         &self,
         i: usize,
         ri: DVec2,
         v: DVec2,
     ) -> (f64, Pending, Face) {
-        if FALL {
-            return self.boundary_event_falling(i, ri, v);
-        }
-        if GROW {
-            return self.boundary_event_growing(i, ri, v);
-        }
         let mut best = f64::INFINITY;
         let (mut kind, mut face) = (Pending::None, Face::new(0, false));
         let c = self.bodies[i].link.coords();

@@ -14,11 +14,10 @@
 //! docs/performance.md, "resolution".
 
 use super::body::{origin_after, Face, Image};
+use super::motion::Motion;
 use super::Engine;
 use crate::event::{PairCollision, WallCollision};
-use carom_core::boundary::wall_impulse;
 use carom_core::collision::{apply_impulse, apply_wall_impulse, reduced_mass, resolve};
-use carom_core::growth::growth_impulse;
 use carom_core::{Axis, Boundary, DVec2, Restitution, WallSide};
 
 /// Whether discs i and j, whose paths (origin, velocity) were `paths` before a
@@ -116,16 +115,11 @@ impl Engine {
     /// Resolve the pair collision of discs i and j (j seen through the image with
     /// `image`) at the current time with the configured rule, or
     /// elastically under the TC model, and predict both discs' next events.
-    pub(super) fn collide<const FALL: bool, const GROW: bool>(
-        &mut self,
-        i: usize,
-        j: usize,
-        image: Image,
-    ) -> PairCollision {
+    pub(super) fn collide<M: Motion>(&mut self, i: usize, j: usize, image: Image) -> PairCollision {
         let now = self.clock;
         // In a field, a resting disc hit by a falling one falls again first; two
         // resting discs collide on their straight paths (engine::resting).
-        let on_floor = FALL && self.pair_on_floor(i, j);
+        let on_floor = M::pair_on_floor(self, i, j);
         let shift = image.shift(self.sim_box.size);
         let dr = self.bodies[j].at(now) + shift - self.bodies[i].at(now);
         // The unnormalised contact vector goes to the collision rule (see
@@ -139,16 +133,7 @@ impl Engine {
             self.params.restitution
         };
         let mut res = resolve(vi, vj, mi, mj, dr, rule);
-        if GROW && self.growth.rate != 0.0 {
-            // Growing discs leave at u' = −u + 2g (physics.md (17.4)).
-            let sigma0 = self.species[self.bodies[i].species as usize].radius
-                + self.species[self.bodies[j].species as usize].radius;
-            let g = sigma0 * self.growth.rate;
-            res.impulse_i += growth_impulse(dr, reduced_mass(mi, mj), g);
-            (res.vi, res.vj) = apply_impulse(vi, vj, mi, mj, res.impulse_i);
-            let k = |m: f64, v: DVec2| 0.5 * m * v.length_squared();
-            res.energy_lost = k(mi, vi) + k(mj, vj) - k(mi, res.vi) - k(mj, res.vj);
-        }
+        M::pair_extra(self, (i, j), dr, (vi, vj), (mi, mj), &mut res);
         // A rule leaves the pair separating at −e u (physics.md §4), but when that
         // is below what the velocities' rounding resolves (e = 0, R = 0, or an
         // elastic collision of a pair that met at such a speed, as under the TC
@@ -175,10 +160,7 @@ impl Engine {
         let virial = -dr.dot(res.impulse_i);
         self.bodies[i].set_velocity(res.vi, now);
         self.bodies[j].set_velocity(res.vj, now);
-        if on_floor {
-            self.leave_floor_if_moved(i);
-            self.leave_floor_if_moved(j);
-        }
+        M::after_pair(self, i, j, on_floor);
         self.keep_origin_near([i, j]);
         self.bodies[i].count = self.bodies[i].count.wrapping_add(1);
         self.bodies[j].count = self.bodies[j].count.wrapping_add(1);
@@ -191,8 +173,8 @@ impl Engine {
         self.stats.pair_collisions += 1;
         self.stats.virial_sum += virial;
         self.stats.energy_lost += res.energy_lost;
-        self.predict::<FALL, GROW>(i);
-        self.predict::<FALL, GROW>(j);
+        self.predict::<M>(i);
+        self.predict::<M>(j);
         let mut ev = PairCollision {
             time: self.reported,
             i: self.label[i],
@@ -206,21 +188,15 @@ impl Engine {
             virial,
             impulse: res.impulse_i,
         };
-        if FALL && !on_floor {
-            self.falling_pair(&mut ev, now);
-        }
+        M::report_pair(self, &mut ev, on_floor);
         ev
     }
 
     /// Resolve disc `i`'s collision with the wall `face` at the current time (the
     /// wall's restitution, or elastic under the TC model) and predict its next event.
-    pub(super) fn hit_wall<const FALL: bool, const GROW: bool>(
-        &mut self,
-        i: usize,
-        face: Face,
-    ) -> WallCollision {
+    pub(super) fn hit_wall<M: Motion>(&mut self, i: usize, face: Face) -> WallCollision {
         let k = face.axis();
-        if FALL && k == 1 && !face.high() && self.params.floor.is_some() {
+        if M::is_floor(self, face) {
             return self.hit_floor(i);
         }
         let side = if face.high() {
@@ -248,19 +224,15 @@ impl Engine {
         // the wall reverses the true normal velocity. (A disc resting on the floor
         // meets only the side walls, k = 0, and its path is its true one.)
         let g = self.params.gravity;
-        let was_resting = FALL && self.bodies[i].resting();
+        let was_resting = M::resting(&self.bodies[i]);
         let lift = if k == 1 { g * now } else { 0.0 };
         let vk = path_v[k] - lift;
         // Applied as v_k + Δp/m, the arithmetic a reader of the log repeats.
-        let mut dp = if GROW {
-            self.growing_wall_impulse(i, vk, m, face.high())
-        } else {
-            wall_impulse(vk, m, e)
-        };
+        let mut dp = M::wall_impulse(self, i, vk, m, e, face.high());
         path_after[k] = apply_wall_impulse(vk, m, dp);
         // A floor bounce whose apex rounds to the floor rests instead (15.9): the
         // floor takes the whole vertical momentum (engine::resting).
-        let rests = FALL && k == 1 && !face.high() && self.rests_on_floor(i, path_after[k]);
+        let rests = M::rests(self, i, face, path_after[k]);
         if rests {
             dp = -m * vk;
             path_after[k] = 0.0;
@@ -275,13 +247,10 @@ impl Engine {
         self.keep_fall_short();
         self.bodies[i].count = self.bodies[i].count.wrapping_add(1);
         let impulse = dp.abs();
-        let energy_lost = if GROW {
-            // Growing: the wall gives energy (physics.md (17.6)).
-            0.5 * m * (vk * vk - path_after[k] * path_after[k])
-        } else if rests {
+        let energy_lost = if rests {
             0.5 * m * vk * vk
         } else {
-            0.5 * m * (1.0 - e * e) * vk * vk
+            M::wall_energy_lost(m, vk, path_after[k], e)
         };
         let (mut before, mut after) = (path_v, path_after);
         if g != 0.0 {
@@ -295,7 +264,7 @@ impl Engine {
         self.stats.wall_collisions += 1;
         self.stats.wall_impulse[k][face.high() as usize] += impulse;
         self.stats.energy_lost += energy_lost;
-        self.predict::<FALL, GROW>(i);
+        self.predict::<M>(i);
         WallCollision {
             time: self.reported,
             i: self.label[i],
@@ -310,7 +279,7 @@ impl Engine {
 
     /// Move disc `i` across its cell's `face` into the next cell (through the
     /// periodic edge if there is no next cell) and predict its next event.
-    pub(super) fn cross<const FALL: bool, const GROW: bool>(&mut self, i: usize, face: Face) {
+    pub(super) fn cross<M: Motion>(&mut self, i: usize, face: Face) {
         let k = face.axis();
         let up = face.high();
         let mut c = self.bodies[i].link.coords();
@@ -341,9 +310,9 @@ impl Engine {
             self.keep_origin_near([i]);
             // The position moved by one box length: partners' image shifts change.
             self.bodies[i].count = self.bodies[i].count.wrapping_add(1);
-            self.predict::<FALL, GROW>(i);
+            self.predict::<M>(i);
         } else {
-            self.predict_after_crossing::<FALL, GROW>(i, k, up);
+            self.predict_after_crossing::<M>(i, k, up);
         }
     }
 }
