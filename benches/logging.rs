@@ -24,7 +24,9 @@
 //! Run: `cargo bench --bench logging -- --warm-up-time 1 --measurement-time 5`.
 
 use carom::engine::{Engine, EngineParams, Event, SystemSpec};
-use carom::io::{Compression, LogOptions, LogWriter, RunSpec, Stop, WriterOptions, WriterPosition};
+use carom::log::{
+    Compression, LogOptions, LogWriter, RunSpec, Stop, WriterOptions, WriterPosition,
+};
 use criterion::{criterion_group, Criterion, Throughput};
 use std::collections::BTreeMap;
 use std::path::PathBuf;
@@ -220,7 +222,7 @@ fn interleaved_at(n: usize, label: &str, level: i32, background: bool, rounds: u
         opts.background = background;
         // CAROM_BENCH_DETAIL=full: the full record (log format 1's) instead.
         if std::env::var("CAROM_BENCH_DETAIL").is_ok_and(|d| d == "full") {
-            opts.collision_detail = carom::io::CollisionDetail::Full;
+            opts.collision_detail = carom::log::CollisionDetail::Full;
         }
         let start = Instant::now();
         let mut w = LogWriter::create(&path, opts, &BTreeMap::new(), WriterPosition::default())

@@ -8,7 +8,7 @@
 //! cargo run --release --example message_hashes -- run.mcap
 //! ```
 
-use carom::io::{LogReader, TOPICS};
+use carom::log::{LogReader, TOPICS};
 
 fn main() {
     let path = std::env::args()

@@ -9,7 +9,7 @@
 
 use std::path::Path;
 
-use carom_io::{LogMessage, LogReader, ReadError, ReadProgress, Snapshot};
+use carom_log::{LogMessage, LogReader, ReadError, ReadProgress, Snapshot};
 use thiserror::Error;
 
 /// Why frames could not be made.

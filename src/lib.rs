@@ -5,7 +5,8 @@
 //!
 //! * [`core`] (`carom-core`) — discs, boxes, exact kinematics and collision rules;
 //! * [`engine`] (`carom-engine`) — the event queue, neighbour search and the event loop;
-//! * [`io`] (`carom-io`) — configuration, MCAP logging and reading.
+//! * [`log`] (`carom-log`) — the MCAP log: format, writer, reader;
+//! * [`config`] (`carom-config`) — the configuration and its resolution into a run;
 //!
 //! Its own modules: `run` (runs and resumes), `analysis` (reports from logs),
 //! `frames` (choosing snapshots), `render` (pictures), `export` (GSD, XYZ) and
@@ -16,8 +17,9 @@ pub mod frames;
 pub mod render;
 
 pub use carom_analysis as analysis;
+pub use carom_config as config;
 pub use carom_core as core;
 pub use carom_engine as engine;
-pub use carom_io as io;
+pub use carom_log as log;
 pub use carom_run as run;
 pub use carom_run::sweep;

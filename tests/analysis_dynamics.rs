@@ -115,7 +115,7 @@ fn unwrapped(i: usize, t: f64) -> (f64, f64) {
 fn free_flight_log(name: &str, gap: f64) -> std::path::PathBuf {
     use carom::core::{DVec2, SimBox, Species};
     use carom::engine::State;
-    use carom::io::{
+    use carom::log::{
         LogOptions, LogWriter, RunFacts, RunMetadata, Stop, StopReason, SummaryMetadata, Thermo,
         WriterOptions, WriterPosition,
     };
@@ -132,7 +132,7 @@ fn free_flight_log(name: &str, gap: f64) -> std::path::PathBuf {
         ..LogOptions::default()
     };
     let meta = RunMetadata {
-        log_format: carom::io::LOG_FORMAT_VERSION.into(),
+        log_format: carom::log::LOG_FORMAT_VERSION.into(),
         carom_version: "0.0.0-test".into(),
         config: "not json".into(),
         seed: 1,
@@ -228,7 +228,7 @@ fn a_log_is_unwrapped_through_its_images() {
     struct Quiet;
     impl carom::analysis::ReadObserver for Quiet {
         fn pass(&mut self, _: &'static str) {}
-        fn progress(&mut self, _: carom::io::ReadProgress) {}
+        fn progress(&mut self, _: carom::log::ReadProgress) {}
         fn warn(&mut self, _: &str) {}
     }
     let opts = AnalysisOptions {

@@ -8,7 +8,7 @@
 mod cli_common;
 use cli_common::*;
 
-use carom::io::{GrowthEvent, GrowthPhase, LogMessage, LogReader, Snapshot, Thermo};
+use carom::log::{GrowthEvent, GrowthPhase, LogMessage, LogReader, Snapshot, Thermo};
 use serde_json::Value;
 use std::path::Path;
 

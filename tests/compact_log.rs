@@ -11,7 +11,7 @@ mod mcap_common;
 use carom::analysis::{analyze_log, AnalysisOptions, ReadObserver};
 use carom::core::{Boundary, Restitution};
 use carom::engine::EngineParams;
-use carom::io::{
+use carom::log::{
     CollisionDetail, CollisionRecord, LogOptions, LogReader, ReadProgress, Stop,
     COMPACT_COLLISIONS_CHANNEL,
 };
@@ -93,7 +93,7 @@ fn compact_and_full_logs_of_one_run_decode_to_the_same_collisions() {
         );
         let full = write("full.mcap", &sys, params, log_opts(CollisionDetail::Full));
         let r = LogReader::open(&compact).unwrap();
-        assert_eq!(r.run().log_format, carom::io::LOG_FORMAT_VERSION);
+        assert_eq!(r.run().log_format, carom::log::LOG_FORMAT_VERSION);
         let mut r = r;
         let _ = r.collisions().next();
         assert!(r.compact_collisions(), "{name}: compact schema expected");
@@ -263,7 +263,7 @@ fn a_strided_log_keeps_the_full_record() {
     assert!(recs.len() > 10 && recs.iter().all(|c| c.ordinal % 3 == 0));
     assert_ne!(
         COMPACT_COLLISIONS_CHANNEL.schema_name,
-        carom::io::CHANNELS[0].schema_name
+        carom::log::CHANNELS[0].schema_name
     );
     let _ = std::fs::remove_file(&out);
 }
@@ -274,7 +274,7 @@ fn a_strided_log_keeps_the_full_record() {
 /// records and its own format version.
 #[test]
 fn a_format_1_log_reads_and_resumes() {
-    use carom::io::{scan, LogWriter, WriterOptions, WriterPosition};
+    use carom::log::{scan, LogWriter, WriterOptions, WriterPosition};
     let (_, sys, params) = cases().swap_remove(1);
     let mut s = spec(
         sys.clone(),

@@ -13,7 +13,7 @@ mod mcap_common;
 
 use carom::core::{Boundary, Restitution, Species};
 use carom::engine::{EngineParams, SystemSpec};
-use carom::io::{LogOptions, Stop};
+use carom::log::{LogOptions, Stop};
 use carom::run::{run, Control};
 use mcap_common::*;
 use serde_json::Value;

@@ -7,7 +7,8 @@
 mod mcap_common;
 
 use carom::analysis::{analyze_log, AnalysisOptions, ReadObserver};
-use carom::io::{Config, LogEnd, LogReader, ReadProgress};
+use carom::config::Config;
+use carom::log::{LogEnd, LogReader, ReadProgress};
 use carom::run::{resume, run, Control, ResumeOptions};
 use mcap_common::tmp;
 use std::path::Path;

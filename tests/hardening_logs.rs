@@ -11,7 +11,7 @@ mod cli_common;
 
 use std::path::Path;
 
-use carom::io::{
+use carom::log::{
     LogEnd, LogReader, LogWriter, SummaryMetadata, Thermo, WriterOptions, WriterPosition, CH_THERMO,
 };
 use cli_common::{carom, json_of, ok, scratch};
@@ -76,7 +76,7 @@ fn non_finite_values_in_thermo_and_summary_read_back_everywhere() {
     let mut r = LogReader::open(&dir.join("nan.mcap")).unwrap();
     let mut thermo = 0;
     for t in r.thermo() {
-        let carom::io::LogMessage::Thermo(t) = t.unwrap() else {
+        let carom::log::LogMessage::Thermo(t) = t.unwrap() else {
             panic!("not a thermo record")
         };
         assert!(

@@ -4,10 +4,10 @@
 
 mod mcap_common;
 
-use carom::io::RunMetadata;
-use carom::io::{scan, scan_indexed, LogEnd, LogEvent, LogReader, ReadError, ReadOptions};
-use carom::io::{Compression, LogOptions, Stop};
-use carom::io::{LOG_FORMAT_VERSION, METADATA_RUN};
+use carom::log::RunMetadata;
+use carom::log::{scan, scan_indexed, LogEnd, LogEvent, LogReader, ReadError, ReadOptions};
+use carom::log::{Compression, LogOptions, Stop};
+use carom::log::{LOG_FORMAT_VERSION, METADATA_RUN};
 use carom::run::{run, Control};
 use mcap_common::*;
 use std::collections::BTreeMap;

@@ -11,11 +11,11 @@
 mod mcap_common;
 
 use carom::engine::EngineParams;
-use carom::io::CollisionRecord;
-use carom::io::StopReason;
-use carom::io::CH_CHECKPOINT;
-use carom::io::{scan, scan_indexed, LogEnd, LogEvent, LogReader};
-use carom::io::{Compression, LogOptions, Stop};
+use carom::log::CollisionRecord;
+use carom::log::StopReason;
+use carom::log::CH_CHECKPOINT;
+use carom::log::{scan, scan_indexed, LogEnd, LogEvent, LogReader};
+use carom::log::{Compression, LogOptions, Stop};
 use carom::run::{resume, run, Control, ResumeOptions};
 use mcap_common::*;
 use std::path::Path;
@@ -132,7 +132,7 @@ fn sigkill_mid_run_leaves_a_readable_resumable_log() {
     // Strict reading reports the cut as an error.
     let mut strict = LogReader::open_with(
         &path,
-        carom::io::ReadOptions {
+        carom::log::ReadOptions {
             strict: true,
             ..Default::default()
         },
@@ -140,7 +140,7 @@ fn sigkill_mid_run_leaves_a_readable_resumable_log() {
     .unwrap();
     let last = strict.collisions().last().unwrap();
     assert!(
-        matches!(last, Err(carom::io::ReadError::Truncated { .. })),
+        matches!(last, Err(carom::log::ReadError::Truncated { .. })),
         "{last:?}"
     );
 
@@ -203,7 +203,7 @@ fn sigkill_mid_run_leaves_a_readable_resumable_log() {
 
     // Resume from the last checkpoint in the file; it must give exactly the log of
     // an uninterrupted run to the same end time.
-    let (cp, _, _) = carom::io::last_checkpoint(&path).unwrap();
+    let (cp, _, _) = carom::log::last_checkpoint(&path).unwrap();
     let t_cp = cp.engine.now;
     assert!((info.last_checkpoint_time.unwrap() - t_cp).abs() < 1e-6);
     let t_end = t_cp + 15.0;

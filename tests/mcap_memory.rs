@@ -4,8 +4,8 @@
 
 mod mcap_common;
 
-use carom::io::{CollisionDetail, Compression, LogOptions, Stop};
-use carom::io::{LogEnd, LogReader};
+use carom::log::{CollisionDetail, Compression, LogOptions, Stop};
+use carom::log::{LogEnd, LogReader};
 use carom::run::{run, Control};
 use mcap_common::*;
 

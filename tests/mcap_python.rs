@@ -19,8 +19,8 @@ mod mcap_common;
 
 use carom::core::Restitution;
 use carom::engine::EngineParams;
-use carom::io::{CollisionDetail, Compression, LogOptions, Stop};
-use carom::io::{CHANNELS, CH_COLLISIONS, COMPACT_COLLISIONS_CHANNEL, TOPICS};
+use carom::log::{CollisionDetail, Compression, LogOptions, Stop};
+use carom::log::{CHANNELS, CH_COLLISIONS, COMPACT_COLLISIONS_CHANNEL, TOPICS};
 use carom::run::{run, Control};
 use log_view_common as view;
 use mcap_common::*;
@@ -248,7 +248,7 @@ fn the_documented_python_loop_decodes_every_channel() {
         String::from_utf8_lossy(&ran.stderr)
     );
     let counts: Value = serde_json::from_slice(&ran.stdout).unwrap();
-    let info = carom::io::scan(&out).unwrap();
+    let info = carom::log::scan(&out).unwrap();
     for (k, topic) in TOPICS.iter().enumerate() {
         let want = info.messages[k];
         let got = counts[*topic].as_u64().unwrap_or(0);

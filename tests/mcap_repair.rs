@@ -12,7 +12,7 @@
 mod mcap_common;
 
 use carom::engine::{Engine, EngineParams};
-use carom::io::{Compression, LogEnd, LogReader, LogWriter, WriterOptions, WriterPosition};
+use carom::log::{Compression, LogEnd, LogReader, LogWriter, WriterOptions, WriterPosition};
 use mcap_common::*;
 use serde_json::Value;
 use std::path::{Path, PathBuf};

@@ -6,10 +6,10 @@
 
 mod mcap_common;
 
-use carom::io::StopReason;
-use carom::io::{scan, scan_indexed, LogEnd, LogEvent, LogReader, ReadError, ReadProgress};
-use carom::io::{CollisionDetail, Compression, LogOptions, Stop};
-use carom::io::{LogWriter, WriterOptions, WriterPosition};
+use carom::log::StopReason;
+use carom::log::{scan, scan_indexed, LogEnd, LogEvent, LogReader, ReadError, ReadProgress};
+use carom::log::{CollisionDetail, Compression, LogOptions, Stop};
+use carom::log::{LogWriter, WriterOptions, WriterPosition};
 use carom::run::{resume, run, Control, ResumeOptions, ResumePass, RunError};
 use mcap_common::*;
 use std::collections::BTreeMap;

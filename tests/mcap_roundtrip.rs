@@ -6,12 +6,12 @@
 mod mcap_common;
 
 use carom::engine::{Engine, EngineParams, Event, SystemSpec};
-use carom::io::StopReason;
-use carom::io::{
+use carom::log::StopReason;
+use carom::log::{
     scan, scan_indexed, scan_observed, LogEnd, LogEvent, LogMessage, LogReader, ReadProgress,
 };
-use carom::io::{CollisionRecord, KIND_WALL};
-use carom::io::{Compression, LogOptions, Stop};
+use carom::log::{CollisionRecord, KIND_WALL};
+use carom::log::{Compression, LogOptions, Stop};
 use carom::run::{run, Control, Progress};
 use mcap_common::*;
 use std::sync::atomic::{AtomicBool, Ordering};
@@ -336,8 +336,8 @@ fn bad_options_name_the_field() {
 
 #[test]
 fn docs_show_every_schema_verbatim() {
-    use carom::io::CHECKPOINT_MSG;
-    use carom::io::{
+    use carom::log::CHECKPOINT_MSG;
+    use carom::log::{
         COLLISION_BATCH_MSG, COMPACT_COLLISION_BATCH_MSG, SNAPSHOT_MSG, THERMO_JSON_SCHEMA,
     };
     let doc = std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/docs/log-format.md"))
@@ -430,7 +430,7 @@ fn snapshots_and_checkpoints_reuse_their_buffers_without_mixing_them_up() {
     // writer once written: on the writer thread and inline alike, every message
     // must hold its own state, also when a checkpoint (larger) and snapshots of
     // another engine (another N) alternate.
-    use carom::io::{LogWriter, WriterOptions, WriterPosition};
+    use carom::log::{LogWriter, WriterOptions, WriterPosition};
     use std::collections::BTreeMap;
     for background in [true, false] {
         let out = tmp("reuse.mcap");
@@ -516,13 +516,13 @@ fn the_log_describes_its_run() {
         ..log_opts(Compression::Zstd)
     };
     let out = tmp("facts.mcap");
-    let run_spec = carom::io::RunSpec {
+    let run_spec = carom::log::RunSpec {
         params,
         ..spec(system.clone(), Stop::Time(0.5), log.clone())
     };
     run(&run_spec, &out, Control::default()).unwrap();
     let r = LogReader::open(&out).unwrap();
-    assert_eq!(r.run().log_format, carom::io::LOG_FORMAT_VERSION);
+    assert_eq!(r.run().log_format, carom::log::LOG_FORMAT_VERSION);
     let facts = r
         .run()
         .run_facts
@@ -530,7 +530,7 @@ fn the_log_describes_its_run() {
         .expect("a 1.2 log stores its facts");
     assert_eq!(
         facts,
-        carom::io::RunFacts::new(&system.species, &system.sim_box, &params, &log)
+        carom::log::RunFacts::new(&system.species, &system.sim_box, &params, &log)
     );
     assert_eq!(facts.species, system.species);
     assert_eq!(facts.sim_box, system.sim_box);
@@ -546,7 +546,7 @@ fn the_log_describes_its_run() {
 
 #[test]
 fn a_log_of_format_1_1_reads_without_facts() {
-    use carom::io::{LogWriter, WriterOptions, WriterPosition};
+    use carom::log::{LogWriter, WriterOptions, WriterPosition};
     // The `carom.run` record of a 1.1 log: every key but `run_facts`.
     let mut meta = test_run_metadata(4);
     meta.log_format = "1.1".into();

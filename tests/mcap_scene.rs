@@ -9,7 +9,7 @@
 
 mod mcap_common;
 
-use carom::io::{scan, LogOptions, LogReader, Stop, CH_SCENE, CH_SNAPSHOT, THERMO_JSON_SCHEMA};
+use carom::log::{scan, LogOptions, LogReader, Stop, CH_SCENE, CH_SNAPSHOT, THERMO_JSON_SCHEMA};
 use carom::run::{resume, run, Control, ResumeOptions};
 use mcap_common::*;
 use serde_json::Value;
@@ -106,7 +106,7 @@ fn foxglove_decodes_scene_frames_that_match_the_snapshots() {
         let text = String::from_utf8(o.stdout).unwrap();
         let mut r = LogReader::open(&out).unwrap();
         let snap = match r.snapshots().next().unwrap().unwrap() {
-            carom::io::LogMessage::Snapshot(s) => s,
+            carom::log::LogMessage::Snapshot(s) => s,
             m => panic!("{m:?}"),
         };
         let first = text.lines().next().unwrap();

@@ -6,7 +6,7 @@
 mod mcap_common;
 
 use carom::analysis::{analyze_log, AnalysisOptions, ReadObserver, Report};
-use carom::io::{
+use carom::log::{
     Compression, LogMessage, LogOptions, LogReader, ReadProgress, SchedulePoints, Stop,
 };
 use carom::run::{resume, run, Control, ResumeOptions};

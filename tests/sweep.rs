@@ -11,7 +11,7 @@ use std::path::Path;
 use std::process::{Command, Stdio};
 use std::time::{Duration, Instant};
 
-use carom::io::last_checkpoint;
+use carom::log::last_checkpoint;
 use cli_common::{carom, json_of, ok, python_with, scratch, BIN};
 use serde_json::Value;
 

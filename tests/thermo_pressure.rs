@@ -26,10 +26,10 @@ mod stats_common;
 
 use carom::core::{Boundary, Species};
 use carom::engine::SystemSpec;
-use carom::io::{
+use carom::log::{
     CollisionDetail, CollisionRecord, LogMessage, LogOptions, LogReader, Stop, StopReason, Thermo,
 };
-use carom::io::{KIND_PAIR, KIND_WALL};
+use carom::log::{KIND_PAIR, KIND_WALL};
 use carom::run::{run, Control};
 use mcap_common::{spec, system, tmp};
 use stats_common::{assert_within, est};

@@ -6,7 +6,8 @@
 mod mcap_common;
 
 use carom::analysis::{analyze_log, AnalysisOptions, ReadObserver};
-use carom::io::{load_config, CollisionDetail, LogEnd, LogReader, ReadProgress};
+use carom::config::load_config;
+use carom::log::{CollisionDetail, LogEnd, LogReader, ReadProgress};
 use carom::run::{resume, run, Control, ResumeOptions};
 use mcap_common::tmp;
 use std::path::Path;
@@ -29,12 +30,12 @@ fn raw_messages(path: &Path) -> Vec<(usize, u32, u64, Vec<u8>)> {
 }
 
 /// `data/<name>` with 300 discs for 12 time units, a checkpoint every 2.
-fn example(name: &str) -> carom::io::RunSpec {
+fn example(name: &str) -> carom::log::RunSpec {
     example_with(name, &[])
 }
 
 /// [`example`] with more `--set`s.
-fn example_with(name: &str, more: &[&str]) -> carom::io::RunSpec {
+fn example_with(name: &str, more: &[&str]) -> carom::log::RunSpec {
     let data = Path::new(env!("CARGO_MANIFEST_DIR"))
         .join("data")
         .join(name);

@@ -4,7 +4,7 @@
 //! never a panic.
 #![no_main]
 
-use carom_io::Config;
+use carom_config::Config;
 use libfuzzer_sys::fuzz_target;
 
 fuzz_target!(|data: &[u8]| {

@@ -3,7 +3,7 @@
 //! an error or a truncated end, never a panic or an unbounded allocation.
 #![no_main]
 
-use carom_io::{LogCheckpoint, LogReader, ReadOptions};
+use carom_log::{LogCheckpoint, LogReader, ReadOptions};
 use libfuzzer_sys::fuzz_target;
 use std::io::Cursor;
 use std::sync::Once;
@@ -11,7 +11,7 @@ use std::sync::Once;
 /// The mcap crate (0.26) panics on some damaged lengths (an attachment's data
 /// length, a record longer than what is left of its chunk); carom's reader
 /// catches those panics and reports the log as malformed (`parse_record` in
-/// crates/io/src/log/read/mod.rs). libFuzzer's hook aborts on every panic, caught
+/// crates/log/src/read/mod.rs). libFuzzer's hook aborts on every panic, caught
 /// or not: this one lets panics raised inside the mcap crate through to carom's
 /// catch. A panic anywhere else, or one carom does not catch, still aborts
 /// (libfuzzer-sys aborts on a panic that leaves the target).

@@ -7,7 +7,7 @@
 use std::process::ExitCode;
 
 use carom::analysis::{analyze_log, AnalysisOptions, ReadObserver, Report};
-use carom::io::ReadProgress;
+use carom::log::ReadProgress;
 
 #[path = "analyze_dynamics.rs"]
 mod dynamics;

@@ -22,7 +22,7 @@ use std::path::PathBuf;
 use std::process::ExitCode;
 use std::time::Duration;
 
-use carom::io::ConfigError;
+use carom::config::ConfigError;
 use clap::{Args, Parser, Subcommand};
 use thiserror::Error;
 
@@ -241,7 +241,7 @@ pub enum CliError {
     Run(#[from] carom::run::RunError),
     /// A log could not be read.
     #[error("{0}")]
-    Read(#[from] carom::io::ReadError),
+    Read(#[from] carom::log::ReadError),
     /// A log could not be analysed.
     #[error("{0}")]
     Analysis(carom::analysis::AnalysisError),

@@ -6,7 +6,7 @@ use std::io::Write;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
-use carom::io::LogEnd;
+use carom::log::LogEnd;
 
 use super::{emit, CliError, RepairArgs};
 

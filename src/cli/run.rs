@@ -11,8 +11,9 @@ use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::OnceLock;
 use std::time::{Duration, Instant};
 
+use carom::config::{load_config, ConfigError};
 use carom::engine::{Placement, PlacementProgress};
-use carom::io::{load_config, ConfigError, ReadProgress, Stop, StopReason};
+use carom::log::{ReadProgress, Stop, StopReason};
 use carom::run::Bytes;
 use carom::run::{Control, Progress, ResumeOptions, ResumePass, RunError, RunSummary};
 use indicatif::{ProgressBar, ProgressStyle};

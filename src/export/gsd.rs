@@ -13,7 +13,7 @@
 
 use std::path::{Path, PathBuf};
 
-use carom_io::Snapshot;
+use carom_log::Snapshot;
 use hoomd_gsd::file_layer::GsdFile;
 
 use super::type_name;

@@ -15,7 +15,7 @@ pub use xyz::XyzWriter;
 
 use std::path::Path;
 
-use carom_io::{ReadProgress, Snapshot};
+use carom_log::{ReadProgress, Snapshot};
 
 use crate::frames::{for_each_frame, FrameCount, FrameError, FrameRange};
 

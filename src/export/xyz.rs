@@ -16,7 +16,7 @@ use std::fs::File;
 use std::io::{BufWriter, Write};
 use std::path::{Path, PathBuf};
 
-use carom_io::Snapshot;
+use carom_log::Snapshot;
 
 use super::type_name;
 use crate::frames::FrameError;

@@ -7,7 +7,7 @@
 //! t, N and the packing fraction η = Σ π a² / (L_x L_y). Colouring by species adds
 //! a legend in the title band; colouring by speed a colour bar at the right.
 
-use carom_io::Snapshot;
+use carom_log::Snapshot;
 use plotters::coord::Shift;
 use plotters::element::DashedPathElement;
 use plotters::prelude::*;

@@ -21,7 +21,7 @@ pub use raster::Raster;
 use std::path::Path;
 use std::sync::Once;
 
-use carom_io::Snapshot;
+use carom_log::Snapshot;
 use plotters::coord::Shift;
 use plotters::prelude::*;
 use plotters_backend::DrawingErrorKind;

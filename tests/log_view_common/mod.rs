@@ -12,7 +12,7 @@
 #![allow(dead_code)]
 
 use carom::core::{Boundary, DVec2, Restitution, Species};
-use carom::io::{
+use carom::log::{
     CollisionBatch, CompactBatch, DriverState, LogCheckpoint, LogReader, RunMetadata, Snapshot,
     SummaryMetadata, Thermo, CH_CHECKPOINT, CH_COLLISIONS, CH_SCENE, CH_SNAPSHOT, CH_THERMO,
     SPECIES_COLORS, TOPICS,
@@ -260,7 +260,7 @@ pub fn checkpoint(cp: &LogCheckpoint) -> Value {
     let u = |v: &Vec<u32>| ints(v.iter().copied());
     let col = |v: &[[u32; 3]], k: usize| ints(v.iter().map(|p| p[k]));
     let state = json!({
-        "format_version": carom::io::CHECKPOINT_FORMAT_VERSION,
+        "format_version": carom::log::CHECKPOINT_FORMAT_VERSION,
         "run_start_time": f(*run_start_time), "logged_collisions": logged_collisions,
         "next_sequence": ints(next_sequence.iter().copied()),
         "box_x": f(sim_box.size.x), "box_y": f(sim_box.size.y),
@@ -417,7 +417,7 @@ pub fn run_record(m: &RunMetadata) -> BTreeMap<String, String> {
         }
     }
     // Its checksum over exactly these fields (log format 2.3).
-    carom::io::seal(&mut r);
+    carom::log::seal(&mut r);
     r
 }
 
@@ -466,7 +466,7 @@ pub fn summary_record(s: &SummaryMetadata) -> BTreeMap<String, String> {
     ] {
         put(k, n.to_string());
     }
-    carom::io::seal(&mut r);
+    carom::log::seal(&mut r);
     r
 }
 

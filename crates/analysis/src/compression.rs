@@ -15,7 +15,7 @@ use std::path::Path;
 use carom_core::observables::packing_fraction;
 use carom_core::{SimBox, Species};
 use carom_engine::Growth;
-use carom_io::{GrowthEvent, GrowthPhase, LogMessage, LogReader};
+use carom_log::{GrowthEvent, GrowthPhase, LogMessage, LogReader};
 use serde::Serialize;
 
 use super::from_log::AnalysisError;
@@ -68,8 +68,8 @@ impl Compression {
     ) -> Result<Compression, AnalysisError> {
         let eta0 = packing_fraction(species, sim_box);
         let mut reader = LogReader::open(path)?;
-        let mut last: Option<carom_io::Thermo> = None;
-        let mut end: Option<carom_io::Thermo> = None;
+        let mut last: Option<carom_log::Thermo> = None;
+        let mut end: Option<carom_log::Thermo> = None;
         let mut rescales = 0;
         for m in reader.thermo() {
             let Ok(LogMessage::Thermo(t)) = m else { break };

@@ -8,10 +8,10 @@
 //! first snapshot (counts per species, radii, masses, box, boundaries; collisions
 //! then assumed elastic).
 
+use carom_config::{Config, ConfigError};
 use carom_core::{Boundary, Restitution, SimBox, Species};
-use carom_io::{Config, ConfigError};
-use carom_io::{LogInfo, ReadError};
-use carom_io::{Snapshot, SnapshotSchedule};
+use carom_log::{LogInfo, ReadError};
+use carom_log::{Snapshot, SnapshotSchedule};
 
 use super::from_log::AnalysisError;
 #[cfg(doc)]
@@ -212,7 +212,7 @@ pub(super) fn describe(
 mod tests {
     use super::*;
     use carom_engine::EngineParams;
-    use carom_io::{LogEnd, LogOptions, RunFacts, RunMetadata, Stop};
+    use carom_log::{LogEnd, LogOptions, RunFacts, RunMetadata, Stop};
 
     /// A log's scan with the stored configuration `config` and the given facts.
     fn info(config: &str, facts: Option<RunFacts>) -> LogInfo {
@@ -233,10 +233,10 @@ mod tests {
             },
             summary: None,
             end: LogEnd::Complete,
-            channels: [true; carom_io::N_CHANNELS],
-            messages: [1; carom_io::N_CHANNELS],
+            channels: [true; carom_log::N_CHANNELS],
+            messages: [1; carom_log::N_CHANNELS],
             logged_collisions: 0,
-            time_span: [Some((0.0, 5.0)); carom_io::N_CHANNELS],
+            time_span: [Some((0.0, 5.0)); carom_log::N_CHANNELS],
             last_checkpoint_time: None,
             thermo_counts: None,
             file_bytes: 0,
@@ -305,10 +305,10 @@ mod tests {
         )
     }
 
-    fn summary(sim_time: f64, pair_collisions: u64) -> carom_io::SummaryMetadata {
-        carom_io::SummaryMetadata {
+    fn summary(sim_time: f64, pair_collisions: u64) -> carom_log::SummaryMetadata {
+        carom_log::SummaryMetadata {
             end_time: String::new(),
-            stop_reason: carom_io::StopReason::Time,
+            stop_reason: carom_log::StopReason::Time,
             error: None,
             sim_time,
             pair_collisions,
@@ -334,7 +334,7 @@ mod tests {
     #[test]
     fn the_pair_rate_comes_from_the_thermo_records_or_else_the_summary() {
         let mut i = info("not json", Some(facts()));
-        i.time_span = [Some((0.5, 6.0)); carom_io::N_CHANNELS];
+        i.time_span = [Some((0.5, 6.0)); carom_log::N_CHANNELS];
         assert_eq!(describe_quietly(&i).0.unwrap().n(), 7);
         assert_eq!(rate_of(&i), None);
         i.summary = Some(summary(4.5, 140));
@@ -371,13 +371,13 @@ mod tests {
     #[test]
     fn the_run_spans_the_union_of_the_channels_times() {
         let mut i = info("not json", Some(facts()));
-        i.time_span = [None; carom_io::N_CHANNELS];
+        i.time_span = [None; carom_log::N_CHANNELS];
         i.time_span[0] = Some((1.5, 4.0));
         i.time_span[2] = Some((0.5, 3.0));
         i.time_span[3] = Some((2.0, 6.5));
         let d = describe_quietly(&i).0.unwrap();
         assert_eq!((d.t_start, d.t_end), (0.5, 6.5));
-        i.time_span = [None; carom_io::N_CHANNELS];
+        i.time_span = [None; carom_log::N_CHANNELS];
         assert!(matches!(
             describe_quietly(&i).0,
             Err(AnalysisError::Unusable(_))

@@ -14,11 +14,12 @@
 
 use std::path::Path;
 
+use carom_config::Config;
 use carom_core::DVec2;
-use carom_io::{
+use carom_log::{
     scan_indexed, scan_observed, LogEnd, LogMessage, LogReader, ReadError, ReadProgress,
 };
-use carom_io::{Config, Snapshot, KIND_PAIR};
+use carom_log::{Snapshot, KIND_PAIR};
 use thiserror::Error;
 
 use super::compression::Compression;
@@ -315,13 +316,13 @@ impl Feed {
 
 #[cfg(test)]
 mod tests {
-    //! Small logs written by hand with carom-io's `LogWriter` (the events chosen
+    //! Small logs written by hand with carom-log's `LogWriter` (the events chosen
     //! by the test, not run by an engine), analysed from the file; expected
     //! values worked from the events written.
     use super::*;
     use carom_core::{Axis, SimBox, Species, WallSide};
     use carom_engine::{EngineParams, PairCollision, State, WallCollision};
-    use carom_io::{
+    use carom_log::{
         CollisionDetail, LogOptions, LogWriter, RunFacts, RunMetadata, Stop, StopReason,
         SummaryMetadata, Thermo, WriterOptions, WriterPosition,
     };
@@ -388,7 +389,7 @@ mod tests {
         };
         let params = EngineParams::default();
         let meta = RunMetadata {
-            log_format: carom_io::LOG_FORMAT_VERSION.into(),
+            log_format: carom_log::LOG_FORMAT_VERSION.into(),
             carom_version: "0.0.0-test".into(),
             config: "not json".into(),
             seed: 1,

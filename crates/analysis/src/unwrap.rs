@@ -10,7 +10,7 @@
 //! way and counted, so that a report can warn.
 
 use carom_core::DVec2;
-use carom_io::Snapshot;
+use carom_log::Snapshot;
 
 /// Unwraps the positions of successive snapshots of one run.
 #[derive(Debug, Default)]

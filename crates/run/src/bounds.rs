@@ -1,7 +1,7 @@
 //! Runs whose cost their parameters fix in advance, refused at the start (a fresh
 //! run or a resume alike) when it is beyond any sensible run: the events of one
 //! kind scheduled between now and the stop, at most
-//! [`MAX_RECORDS`](carom_io::MAX_RECORDS) as for the log's records
+//! [`MAX_RECORDS`](carom_log::MAX_RECORDS) as for the log's records
 //! (`check_log_options`, and `watchdog::check_reachable` for a collision stop).
 //!
 //! Over the time T to the stop (for a collision stop, the collisions left at the
@@ -13,7 +13,7 @@
 //! back control meanwhile (`carom_engine::PAUSE_TAG`), so a stop is still heard.
 
 use carom_engine::{Engine, Thermostat};
-use carom_io::{Stop, MAX_RECORDS};
+use carom_log::{Stop, MAX_RECORDS};
 
 use super::watchdog::time_to_stop;
 use super::RunError;

@@ -9,14 +9,14 @@ use std::sync::atomic::AtomicBool;
 use std::time::Duration;
 
 use carom_engine::PlacementProgress;
-use carom_io::ReadProgress;
-use carom_io::Stop;
+use carom_log::ReadProgress;
+use carom_log::Stop;
 
 use super::disk::FreeSpace;
 #[cfg(doc)]
 use super::{disk_low, far_too_small, free_space_for, resume};
 #[cfg(doc)]
-use carom_io::StopReason;
+use carom_log::StopReason;
 
 /// A progress report, handed to the caller's callback about every
 /// [`Control::progress_interval`] of wall time.

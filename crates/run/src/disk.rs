@@ -13,7 +13,7 @@ use super::memory::CHECKPOINT_MESSAGE;
 #[cfg(doc)]
 use super::Control;
 #[cfg(doc)]
-use carom_io::LogWriter;
+use carom_log::LogWriter;
 
 /// Whether a log must stop now to be finished: its disk has `free` bytes, finishing
 /// it would write up to `finish` bytes ([`LogWriter::finish_bound`]), and it grew by

@@ -7,7 +7,7 @@
 //! `/snapshot`, a `/thermo` record, a `/checkpoint` and a `/scene` frame (each
 //! when enabled, the checkpoint always), then the same at start + k·interval
 //! (and snapshots inside each interval at log-spaced offsets with
-//! `log.snapshot_schedule`, carom-io's `SnapshotSchedule`);
+//! `log.snapshot_schedule`, carom-log's `SnapshotSchedule`);
 //! `/collisions` batches in between; at the end a final `/thermo` record and `/checkpoint`, and
 //! `carom.summary`. A stop at `t_end` comes after every observation due at `t_end`.
 //! While discs grow, an extra `/thermo` record follows the first event after each
@@ -18,9 +18,9 @@ use std::sync::atomic::Ordering;
 use std::time::Instant;
 
 use carom_engine::{Engine, EngineError, Event, GrowthEnd, State, PAUSE_TAG};
-use carom_io::{now_rfc3339, StopReason, SummaryMetadata};
-use carom_io::{GrowthEvent, LogWriter};
-use carom_io::{LogOptions, Stop};
+use carom_log::{now_rfc3339, StopReason, SummaryMetadata};
+use carom_log::{GrowthEvent, LogWriter};
+use carom_log::{LogOptions, Stop};
 
 use super::disk::{far_too_small, finish_reserve, free_bytes, DiskWatch};
 use super::observation::Observation;
@@ -214,7 +214,7 @@ impl<'a> Driver<'a> {
         Ok(())
     }
 
-    /// Schedule snapshot k + 1 at its time in the snapshot schedule (carom-io's
+    /// Schedule snapshot k + 1 at its time in the snapshot schedule (carom-log's
     /// `SnapshotSchedule`: t₀ + k·T without `log.snapshot_schedule`), unless
     /// snapshots are off or its time has passed.
     fn schedule_next_snapshot(&mut self, k: u64) -> Result<(), RunError> {

@@ -7,8 +7,8 @@
 use std::path::PathBuf;
 
 use carom_engine::{EngineError, InitError};
-use carom_io::WriteError;
-use carom_io::{OptionsError, ReadError};
+use carom_log::WriteError;
+use carom_log::{OptionsError, ReadError};
 use thiserror::Error;
 
 /// A run that could not be carried out. Each variant says what and where.

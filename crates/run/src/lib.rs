@@ -5,7 +5,7 @@
 //! [`sweep`], many runs from one plan (a local pool of processes, or Slurm).
 //!
 //! Two entry points, both blocking until the run ends: [`run`], a fresh run from a
-//! [`RunSpec`](carom_io::RunSpec) into a new log file, and [`resume`], which
+//! [`RunSpec`](carom_log::RunSpec) into a new log file, and [`resume`], which
 //! continues a log (complete, or cut short by a crash) from its last checkpoint.
 //! The caller steers both through a [`Control`] (stop flag, progress callbacks,
 //! the room on the log's disk).
@@ -13,7 +13,7 @@
 //! ```no_run
 //! use carom_run::{run, Control, Progress};
 //! use std::sync::atomic::AtomicBool;
-//! # fn spec() -> carom_io::RunSpec { unimplemented!() }
+//! # fn spec() -> carom_log::RunSpec { unimplemented!() }
 //! let stop = AtomicBool::new(false); // set it from a Ctrl-C handler
 //! let mut show = |p: &Progress| eprintln!("t = {:.3}, {} collisions", p.sim_time, p.collisions);
 //! let summary = run(&spec(), "out.mcap".as_ref(), Control::new(&stop, &mut show)).unwrap();
@@ -40,8 +40,8 @@ pub mod sweep;
 
 use std::path::PathBuf;
 
-use carom_io::Stop;
-use carom_io::StopReason;
+use carom_log::Stop;
+use carom_log::StopReason;
 
 pub use bytes::Bytes;
 pub use control::{Control, Progress, ResumePass};

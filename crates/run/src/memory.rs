@@ -10,7 +10,8 @@
 //! and the log writer's snapshot, checkpoint and (when logged) scene buffers.
 //! `CAROM_IGNORE_MEMORY_CHECK=1` skips the check (README, "Two commands").
 
-use carom_io::{ConfigError, RunSpec};
+use carom_config::ConfigError;
+use carom_log::RunSpec;
 
 /// Bytes per disc of the engine's arrays (138.2 measured at N = 10⁶, with room).
 const ENGINE: u64 = 140;
@@ -229,7 +230,7 @@ mod tests {
         let unlimited = limits.replace("8192000000", "unlimited ");
         assert_eq!(address_space_room(&unlimited, Some(status)), None);
         // Refused naming the limit: 3·10⁷ discs need 16.8 GB.
-        let mut spec = carom_io::load_config(None, &[]).unwrap();
+        let mut spec = carom_config::load_config(None, &[]).unwrap();
         spec.system.species[0].count = 30_000_000;
         let e = check_against(&spec, 8_192_000_000, ADDRESS_SPACE)
             .unwrap_err()
@@ -239,7 +240,7 @@ mod tests {
 
     #[test]
     fn a_run_larger_than_the_memory_is_refused_with_the_numbers() {
-        let mut spec = carom_io::load_config(None, &[]).unwrap();
+        let mut spec = carom_config::load_config(None, &[]).unwrap();
         spec.system.species[0].count = 10_000_000_000;
         let e = check_against(&spec, 8_000_000_000, "test")
             .unwrap_err()

@@ -1,6 +1,6 @@
 //! The observations a run schedules at exact times: the k-th snapshot, thermo
 //! record, checkpoint and scene frame (due at start + k·interval; the k-th
-//! snapshot at carom-io's `SnapshotSchedule::time`, the same without a
+//! snapshot at carom-log's `SnapshotSchedule::time`, the same without a
 //! `log.snapshot_schedule`), the two phases
 //! of a stop, and the watchdog's check for a run without collisions
 //! (`watchdog.rs`). The engine carries a scheduled observation as an opaque `u64` tag

@@ -14,7 +14,7 @@
 use std::io::{Read, Seek};
 use std::path::{Path, PathBuf};
 
-use carom_io::{
+use carom_log::{
     salvage, LogEnd, LogReader, LogWriter, LostPart, ReadError, WriterOptions, WriterPosition,
     CH_CHECKPOINT, CH_COLLISIONS, CH_SNAPSHOT,
 };
@@ -46,7 +46,7 @@ pub struct Repaired {
 /// Write the readable part of the log `input` as a complete log `out` (which must
 /// be another file). The new log is written beside `out` and renamed over it only
 /// once it is finished, so a failed repair leaves `out` as it was. A log damaged
-/// inside its chunks is read around the damage ([`carom_io::salvage`]): every
+/// inside its chunks is read around the damage ([`carom_log::salvage`]): every
 /// chunk whose CRC holds is copied, and [`Repaired::lost`] names the others.
 pub fn repair(input: &Path, out: &Path) -> Result<Repaired, RunError> {
     let mut name = out.file_name().unwrap_or_default().to_os_string();
@@ -54,7 +54,7 @@ pub fn repair(input: &Path, out: &Path) -> Result<Repaired, RunError> {
     let tmp = out.with_file_name(name);
     // Read around the damage: the input's reading failed, whatever the salvaged
     // reader's own end says.
-    let around = |s: carom_io::Salvaged| {
+    let around = |s: carom_log::Salvaged| {
         copy(s.reader, &tmp, s.lost).map(|r| Repaired {
             input_end: LogEnd::Failed,
             ..r
@@ -77,7 +77,7 @@ pub fn repair(input: &Path, out: &Path) -> Result<Repaired, RunError> {
         Ok(mut r) => {
             std::fs::rename(&tmp, out).map_err(|source| {
                 let _ = std::fs::remove_file(&tmp);
-                carom_io::WriteError::Io {
+                carom_log::WriteError::Io {
                     path: out.to_path_buf(),
                     source,
                 }
@@ -108,7 +108,7 @@ fn copy<R: Read + Seek>(
     let (mut messages, mut dropped_batches) = (0u64, 0u64);
     let mut next_collisions: Option<u32> = None;
     let mut gap = false;
-    let compact_log = reader.run().log.collision_record() == carom_io::CollisionDetail::Compact;
+    let compact_log = reader.run().log.collision_record() == carom_log::CollisionDetail::Compact;
     while let Some(m) = reader.next_raw()? {
         if m.channel == CH_SNAPSHOT || m.channel == CH_CHECKPOINT {
             gap = false;

@@ -13,11 +13,11 @@
 use std::path::Path;
 
 use carom_engine::{Engine, EngineError};
-use carom_io::LogCheckpoint;
-use carom_io::Stop;
-use carom_io::Thermo;
-use carom_io::{check_log_options, last_checkpoint_observed, LogReader, ReadProgress};
-use carom_io::{LogWriter, WriterOptions, WriterPosition, CH_THERMO};
+use carom_log::LogCheckpoint;
+use carom_log::Stop;
+use carom_log::Thermo;
+use carom_log::{check_log_options, last_checkpoint_observed, LogReader, ReadProgress};
+use carom_log::{LogWriter, WriterOptions, WriterPosition, CH_THERMO};
 
 use super::bounds::check_scheduled;
 use super::disk::{finish_reserve, free_bytes};
@@ -197,7 +197,7 @@ pub fn resume(
     d.run_start_time = driver.run_start_time;
     d.last_checkpoint_at = Some((resumed_at, d.collisions));
     d.last_thermo_at = last_thermo_at;
-    d.earlier_speed = carom_io::scan_indexed(input)
+    d.earlier_speed = carom_log::scan_indexed(input)
         .ok()
         .flatten()
         .and_then(|i| i.summary)

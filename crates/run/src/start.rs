@@ -10,7 +10,7 @@ use std::sync::atomic::Ordering;
 use std::time::Instant;
 
 use carom_engine::{Engine, PlacementProgress, State, SystemSpec};
-use carom_io::{
+use carom_log::{
     check_log_options, now_rfc3339, LogWriter, RunFacts, RunMetadata, RunSpec, WriterOptions,
     WriterPosition, LOG_FORMAT_VERSION,
 };
@@ -79,8 +79,8 @@ fn start(
         })?;
     check_reachable(&engine, spec.stop, &spec.log)?;
     let stop_field = match spec.stop {
-        carom_io::Stop::Time(_) => "stop.duration",
-        carom_io::Stop::Collisions(_) => "stop.collisions",
+        carom_log::Stop::Time(_) => "stop.duration",
+        carom_log::Stop::Collisions(_) => "stop.collisions",
     };
     check_scheduled(&engine, spec.stop, stop_field)?;
     let meta = RunMetadata {

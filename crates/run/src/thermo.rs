@@ -15,7 +15,7 @@ use carom_core::observables::{
     virial_pressure, virial_z, wall_z,
 };
 use carom_engine::{Engine, GrowthEnd};
-use carom_io::{GrowthPhase, Thermo};
+use carom_log::{GrowthPhase, Thermo};
 
 /// The `/thermo` record of `engine` now, with rates and pressures averaged since
 /// `run_start_time` (none at that time, nor without thermal motion).

@@ -15,7 +15,7 @@
 use carom_core::observables::{degrees_of_freedom, temperature};
 use carom_core::rates::{expected_collision_rate, expected_mean_free_time};
 use carom_engine::Engine;
-use carom_io::{LogOptions, Stop, MAX_RECORDS};
+use carom_log::{LogOptions, Stop, MAX_RECORDS};
 
 use super::RunError;
 
@@ -156,7 +156,7 @@ mod tests {
     use super::*;
     use carom_core::{Boundary, Species};
     use carom_engine::{EngineParams, SystemSpec};
-    use carom_io::SchedulePoints;
+    use carom_log::SchedulePoints;
 
     #[test]
     fn a_snapshot_schedule_counts_n_plus_one_snapshots_per_interval() {

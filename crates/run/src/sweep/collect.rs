@@ -16,7 +16,7 @@ use serde::Serialize;
 use serde_json::Value;
 
 use carom_analysis::{analyze_log, AnalysisOptions, ReadObserver};
-use carom_io::ReadProgress;
+use carom_log::ReadProgress;
 
 use super::{point_state, PointState, SweepDir, SweepError};
 

@@ -11,7 +11,8 @@
 
 use std::path::Path;
 
-use carom_io::{apply_set, Config, RunSpec};
+use carom_config::{apply_set, Config};
+use carom_log::RunSpec;
 use serde::de::{MapAccess, Visitor};
 use serde::{Deserialize, Deserializer};
 use serde_json::Value;
@@ -117,7 +118,7 @@ pub struct Point {
 impl Plan {
     /// Read and expand the plan file at `path`.
     pub fn load(path: &Path) -> Result<Plan, SweepError> {
-        let text = carom_io::read_config_text(path).map_err(|source| SweepError::Io {
+        let text = carom_config::read_config_text(path).map_err(|source| SweepError::Io {
             path: path.to_path_buf(),
             source,
         })?;
@@ -315,7 +316,7 @@ impl Plan {
 }
 
 fn read_base(path: &Path, origin: &str) -> Result<Value, SweepError> {
-    let text = carom_io::read_config_text(path).map_err(|e| SweepError::Plan {
+    let text = carom_config::read_config_text(path).map_err(|e| SweepError::Plan {
         plan: origin.to_owned(),
         field: "base".into(),
         problem: format!("cannot read {}: {e}", path.display()),

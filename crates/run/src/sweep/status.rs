@@ -12,7 +12,8 @@
 use std::fs::{File, TryLockError};
 use std::path::Path;
 
-use carom_io::{scan, scan_indexed, Config, RunMetadata, RunSpec, StopReason};
+use carom_config::Config;
+use carom_log::{scan, scan_indexed, RunMetadata, RunSpec, StopReason};
 use serde_json::Value;
 
 use super::SweepDir;
