@@ -8,38 +8,15 @@
 //! [`super::structure_factor`]'s shells on the box's wave vectors, searched from
 //! π/σ_min up). The α-time
 //! τ_α solves F_s(k*, τ_α) = 1/e, linearly interpolated in ln τ between the
-//! bracketing lags. J₀ is Abramowitz & Stegun 9.4.1 (|x| ≤ 3, |error| ≤ 5·10⁻⁸)
-//! and 9.4.3 (|x| > 3, modulus and phase to 1.6·10⁻⁸ and 7·10⁻⁸, so |error| ≤
-//! 10⁻⁷ x^(−1/2)): far below the statistical errors of F_s.
+//! bracketing lags. J₀ is `libm`'s (the FreeBSD msun implementation).
 
 use carom_core::SimBox;
 
 use super::structure_factor::{first_peak, shells, snapshot_sk};
 
-/// The Bessel function J₀(x) to about 10⁻⁷ (Abramowitz & Stegun 9.4.1, 9.4.3).
+/// The Bessel function J₀(x), from `libm` (to the last bits of f64).
 pub fn bessel_j0(x: f64) -> f64 {
-    let ax = x.abs();
-    if ax <= 3.0 {
-        let y = (ax / 3.0).powi(2);
-        1.0 + y
-            * (-2.249_999_7
-                + y * (1.265_620_8
-                    + y * (-0.316_386_6
-                        + y * (0.044_447_9 + y * (-0.003_944_4 + y * 0.000_210_0)))))
-    } else {
-        let y = 3.0 / ax;
-        let f0 = 0.797_884_56
-            + y * (-0.000_000_77
-                + y * (-0.005_527_40
-                    + y * (-0.000_095_12
-                        + y * (0.001_372_37 + y * (-0.000_728_05 + y * 0.000_144_76)))));
-        let theta = ax - std::f64::consts::FRAC_PI_4
-            + y * (-0.041_663_97
-                + y * (-0.000_039_54
-                    + y * (0.002_625_73
-                        + y * (-0.000_541_25 + y * (-0.000_293_33 + y * 0.000_135_58)))));
-        f0 * theta.cos() / ax.sqrt()
-    }
+    libm::j0(x)
 }
 
 /// k* (1/length): the first peak of S(k) ([`first_peak`], physics.md §11) of the
@@ -107,7 +84,7 @@ mod tests {
     fn j0_matches_its_integral_tables_series_and_asymptote() {
         // J₀(0) = 1; the first zero j₀,₁ = 2.404825557695773.
         assert!((bessel_j0(0.0) - 1.0).abs() < 1e-12);
-        assert!(bessel_j0(2.404825557695773).abs() < 1e-7);
+        assert!(bessel_j0(2.404825557695773).abs() < 1e-15);
         // Table values (A&S table 9.1): J₀(1) = 0.7651976866, J₀(5) =
         // −0.1775967713, J₀(10) = −0.2459357645.
         for (x, want) in [
@@ -115,12 +92,12 @@ mod tests {
             (5.0, -0.177_596_771_3),
             (10.0, -0.245_935_764_5),
         ] {
-            assert!((bessel_j0(x) - want).abs() < 1e-7, "J0({x})");
+            assert!((bessel_j0(x) - want).abs() < 1e-10, "J0({x})");
         }
         // The series 1 − x²/4 + x⁴/64 − x⁶/2304 at x = 0.1 (next term 4·10⁻¹⁴).
         let x: f64 = 0.1;
         let series = 1.0 - x * x / 4.0 + x.powi(4) / 64.0 - x.powi(6) / 2304.0;
-        assert!((bessel_j0(x) - series).abs() < 1e-7);
+        assert!((bessel_j0(x) - series).abs() < 1e-13);
         // Asymptote √(2/(πx)) cos(x − π/4), error ≈ (1/8x)·√(2/(πx)) ≤ 10⁻⁴ at 1000.
         let x = 1000.0;
         let asym = (2.0 / (PI * x)).sqrt() * (x - PI / 4.0).cos();
@@ -129,7 +106,7 @@ mod tests {
         for k in 0..=800 {
             let x = -40.0 + 0.1 * k as f64;
             let (got, want) = (bessel_j0(x), j0_integral(x));
-            assert!((got - want).abs() < 1.2e-7, "J0({x}) = {got} vs {want}");
+            assert!((got - want).abs() < 1e-13, "J0({x}) = {got} vs {want}");
         }
     }
 

@@ -36,8 +36,9 @@ float64[] virial       # pair: r_ij . dp_i with r_ij = r_i - r_j at contact (len
 pub const KIND_PAIR: u8 = 0;
 /// `kind` of a wall collision in [`CollisionBatch`].
 pub const KIND_WALL: u8 = 1;
-/// `j` of a wall collision in [`CollisionBatch`].
-pub const NO_DISC: u32 = u32::MAX;
+/// `j` of a wall collision in [`CollisionBatch`] is the engine's "no disc",
+/// [`NO_DISC`] (u32::MAX).
+pub use carom_engine::NO_DISC;
 
 /// One logged collision, as decoded from a [`CollisionBatch`]: its ordinal, its
 /// kind, and the collision in the engine's pair form, which it reads through
