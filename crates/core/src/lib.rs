@@ -22,6 +22,8 @@
 //! reference values in physics.md use disc diameter σ = 1, m = 1, kT = 1.
 //! Every quantity is `f64`; vectors are [`glam::DVec2`].
 
+#![deny(missing_docs)]
+
 pub mod boundary;
 pub mod collision;
 pub mod gravity;

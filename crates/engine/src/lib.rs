@@ -27,7 +27,7 @@
 //! assert!((engine.kinetic_energy() - energy).abs() < 1e-9 * energy);
 //! ```
 
-#![warn(missing_docs)]
+#![deny(missing_docs)]
 
 mod cells;
 mod checkpoint;

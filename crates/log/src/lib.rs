@@ -12,7 +12,7 @@
 //! `docs/log-format.md` documents the format for other languages. The log sees
 //! the engine only through plain data (states, events, checkpoints).
 
-#![warn(missing_docs)]
+#![deny(missing_docs)]
 
 mod format;
 mod options;

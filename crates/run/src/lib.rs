@@ -20,6 +20,8 @@
 //! println!("{} collisions/s", summary.collisions_per_second);
 //! ```
 
+#![deny(missing_docs)]
+
 mod bounds;
 mod bytes;
 mod control;
