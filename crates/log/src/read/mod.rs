@@ -31,9 +31,13 @@
 //! # Ok(()) }
 //! ```
 
+mod damage;
+mod definitions;
 mod error;
 mod indexed;
 mod iter;
+mod progress;
+mod records;
 mod replay;
 mod salvage;
 mod scan;
@@ -41,22 +45,20 @@ mod scan;
 pub use error::{LogEnd, ReadError};
 pub use indexed::scan_indexed;
 pub use iter::{Collisions, Events, Filtered, LogEvent, LogMessage};
+pub use progress::ReadProgress;
+use records::metadata_name;
+pub(crate) use records::parse_record;
 pub use salvage::{salvage, LostPart, Salvaged};
 pub use scan::{last_checkpoint, last_checkpoint_observed, scan, scan_observed, LogInfo};
 
 use crate::format::N_CHANNELS;
-use crate::format::{
-    verify, Checksum, CollisionBatch, MetadataError, RunMetadata, SummaryMetadata, CHANNELS,
-    CHECKSUM_KEY, CH_COLLISIONS, COMPACT_COLLISIONS_CHANNEL, METADATA_RUN, METADATA_SUMMARY,
-    TOPICS,
-};
+use crate::format::{CollisionBatch, RunMetadata, SummaryMetadata, METADATA_RUN, METADATA_SUMMARY};
 use mcap::records::{op, Record};
-use mcap::sans_io::{LinearReadEvent, LinearReader, LinearReaderOptions};
+use mcap::sans_io::{LinearReader, LinearReaderOptions};
 use replay::Replay;
 use std::collections::{BTreeMap, HashMap};
 use std::fs::File;
 use std::io::{BufReader, Read, Seek, SeekFrom};
-use std::panic::AssertUnwindSafe;
 use std::path::Path;
 
 /// Reading options.
@@ -188,29 +190,6 @@ impl LogReader<BufReader<File>> {
     }
 }
 
-/// `mcap::parse_record`, with its panics as errors. The mcap crate (0.26) trusts
-/// some lengths inside records and chunks (an attachment's data length, a record
-/// longer than what is left of its chunk) and panics on a damaged one; carom's
-/// promise is an error for any damaged log. Found by `fuzz/log_reader`; the inputs
-/// are kept in `crates/log/tests/fuzz_regressions/`.
-pub(crate) fn parse_record(opcode: u8, data: &[u8]) -> Result<Record<'_>, String> {
-    match std::panic::catch_unwind(move || mcap::parse_record(opcode, data)) {
-        Ok(Ok(record)) => Ok(record),
-        Ok(Err(e)) => Err(e.to_string()),
-        Err(_) => Err("malformed record: a length beyond the end of its record".into()),
-    }
-}
-
-/// The name of a metadata record whose body may be damaged past its name
-/// (the body starts with the name: u32 length, then its bytes).
-fn metadata_name(body: &[u8]) -> Option<&str> {
-    let len = u32::from_le_bytes(body.get(..4)?.try_into().ok()?) as usize;
-    std::str::from_utf8(body.get(4..4usize.checked_add(len)?)?).ok()
-}
-
-/// How the mcap crate's error for a failed data-section CRC begins.
-const DATA_CRC_FAILED: &str = "Data section CRC failed";
-
 impl<R: Read + Seek> LogReader<R> {
     /// Read a log from any seekable source; `label` names it in errors.
     pub fn new(mut source: R, label: String, opts: ReadOptions) -> Result<Self, ReadError> {
@@ -290,179 +269,6 @@ impl<R: Read + Seek> LogReader<R> {
         }
     }
 
-    /// Read records up to the `carom.run` metadata, which carom writes first.
-    fn read_run_metadata(&mut self) -> Result<(), ReadError> {
-        loop {
-            match self.next_record() {
-                Ok(true) => {}
-                Ok(false) => return Err(self.not_carom("the file ends before any carom metadata")),
-                Err(detail) => {
-                    return Err(self.not_carom(format!(
-                        "not a readable MCAP file up to its `{METADATA_RUN}` record ({detail})"
-                    )))
-                }
-            }
-            match parse_record(self.opcode, &self.record) {
-                Ok(Record::Header(_)) => continue,
-                Ok(Record::Metadata(m)) if m.name == METADATA_RUN => {
-                    let error = |source| ReadError::Metadata {
-                        file: self.label.clone(),
-                        source,
-                    };
-                    let check = verify(&m.metadata);
-                    let parsed = RunMetadata::from_map(&m.metadata);
-                    // (A log of another major format is named as such first: its
-                    // records need not follow this version's checksum rule.)
-                    if let (Some(problem), false) = (
-                        check.problem(),
-                        matches!(&parsed, Err(e) if e.key == "log_format"),
-                    ) {
-                        return Err(error(MetadataError {
-                            record: METADATA_RUN,
-                            key: CHECKSUM_KEY,
-                            problem,
-                        }));
-                    }
-                    self.run = parsed.map_err(error)?;
-                    self.run_sealed = check == Checksum::Holds;
-                    self.run_map = m.metadata;
-                    return Ok(());
-                }
-                Ok(other) => {
-                    return Err(self.not_carom(format!(
-                        "expected the `{METADATA_RUN}` metadata record first, found a record with opcode {:#04x}",
-                        other.opcode()
-                    )))
-                }
-                Err(e) => {
-                    return Err(self.not_carom(format!(
-                        "malformed record where the `{METADATA_RUN}` record belongs: {e}"
-                    )))
-                }
-            }
-        }
-    }
-
-    /// Pull the next raw record into `self.record`. Ok(false) at a clean end.
-    /// A panic of the mcap crate's reader is an error (see [`parse_record`]).
-    fn next_record(&mut self) -> Result<bool, String> {
-        std::panic::catch_unwind(AssertUnwindSafe(|| self.next_record_unguarded())).unwrap_or_else(
-            |_| Err("malformed record: a length beyond the end of its chunk or record".into()),
-        )
-    }
-
-    fn next_record_unguarded(&mut self) -> Result<bool, String> {
-        loop {
-            let event = match self.linear.next_event() {
-                None => return Ok(false),
-                Some(Err(e)) => {
-                    self.cut = matches!(e, mcap::McapError::UnexpectedEof);
-                    return Err(e.to_string());
-                }
-                Some(Ok(e)) => e,
-            };
-            match event {
-                LinearReadEvent::ReadRequest(need) => {
-                    let step = need.clamp(1, READ_STEP);
-                    let buf = self.linear.insert(step);
-                    let n = loop {
-                        match self.source.read(buf) {
-                            Ok(n) => break n,
-                            Err(e) if e.kind() == std::io::ErrorKind::Interrupted => continue,
-                            Err(e) => return Err(format!("I/O error: {e}")),
-                        }
-                    };
-                    self.linear.notify_read(n);
-                    self.bytes_read += n as u64;
-                }
-                LinearReadEvent::Record { data, opcode } => {
-                    self.record.clear();
-                    self.record.extend_from_slice(data);
-                    self.opcode = opcode;
-                    return Ok(true);
-                }
-            }
-        }
-    }
-
-    /// Whether every message has been read by the time of a failure, `data_crc`
-    /// saying whether it is the data section's CRC that failed (which the MCAP
-    /// reader checks at the data-end record, after the last chunk).
-    ///
-    /// A failed data-section CRC alone proves nothing about where the damage is:
-    /// it covers the records outside the chunks too, the run's configuration
-    /// among them. In a log whose `carom.run` checksum held (format 2.3 on), with
-    /// every chunk's CRC held (else reading would have stopped there) and no
-    /// record of a kind carom does not write, the damage lies in the framing of
-    /// records read without harm (or in `carom.summary`, whose checksum then
-    /// fails): every message counts. Older logs fail as before.
-    ///
-    /// Any other failure comes after the data section once the `carom.summary`
-    /// record, written after the last chunk, or a data-end record whose CRC held
-    /// has been read (a data-end record misread out of damaged bytes fails its
-    /// CRC), or, in a 2.3 log as above, any data-end record.
-    fn all_messages_read(&self, data_crc: bool) -> bool {
-        let framing_clean = self.run_sealed && self.foreign.is_none();
-        if data_crc {
-            return framing_clean;
-        }
-        self.summary.is_some()
-            || self.summary_damage.is_some()
-            || self.data_end_verified
-            || (self.in_summary_section && framing_clean)
-    }
-
-    /// Whether the record just read, which does not parse, may be skipped: a
-    /// metadata or message-index record (carom writes nothing else outside the
-    /// chunks after `carom.run`).
-    fn damage_tolerable(&self) -> bool {
-        self.opcode == op::METADATA || self.opcode == op::MESSAGE_INDEX
-    }
-
-    /// Turn a low-level failure into the end of reading: [`LogEnd::Damaged`], a
-    /// warning, when every message has been read (see
-    /// [`LogReader::all_messages_read`]), else truncated or an error.
-    fn fail(&mut self, detail: String) -> Result<Found, ReadError> {
-        // (A file that simply ends there was cut while being finished: truncated.)
-        let cut = self.cut && !self.has_end_magic;
-        let data_crc = detail.starts_with(DATA_CRC_FAILED);
-        if !cut && self.all_messages_read(data_crc) {
-            let detail = [
-                self.summary_damage.clone(),
-                self.odd_metadata.clone(),
-                Some(detail),
-            ]
-            .into_iter()
-            .flatten()
-            .collect::<Vec<_>>()
-            .join("; ");
-            self.end = LogEnd::Damaged { detail };
-            return Ok(Found::End);
-        }
-        let detail = match &self.foreign {
-            Some(f) => format!("{detail} (after {f})"),
-            None => detail,
-        };
-        if !self.has_end_magic && !self.strict {
-            self.end = LogEnd::Truncated { detail };
-            return Ok(Found::End);
-        }
-        self.end = LogEnd::Failed;
-        if self.has_end_magic {
-            Err(ReadError::Corrupt {
-                file: self.label.clone(),
-                messages: self.messages,
-                detail,
-            })
-        } else {
-            Err(ReadError::Truncated {
-                file: self.label.clone(),
-                messages: self.messages,
-                detail,
-            })
-        }
-    }
-
     fn advance(&mut self) -> Result<Found, ReadError> {
         if self.end != LogEnd::Reading {
             return Ok(Found::End);
@@ -512,40 +318,7 @@ impl<R: Read + Seek> LogReader<R> {
                     self.schemas
                         .insert(header.id, (header.name, header.encoding));
                 }
-                Record::Channel(c) => {
-                    let ours = TOPICS.iter().position(|&t| t == c.topic);
-                    if let Some(k) = ours {
-                        let (sname, senc) =
-                            self.schemas.get(&c.schema_id).cloned().unwrap_or_default();
-                        let compact =
-                            k == CH_COLLISIONS && sname == COMPACT_COLLISIONS_CHANNEL.schema_name;
-                        let want = if compact {
-                            &COMPACT_COLLISIONS_CHANNEL
-                        } else {
-                            &CHANNELS[k]
-                        };
-                        if compact && self.replay.is_none() {
-                            self.replay = Some(Box::new(Replay::new(self.run.run_facts.as_ref())));
-                        }
-                        if sname != want.schema_name
-                            || senc != want.schema_encoding
-                            || c.message_encoding != want.message_encoding
-                        {
-                            self.end = LogEnd::Failed;
-                            return Err(ReadError::WrongSchema {
-                                file: self.label.clone(),
-                                topic: TOPICS[k],
-                                found: format!("{sname} ({senc}, messages {})", c.message_encoding),
-                                expected: format!(
-                                    "{} ({}, messages {})",
-                                    want.schema_name, want.schema_encoding, want.message_encoding
-                                ),
-                            });
-                        }
-                        self.seen[k] = true;
-                    }
-                    self.channels.insert(c.id, ours);
-                }
+                Record::Channel(c) => self.define_channel(&c)?,
                 Record::Message { header, .. } => match self.channels.get(&header.channel_id) {
                     Some(&Some(channel)) => {
                         self.messages += 1;
@@ -564,23 +337,7 @@ impl<R: Read + Seek> LogReader<R> {
                         ))
                     }
                 },
-                Record::Metadata(m) if m.name == METADATA_SUMMARY => {
-                    // A damaged summary is left out (with a warning at the end),
-                    // not an error: the messages are all there.
-                    let check = verify(&m.metadata);
-                    match (check.problem(), SummaryMetadata::from_map(&m.metadata)) {
-                        (Some(problem), _) => {
-                            self.summary_damage = Some(format!(
-                                "{METADATA_SUMMARY}: {problem}; its values are not used"
-                            ))
-                        }
-                        (None, Ok(_)) => self.summary = Some(m.metadata),
-                        (None, Err(e)) => {
-                            self.summary_damage =
-                                Some(format!("the {METADATA_SUMMARY} record is unreadable: {e}"))
-                        }
-                    }
-                }
+                Record::Metadata(m) if m.name == METADATA_SUMMARY => self.take_summary(m.metadata),
                 Record::Metadata(m) if m.name != METADATA_RUN => {
                     // Another tool's record, or one of ours with a damaged name:
                     // said only if the file turns out damaged.
@@ -673,33 +430,6 @@ impl<R: Read + Seek> LogReader<R> {
         self.messages
     }
 
-    /// How far through the file reading has got: bytes taken from it so far (in
-    /// steps of a record or a chunk, at most 1 MiB) and its length. Once reading
-    /// has ended (see [`LogReader::end`]) the whole file counts as read: the index
-    /// records at its end are not needed.
-    pub fn progress(&self) -> ReadProgress {
-        ReadProgress {
-            bytes_read: if self.end == LogEnd::Reading {
-                self.bytes_read.min(self.source_bytes)
-            } else {
-                self.source_bytes
-            },
-            file_bytes: self.source_bytes,
-        }
-    }
-
-    /// [`LogReader::progress`] if the reader has read more of the file since
-    /// `shown` bytes (which is then updated): for displays that show progress
-    /// only when it has moved (about once per MiB), whatever the number of
-    /// messages read in between.
-    pub fn progress_since(&self, shown: &mut u64) -> Option<ReadProgress> {
-        let p = self.progress();
-        (p.bytes_read != *shown).then(|| {
-            *shown = p.bytes_read;
-            p
-        })
-    }
-
     /// Whether `/collisions` holds compact records (replayed into full ones by
     /// the decoding iterators), as far as read so far.
     pub fn compact_collisions(&self) -> bool {
@@ -714,26 +444,6 @@ impl<R: Read + Seek> LogReader<R> {
     /// The file's label (its path).
     pub fn label(&self) -> &str {
         &self.label
-    }
-}
-
-/// How far a reader has got through its file (see [`LogReader::progress`]).
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub struct ReadProgress {
-    /// Bytes read from the file so far.
-    pub bytes_read: u64,
-    /// The file's length (bytes).
-    pub file_bytes: u64,
-}
-
-impl ReadProgress {
-    /// The fraction of the file read, in [0, 1] (1 for an empty file).
-    pub fn fraction(&self) -> f64 {
-        if self.file_bytes == 0 {
-            1.0
-        } else {
-            (self.bytes_read as f64 / self.file_bytes as f64).min(1.0)
-        }
     }
 }
 
