@@ -1,8 +1,12 @@
 //! Reading streams: the peak memory of this process stays far below the size of
 //! the log it writes, then reads in full and copies whole (`repair`) (Linux only: it reads VmHWM from
-//! /proc/self/status). Alone in its test binary so nothing else inflates the peak.
+//! /proc/self/status). Alone in its test binary so nothing else inflates the peak
+//! (the other integration tests share one binary, tests/integration).
 
+#[path = "integration/mcap_common.rs"]
 mod mcap_common;
+#[path = "integration/readers_common.rs"]
+mod readers_common;
 
 use carom::log::{CollisionDetail, Compression, LogOptions, Stop};
 use carom::log::{LogEnd, LogReader};
