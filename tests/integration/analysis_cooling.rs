@@ -195,7 +195,7 @@ fn a2_of(state: &carom::engine::State) -> f64 {
 /// Pass: within 3 SE (over the seeds) + half the step from the first to the second
 /// Sonine order (the truncation error of the reference: the independent DSMC values
 /// of the issue, −0.0299 ± 0.0003, −0.0264 ± 0.0002 and ≈ 0.071 at e = 0.9, 0.8,
-/// 0.5, lie within it). Run: `cargo test --release --test analysis_cooling --
+/// 0.5, lie within it). Run: `cargo test --release --test integration analysis_cooling:: --
 /// --ignored a2_of_the_cooling_state --nocapture` (two threads, ≈ 20 min).
 #[test]
 #[ignore]

@@ -1,6 +1,6 @@
 //! The analysis of `carom analyze` fed straight from the engine (no log file):
 //! equation of state, Enskog check, Maxwell–Boltzmann, wall pressure and g(r),
-//! against physics.md §5–§7 and §10 (granular cooling: tests/analysis_cooling.rs).
+//! against physics.md §5–§7 and §10 (granular cooling: tests/integration/analysis_cooling.rs).
 
 use crate::analysis_common::{analyse, analyse_state, fluid};
 use crate::stats_common::{assert_within, dilute_wall_z};

@@ -1,7 +1,7 @@
 //! Every example configuration in data/ does what data/README.md's table says,
 //! with its shipped seed: each is run (shortened with `--set` where the claim
 //! survives) and its claim checked from `carom analyze --json`. The full-length
-//! runs of the slow examples are #[ignore]d: `cargo test --release --test examples
+//! runs of the slow examples are #[ignore]d: `cargo test --release --test integration examples::
 //! -- --ignored`.
 
 use crate::cli_common::*;

@@ -54,7 +54,7 @@ pub fn assert_within(what: &str, value: f64, se: f64, reference: f64, err: f64, 
 /// coefficients) with η = Nπ/(4A_acc), plus the first-order wall term
 /// −(2/3)σ³ρ P_acc/A_acc: a disc within σ of a wall has part of its excluded disc
 /// outside the reachable area, so the bulk density exceeds N/A_acc (derivation in
-/// tests/validation.rs, case 6).
+/// tests/integration/validation/mod.rs, case 6).
 pub fn dilute_wall_z(n: usize, a_acc: f64, p_acc: f64) -> f64 {
     use std::f64::consts::PI;
     let rho = n as f64 / a_acc;

@@ -1,5 +1,5 @@
-//! The validation suites' results table (tests/validation.rs,
-//! tests/validation_structure.rs): each case adds rows (value, standard error,
+//! The validation suites' results table (tests/integration/validation/mod.rs,
+//! tests/integration/validation_structure.rs): each case adds rows (value, standard error,
 //! reference, deviation in standard errors, tolerance, pass/fail) and notes,
 //! writes them to `target/tmp/<suite>/<case>.md` before asserting, and the table
 //! of every case last run (in this or an earlier run: a long case can be rerun

@@ -1,6 +1,6 @@
 //! Validation of the structure analysis (issue 35) with the engine's own runs,
 //! analysed as `carom analyze` would, written to the same results table as
-//! tests/validation.rs (its own section of docs/validation.md):
+//! tests/integration/validation/mod.rs (its own section of docs/validation.md):
 //!
 //! 7. Contact theorem: Z = 1 + 2η g(σ⁺) from the pair correlation against the
 //!    collision-virial Z of the same window, η = 0.2 … 0.69 (N = 10⁴; the default
@@ -14,7 +14,7 @@
 //!    fitted by a power law with η6 ≤ 1/4 (Bernard & Krauth 2011; Engel et al. 2013).
 //!
 //! ```sh
-//! CAROM_VALIDATION_DOCS=docs/validation.md cargo test --test validation_structure \
+//! CAROM_VALIDATION_DOCS=docs/validation.md cargo test --test integration validation_structure:: \
 //!     -- --include-ignored --nocapture --test-threads=1
 //! ```
 

@@ -15,7 +15,7 @@
 //!     (the reference's error from theirs), within 3 SE.
 //!
 //! ```sh
-//! CAROM_VALIDATION_DOCS=docs/validation.md cargo test --test validation_transport \
+//! CAROM_VALIDATION_DOCS=docs/validation.md cargo test --test integration validation_transport:: \
 //!     -- --include-ignored --nocapture --test-threads=1
 //! ```
 

@@ -8,7 +8,7 @@
 //! in release); run with
 //!
 //! ```sh
-//! cargo test --release --test validation_transport_seeds -- --ignored --nocapture
+//! cargo test --release --test integration validation_transport_seeds:: -- --ignored --nocapture
 //! ```
 
 use crate::cli_common::*;
