@@ -3,7 +3,7 @@
 //! moving wall gives velocities that compact records cannot replay). The engine
 //! checks the rest, that the floor's travel plus a diameter fits in half the box.
 
-use super::model::{AxisBoundary, CollisionDetailConfig, Config};
+use super::{AxisBoundary, CollisionDetailConfig, Config};
 use super::ConfigError;
 
 impl Config {
