@@ -30,9 +30,9 @@ mod resolve;
 mod schema;
 mod validate;
 
+pub use boundary::{AxisBoundary, BoundaryConfig};
 pub use error::ConfigError;
 pub use front::{apply_set, load_config, read_config_text, MAX_CONFIG_BYTES};
-pub use boundary::{AxisBoundary, BoundaryConfig};
 pub use log_config::{CollisionDetailConfig, CompressionConfig, LogConfig, SnapshotScheduleConfig};
 pub use model::{
     BoxConfig, CollisionConfig, CollisionModel, CompressedPlacementConfig, Config, FloorConfig,

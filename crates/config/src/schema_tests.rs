@@ -81,3 +81,25 @@ fn schema_lists_both_spellings_of_centre_of_mass() {
         assert_eq!(c.collision.model, CollisionModel::CentreOfMass);
     }
 }
+
+/// The schema lets every optional field be `null` (schemars' `Option`), and so
+/// does the reader: `null` is the field left out.
+#[test]
+fn null_is_an_absent_optional_field() {
+    let nulls = serde_json::json!({
+        "$schema": null, "description": null, "thermostat": null,
+        "compression": null, "vibrating_floor": null,
+        "box": {"packing_fraction": null, "aspect": null, "size": null, "wall_restitution": null},
+        "collision": {"coefficient": null},
+        "stop": {"duration": null, "max_time_without_collision": null},
+        "log": {"collision_detail": null, "snapshot_schedule": null, "scene_interval": null},
+    });
+    let c: Config = serde_json::from_value(nulls).unwrap();
+    assert_eq!(c, Config::default());
+    let v = serde_json::json!({"placement": {"compressed": {"start_packing_fraction": null}}});
+    let c: Config = serde_json::from_value(v).unwrap();
+    let PlacementConfig::Compressed(p) = c.placement else {
+        panic!("{:?}", c.placement)
+    };
+    assert_eq!(p.start_packing_fraction, None);
+}
