@@ -3,8 +3,8 @@
 //! moving wall gives velocities that compact records cannot replay). The engine
 //! checks the rest, that the floor's travel plus a diameter fits in half the box.
 
-use super::model::{AxisBoundary, CollisionDetailConfig, Config};
 use super::ConfigError;
+use super::{AxisBoundary, CollisionDetailConfig, Config};
 
 impl Config {
     /// The vibrating floor's values and the dynamics it needs.

@@ -14,25 +14,32 @@
 //!
 //! Every field is optional; the defaults are a fluid of 10⁴ discs at η = 0.5 for
 //! 50 time units. The fields, their units and allowed values are documented on the
-//! structs of `model` and in `data/config.schema.json`.
+//! structs of `model`; `data/config.schema.json` is generated from them
+//! ([`config_schema`]; `cargo run -p carom-config --example write_schema`).
 
 #![warn(missing_docs)]
 
+mod boundary;
+mod count;
 mod error;
 mod floor;
 mod front;
+mod log_config;
 mod model;
 mod resolve;
+mod schema;
 mod validate;
 
+pub use boundary::{AxisBoundary, BoundaryConfig};
 pub use error::ConfigError;
 pub use front::{apply_set, load_config, read_config_text, MAX_CONFIG_BYTES};
+pub use log_config::{CollisionDetailConfig, CompressionConfig, LogConfig, SnapshotScheduleConfig};
 pub use model::{
-    AxisBoundary, BoundaryConfig, BoxConfig, CollisionConfig, CollisionDetailConfig,
-    CollisionModel, CompressedPlacementConfig, CompressionConfig, Config, FloorConfig,
-    GrowthConfig, LogConfig, PlacementConfig, SnapshotScheduleConfig, SpeciesConfig, StopConfig,
-    ThermostatConfig, VelocitiesConfig, DEFAULT_COUNT, DEFAULT_DURATION, DEFAULT_PACKING_FRACTION,
+    BoxConfig, CollisionConfig, CollisionModel, CompressedPlacementConfig, Config, FloorConfig,
+    GrowthConfig, PlacementConfig, SpeciesConfig, StopConfig, ThermostatConfig, VelocitiesConfig,
+    DEFAULT_COUNT, DEFAULT_DURATION, DEFAULT_PACKING_FRACTION,
 };
+pub use schema::{config_schema, config_schema_json};
 
 #[cfg(test)]
 mod compression_tests;

@@ -11,8 +11,7 @@ use super::{
 use carom_core::{check_species, Species};
 use carom_log::check_log_options;
 
-/// Hexagonal close packing π/(2√3), the largest packing fraction discs can reach.
-const ETA_CLOSE_PACKED: f64 = 0.906_899_682_117_108_9;
+use super::model::ETA_CLOSE_PACKED;
 
 impl Config {
     /// Check every value against its allowed range. Errors name the field.
