@@ -22,6 +22,7 @@ mod error;
 mod floor;
 mod front;
 mod model;
+mod old_log;
 mod resolve;
 mod validate;
 
@@ -33,6 +34,7 @@ pub use model::{
     GrowthConfig, LogConfig, PlacementConfig, SnapshotScheduleConfig, SpeciesConfig, StopConfig,
     ThermostatConfig, VelocitiesConfig, DEFAULT_COUNT, DEFAULT_DURATION, DEFAULT_PACKING_FRACTION,
 };
+pub use old_log::derive_facts_for_old_log;
 
 #[cfg(test)]
 mod compression_tests;

@@ -344,7 +344,10 @@ mod tests {
             assert!(v.get(key).is_none(), "{key} in {v}");
         }
         let back = RunFacts::from_json(&v).unwrap();
-        assert_eq!((back.thermostat, back.growth, back.floor), (None, None, None));
+        assert_eq!(
+            (back.thermostat, back.growth, back.floor),
+            (None, None, None)
+        );
         assert_eq!(back.to_json().to_string(), v.to_string());
         let growth = Growth {
             rate: 0.1,
