@@ -1,4 +1,4 @@
-//! `carom analyze`: analyse a log (`carom::analysis::analyze_log`, with a progress
+//! `carom analyze`: analyse a log (`carom::analysis::analyze_log_with`, with a progress
 //! display) and print its [`Report`] as text or JSON.
 //!
 //! The JSON object is the [`Report`] (see its field documentation) with two more
@@ -6,7 +6,8 @@
 
 use std::process::ExitCode;
 
-use carom::analysis::{analyze_log, AnalysisOptions, ReadObserver, Report};
+use carom::analysis::{analyze_log_with, AnalysisOptions, ReadObserver, Report};
+use carom::config::derive_facts_for_old_log;
 use carom::log::ReadProgress;
 
 #[path = "analyze_dynamics.rs"]
@@ -54,7 +55,8 @@ pub fn read_report(args: &AnalyzeArgs) -> Result<(Report, bool), CliError> {
         structure: !args.no_structure,
         ..AnalysisOptions::default()
     };
-    let report = analyze_log(&args.file, opts, &mut display);
+    // An old log's facts from its configuration (carom-config).
+    let report = analyze_log_with(&args.file, opts, &derive_facts_for_old_log, &mut display);
     display.finish();
     Ok(report?)
 }

@@ -1,16 +1,14 @@
 //! Which run a log holds: species, box, collision rule, logging stride and time
 //! span, derived once per log by [`describe`].
 //!
-//! The species, box and rule come from the run's facts in the log's metadata
-//! (format 1.2 on). Older logs derive them from the configuration stored in the
-//! log, resolved by the config front end (which derives the box from η; no disc is
-//! placed); only when that configuration cannot be read are they taken from the
-//! first snapshot (counts per species, radii, masses, box, boundaries; collisions
-//! then assumed elastic).
+//! The species, box and rule come from the run's facts (`log_facts.rs`): stored
+//! in the log's metadata (format 1.2 on), or for older logs derived once from the
+//! configuration stored in the log (the box from η; no disc is placed); only when
+//! there are none are they taken from the first snapshot (counts per species,
+//! radii, masses, box, boundaries; collisions then assumed elastic).
 
-use carom_config::{Config, ConfigError};
 use carom_core::{Boundary, Restitution, SimBox, Species};
-use carom_log::{LogInfo, ReadError};
+use carom_log::{LogInfo, ReadError, RunFacts};
 use carom_log::{Snapshot, SnapshotSchedule};
 
 use super::from_log::AnalysisError;
@@ -91,15 +89,14 @@ struct Resolved {
     gravity: f64,
 }
 
-/// From the configuration stored in a log of format ≤ 1.1.
-fn from_config(config: &str) -> Result<Resolved, ConfigError> {
-    let spec = Config::from_json_str(config)?.to_run_spec()?;
-    Ok(Resolved {
-        species: spec.system.species,
-        sim_box: spec.system.sim_box,
-        restitution: spec.params.restitution,
-        gravity: spec.params.gravity,
-    })
+/// From the run's facts.
+fn from_facts(f: &RunFacts) -> Resolved {
+    Resolved {
+        species: f.species.clone(),
+        sim_box: f.sim_box,
+        restitution: f.restitution,
+        gravity: f.gravity,
+    }
 }
 
 /// From a snapshot, assuming elastic collisions.
@@ -151,11 +148,13 @@ fn pair_rate(info: &LogInfo, n: usize, t_start: f64) -> Option<f64> {
 }
 
 /// The description of the run in the log `file` that `info` summarises (its index
-/// or a scan). `first_snapshot` is asked for the log's first snapshot only when the
-/// stored configuration cannot be read; `warn` hears why it was asked.
+/// or a scan), with the run's `facts` (`log_facts.rs`). `first_snapshot` is asked
+/// for the log's first snapshot only when there are no facts (`Err`: why, when
+/// the stored configuration cannot be read); `warn` hears why it was asked.
 pub(super) fn describe(
     file: &str,
     info: &LogInfo,
+    facts: &Result<RunFacts, String>,
     first_snapshot: &mut dyn FnMut() -> Result<Option<Snapshot>, ReadError>,
     warn: &mut dyn FnMut(&str),
 ) -> Result<RunDescription, AnalysisError> {
@@ -169,14 +168,8 @@ pub(super) fn describe(
             "{file} holds no data spanning any simulated time"
         )));
     }
-    let stored = info.run.run_facts.as_ref().map(|f| Resolved {
-        species: f.species.clone(),
-        sim_box: f.sim_box,
-        restitution: f.restitution,
-        gravity: f.gravity,
-    });
-    let resolved = match stored.map_or_else(|| from_config(&info.run.config), Ok) {
-        Ok(r) => r,
+    let resolved = match facts {
+        Ok(f) => from_facts(f),
         Err(e) => {
             let s = first_snapshot()?.ok_or_else(|| {
                 AnalysisError::Unusable(format!(
@@ -243,11 +236,31 @@ mod tests {
         }
     }
 
+    /// An old log's configuration that the test's derivation reads: 30 discs of
+    /// radius 0.5, mass 2 between walls 20 × 10.
+    const OLD_CONFIG: &str = "the 30 discs";
+
+    /// The facts of `OLD_CONFIG`; any other text cannot be read.
+    fn derive(config: &str) -> Result<RunFacts, String> {
+        (config == OLD_CONFIG)
+            .then(|| {
+                RunFacts::new(
+                    &[Species::new(30, 0.5, 2.0)],
+                    &SimBox::walled(20.0, 10.0, 1.0),
+                    &EngineParams::default(),
+                    &LogOptions::default(),
+                )
+            })
+            .ok_or_else(|| format!("cannot read {config:?}"))
+    }
+
     fn describe_quietly(info: &LogInfo) -> (Result<RunDescription, AnalysisError>, bool) {
         let mut asked = false;
+        let facts = super::super::log_facts::log_facts(&info.run, &derive).description;
         let d = describe(
             "log.mcap",
             info,
+            &facts,
             &mut || {
                 asked = true;
                 Ok(None)
@@ -281,9 +294,7 @@ mod tests {
 
     #[test]
     fn a_log_without_facts_is_described_by_its_configuration() {
-        let config = r#"{"species": [{"count": 30, "radius": 0.5, "mass": 2}],
-            "box": {"size": [20, 10], "boundary": "walls"}}"#;
-        let (d, asked) = describe_quietly(&info(config, None));
+        let (d, asked) = describe_quietly(&info(OLD_CONFIG, None));
         let d = d.unwrap();
         assert!(!asked);
         assert_eq!(d.species, vec![Species::new(30, 0.5, 2.0)]);
@@ -436,9 +447,11 @@ mod tests {
         let mut i = info("not json", None);
         i.run.log.collisions = true;
         let mut warned = Vec::new();
+        let none = Err("not json".to_owned());
         let d = describe(
             "log.mcap",
             &i,
+            &none,
             &mut || Ok(Some(snapshot(vec![0, 1, 1, 0, 1]))),
             &mut |w| warned.push(w.to_owned()),
         )
@@ -457,6 +470,7 @@ mod tests {
         let bad = describe(
             "log.mcap",
             &i,
+            &none,
             &mut || Ok(Some(snapshot(vec![0, 2]))),
             &mut |_| {},
         );

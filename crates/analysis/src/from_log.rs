@@ -5,6 +5,10 @@
 //! read is needed before the analysis can start; the messages read up to it are
 //! kept and fed after it, so the pass stays one.
 //!
+//! The run's facts come from the log (`log_facts.rs`); a log written before they
+//! were complete has them derived once from its configuration by the caller's
+//! [`OldLogFacts`] ([`analyze_log_with`]).
+//!
 //! A compression run is first read for its growth (`compression.rs`): the
 //! analysis then uses the radii after growth and a window that starts after it.
 //!
@@ -14,7 +18,6 @@
 
 use std::path::Path;
 
-use carom_config::Config;
 use carom_core::DVec2;
 use carom_log::{
     scan_indexed, scan_observed, LogEnd, LogMessage, LogReader, ReadError, ReadProgress,
@@ -24,6 +27,7 @@ use thiserror::Error;
 
 use super::compression::Compression;
 use super::description::describe;
+use super::log_facts::{log_facts, no_old_log_facts, OldLogFacts};
 use super::stats::StatsError;
 use super::{AnalysisOptions, Analyzer, Report, Unwrapper};
 
@@ -51,12 +55,26 @@ pub trait ReadObserver {
     fn warn(&mut self, line: &str);
 }
 
-/// Analyse the log `path` with `opts`, telling `observer` how reading goes.
-/// Returns the report and whether every message was read (the log is not cut
-/// short; it may be damaged outside its chunks, which the observer is told).
+/// Analyse the log `path` with `opts`, telling `observer` how reading goes, from
+/// the facts the log stores alone: [`analyze_log_with`] and [`no_old_log_facts`]
+/// (a log before format 2.4 is analysed without its thermostat, growth and floor).
 pub fn analyze_log(
     path: &Path,
     opts: AnalysisOptions,
+    observer: &mut dyn ReadObserver,
+) -> Result<(Report, bool), AnalysisError> {
+    analyze_log_with(path, opts, &no_old_log_facts, observer)
+}
+
+/// Analyse the log `path` with `opts`, telling `observer` how reading goes; a
+/// log written before its facts were complete (format < 2.4) has them derived
+/// once from its configuration by `old_log`. Returns the report and whether
+/// every message was read (the log is not cut short; it may be damaged outside
+/// its chunks, which the observer is told).
+pub fn analyze_log_with(
+    path: &Path,
+    opts: AnalysisOptions,
+    old_log: OldLogFacts<'_>,
     observer: &mut dyn ReadObserver,
 ) -> Result<(Report, bool), AnalysisError> {
     let info = match scan_indexed(path)? {
@@ -92,9 +110,11 @@ pub fn analyze_log(
         Ok(None)
     };
     let mut warnings = Vec::new();
+    let facts = log_facts(&info.run, old_log);
     let mut run = describe(
         &path.display().to_string(),
         &info,
+        &facts.description,
         &mut first_snapshot,
         &mut |w: &str| warnings.push(w.to_owned()),
     )?;
@@ -102,13 +122,11 @@ pub fn analyze_log(
         observer.warn(w);
     }
     let t_end = run.t_end;
-    // The configuration as the run resolved it (logs whose configuration cannot
-    // be read have neither a thermostat nor growth here).
-    let spec = Config::from_json_str(&info.run.config).and_then(|c| c.to_run_spec());
+    // The run's thermostat, growth and floor (none known: none).
+    let dynamics = facts.dynamics.as_ref();
     let mut opts = opts;
-    let compression = match &spec {
-        Ok(spec) if spec.params.growth.rate != 0.0 => {
-            let g = &spec.params.growth;
+    let compression = match dynamics.and_then(|d| d.growth.as_ref()) {
+        Some(g) => {
             let c = Compression::read(path, g, &run.species, &run.sim_box)?;
             if let Some(t) = opts.equilibrate {
                 if !(t.is_finite() && t >= 0.0) {
@@ -123,7 +141,7 @@ pub fn analyze_log(
             }
             Some(c)
         }
-        _ => None,
+        None => None,
     };
     if let Some(t) = opts.equilibrate {
         if !(t.is_finite() && t >= 0.0) {
@@ -171,20 +189,18 @@ pub fn analyze_log(
     let gaps = feed.unwrapper.ambiguous_gaps();
     feed.analyzer.ambiguous_gaps(gaps);
     let mut report = feed.analyzer.finish()?;
-    // The thermostat, from the stored configuration (logs before thermostats,
-    // and configurations that cannot be read, have none).
-    if let Ok(spec) = &spec {
-        if let Some(t) = &spec.thermostat {
-            super::thermostat::apply(t, spec.params.restitution, &mut report);
+    if let Some(d) = dynamics {
+        if let Some(t) = &d.thermostat {
+            super::thermostat::apply(t, d.restitution, &mut report);
         }
     }
     if let Some(c) = compression {
         super::compression::apply(c, &mut report);
     }
-    if let Ok(spec) = &spec {
-        if let Some(f) = &spec.params.floor {
+    if let Some(d) = dynamics {
+        if let Some(f) = &d.floor {
             let from = report.window.equilibrate;
-            super::floor::apply(f, spec.params.gravity, &totals, from, &mut report);
+            super::floor::apply(f, d.gravity, &totals, from, &mut report);
         }
     }
     // What those took out is said with its reason too.

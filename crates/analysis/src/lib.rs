@@ -2,7 +2,8 @@
 //! over a run's events, checked against theory with statistics independent of the
 //! engine (physics.md §5–§8, §10).
 //!
-//! [`analyze_log`] reads a log (`describe`s its run once, then feeds every
+//! [`analyze_log`] reads a log (its facts, an older log's derived once by the
+//! caller's [`OldLogFacts`] through [`analyze_log_with`]; `describe`s its run once, then feeds every
 //! message to an [`Analyzer`]); the tests feed an [`Analyzer`] straight from the
 //! engine. [`Analyzer::finish`] makes one report per observable: temperature,
 //! the velocity distribution against Maxwell–Boltzmann, pressure and Z, the
@@ -13,6 +14,8 @@
 //! their unwrapped positions ([`Analyzer::motion`]) the MSD, D, the snapshot VACF
 //! and F_s(k*, τ) (physics.md §13).
 //! [`stats`] holds the statistics (histograms, χ², KS, blocking).
+
+#![deny(missing_docs)]
 
 mod analyzer;
 mod atmosphere;
@@ -34,6 +37,7 @@ mod helfand;
 mod hydrostatic;
 mod increment_correlator;
 mod inelastic;
+mod log_facts;
 mod msd;
 mod neighbours;
 mod not_computed;
@@ -79,8 +83,9 @@ pub use dynamics::SEGMENTS as DYNAMICS_SEGMENTS;
 pub use dynamics_report::{DiffusionFit, DynamicsReport, SpeciesDynamics};
 pub use eos_reference::{henderson_z, kolafa_rottner, li_2022, KOLAFA_ROTTNER};
 pub use floor::FloorReport;
-pub use from_log::{analyze_log, AnalysisError, ReadObserver};
+pub use from_log::{analyze_log, analyze_log_with, AnalysisError, ReadObserver};
 pub use haff_enskog::ENSKOG_COOLING_TOLERANCE;
+pub use log_facts::{no_old_log_facts, OldLogFacts};
 pub use msd::D_WINDOW_COLLISIONS;
 pub use neighbours::{delaunay_neighbours, Neighbours, GHOST_SPACINGS};
 pub use not_computed::NotComputed;

@@ -23,7 +23,9 @@ pub const GHOST_SPACINGS: f64 = 4.0;
 /// cells share (NaN for an edge of the hull, whose cells are unbounded).
 #[derive(Debug, Clone, Default, PartialEq)]
 pub struct Neighbours {
+    /// Where each disc's neighbours begin in `list` (N + 1 entries).
     pub start: Vec<usize>,
+    /// (neighbour index, displacement r_j − r_i, Voronoi edge length), disc by disc.
     pub list: Vec<(u32, [f64; 2], f64)>,
 }
 

@@ -17,7 +17,7 @@
 //! structs of `model`; `data/config.schema.json` is generated from them
 //! ([`config_schema`]; `cargo run -p carom-config --example write_schema`).
 
-#![warn(missing_docs)]
+#![deny(missing_docs)]
 
 mod boundary;
 mod count;
@@ -26,6 +26,7 @@ mod floor;
 mod front;
 mod log_config;
 mod model;
+mod old_log;
 mod resolve;
 mod schema;
 mod validate;
@@ -39,6 +40,7 @@ pub use model::{
     GrowthConfig, PlacementConfig, SpeciesConfig, StopConfig, ThermostatConfig, VelocitiesConfig,
     DEFAULT_COUNT, DEFAULT_DURATION, DEFAULT_PACKING_FRACTION,
 };
+pub use old_log::derive_facts_for_old_log;
 pub use schema::{config_schema, config_schema_json};
 
 #[cfg(test)]

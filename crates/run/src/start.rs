@@ -66,7 +66,8 @@ fn start(
     let state = place(&spec.system, control)?;
     debug_assert_eq!(state.time, 0.0);
     let n = state.len();
-    let facts = RunFacts::new(&state.species, &state.sim_box, &spec.params, &spec.log);
+    let facts = RunFacts::new(&state.species, &state.sim_box, &spec.params, &spec.log)
+        .with_thermostat(spec.thermostat);
     let engine = Engine::new(state, spec.params)
         .and_then(|mut e| {
             e.set_thermostat(spec.thermostat, spec.system.seed)?;

@@ -9,13 +9,17 @@
 //! "mass"}], "box": {"size": [Lx, Ly], "boundary": ["periodic" | "walls", …],
 //! "wall_restitution": [e_w or null, …]}, "collision": {"model", "coefficient",
 //! "tc"}, "n_discs", "collision_every" (null when collisions are not logged),
-//! "accessible_area", "gravity" (only when not 0)}`; every number in shortest
-//! round-trip form.
+//! "accessible_area", "gravity" (only when not 0), "thermostat", "growth",
+//! "floor" (each only when the run had it; format 2.4 on, `facts_dynamics`)}`;
+//! every number in shortest round-trip form. Facts of logs before 2.4 hold no
+//! dynamics: [`RunFacts::hold_dynamics`] says whether a log's do.
 
+use super::facts_dynamics::{FloorJson, GrowthJson, ThermostatJson};
 use crate::options::LogOptions;
 use carom_core::observables::{accessible_area, disc_count};
+use carom_core::vibrating_wall::Floor;
 use carom_core::{Boundary, DVec2, Restitution, SimBox, Species};
-use carom_engine::EngineParams;
+use carom_engine::{EngineParams, Growth, Thermostat};
 use serde::{Deserialize, Serialize};
 use serde_json::Value;
 
@@ -40,7 +44,17 @@ pub struct RunFacts {
     /// Uniform gravity g along −y (length/time², physics.md §15; 0: none). In the
     /// JSON only when not 0 (`"gravity"`), so facts without a field read as before.
     pub gravity: f64,
+    /// The thermostat (physics.md §16), if the run had one.
+    pub thermostat: Option<Thermostat>,
+    /// The growth of the radii (compression, physics.md §17), if the discs grew
+    /// (rate ≠ 0).
+    pub growth: Option<Growth>,
+    /// The vibrating floor (physics.md §18), if the run had one.
+    pub floor: Option<Floor>,
 }
+
+/// The first log format whose facts hold the thermostat, growth and floor.
+const DYNAMICS_SINCE: (u32, u32) = (2, 4);
 
 impl RunFacts {
     /// The facts of a run of `species` in `sim_box` with the dynamics `params`,
@@ -60,6 +74,26 @@ impl RunFacts {
             collision_every: log.collisions.then_some(log.collision_every),
             accessible_area: accessible_area(species, sim_box),
             gravity: params.gravity,
+            thermostat: None,
+            growth: (params.growth.rate != 0.0).then_some(params.growth),
+            floor: params.floor,
+        }
+    }
+
+    /// These facts with the run's `thermostat` (the engine's parameters leave it
+    /// out: it is set on the engine apart).
+    pub fn with_thermostat(self, thermostat: Option<Thermostat>) -> RunFacts {
+        RunFacts { thermostat, ..self }
+    }
+
+    /// Whether the facts of a log of format `log_format` ("major.minor") hold
+    /// its dynamics — thermostat, growth, floor — so that a missing one means
+    /// none (format 2.4 on). Older facts say nothing of them.
+    pub fn hold_dynamics(log_format: &str) -> bool {
+        let mut parts = log_format.split('.').map(str::parse::<u32>);
+        match (parts.next(), parts.next()) {
+            (Some(Ok(major)), Some(Ok(minor))) => (major, minor) >= DYNAMICS_SINCE,
+            _ => false,
         }
     }
 
@@ -100,6 +134,9 @@ impl RunFacts {
             collision_every: self.collision_every,
             accessible_area: self.accessible_area,
             gravity: self.gravity,
+            thermostat: self.thermostat.map(ThermostatJson::from),
+            growth: self.growth.map(GrowthJson::from),
+            floor: self.floor.map(FloorJson::from),
         };
         serde_json::to_value(wire).expect("the facts always serialise")
     }
@@ -140,6 +177,9 @@ impl RunFacts {
             collision_every: w.collision_every,
             accessible_area: w.accessible_area,
             gravity: w.gravity,
+            thermostat: w.thermostat.map(Thermostat::from),
+            growth: w.growth.map(Growth::from),
+            floor: w.floor.map(Floor::from),
         })
     }
 }
@@ -161,6 +201,12 @@ struct FactsJson {
         with = "super::number::float"
     )]
     gravity: f64,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    thermostat: Option<ThermostatJson>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    growth: Option<GrowthJson>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    floor: Option<FloorJson>,
 }
 
 /// Whether `x` is 0 (gravity left out of the JSON).
@@ -278,5 +324,97 @@ mod tests {
         let mut bad = v.clone();
         bad["box"]["wall_restitution"][0] = serde_json::json!(1.0);
         assert!(RunFacts::from_json(&bad).is_err());
+    }
+
+    /// The dynamics round-trip (JSON → facts → JSON), each only when set; facts
+    /// without them (as before format 2.4) read with none, and their JSON is
+    /// unchanged.
+    #[test]
+    fn the_dynamics_round_trip_and_facts_without_them_read_as_before() {
+        let species = [Species::new(40, 0.5, 1.0)];
+        let sim_box = SimBox::walled(10.0, 30.0, 1.0);
+        let plain = RunFacts::new(
+            &species,
+            &sim_box,
+            &EngineParams::default(),
+            &LogOptions::default(),
+        );
+        let v = plain.to_json();
+        for key in ["gravity", "thermostat", "growth", "floor"] {
+            assert!(v.get(key).is_none(), "{key} in {v}");
+        }
+        let back = RunFacts::from_json(&v).unwrap();
+        assert_eq!(
+            (back.thermostat, back.growth, back.floor),
+            (None, None, None)
+        );
+        assert_eq!(back.to_json().to_string(), v.to_string());
+        let growth = Growth {
+            rate: 0.1,
+            target_scale: 1.1,
+            kt: 0.7,
+            rescale_interval: 0.3,
+            max_reduced_pressure: 500.0,
+        };
+        let floor = Floor {
+            amplitude: 0.05,
+            omega: 2.0 * std::f64::consts::PI * 3.0,
+        };
+        let cases = [
+            (
+                Thermostat::Andersen { kt: 1.3, rate: 0.1 },
+                EngineParams {
+                    growth,
+                    ..EngineParams::default()
+                },
+            ),
+            (
+                Thermostat::Driven {
+                    xi2: 0.02,
+                    interval: 1.0 / 3.0,
+                },
+                EngineParams {
+                    gravity: 9.81,
+                    floor: Some(floor),
+                    ..EngineParams::default()
+                },
+            ),
+        ];
+        for (thermostat, params) in cases {
+            let f = RunFacts::new(&species, &sim_box, &params, &LogOptions::default())
+                .with_thermostat(Some(thermostat));
+            let text = f.to_json().to_string();
+            let back = RunFacts::from_json(&serde_json::from_str(&text).unwrap()).unwrap();
+            assert_eq!(back, f);
+            assert_eq!(back.to_json().to_string(), text);
+            assert_eq!(back.thermostat, Some(thermostat));
+            assert_eq!(back.growth.is_some(), params.growth.rate != 0.0);
+            assert_eq!(back.floor, params.floor);
+        }
+        let v = RunFacts::new(&species, &sim_box, &cases[0].1, &LogOptions::default())
+            .with_thermostat(Some(cases[0].0))
+            .to_json();
+        assert_eq!(v["thermostat"]["kind"], "andersen");
+        assert_eq!(v["growth"]["target_scale"], 1.1);
+        let mut bad = v.clone();
+        bad["thermostat"]["xi2"] = serde_json::json!(1.0);
+        assert!(RunFacts::from_json(&bad).is_err());
+    }
+
+    #[test]
+    fn only_facts_of_format_2_4_on_hold_the_dynamics() {
+        for (format, hold) in [
+            ("1.2", false),
+            ("2.3", false),
+            ("2.4", true),
+            ("2.10", true),
+            ("3.0", true),
+            ("", false),
+            ("2", false),
+            ("two.four", false),
+        ] {
+            assert_eq!(RunFacts::hold_dynamics(format), hold, "{format}");
+        }
+        assert!(RunFacts::hold_dynamics(crate::LOG_FORMAT_VERSION));
     }
 }

@@ -19,6 +19,7 @@ mod checksum;
 mod collisions;
 mod compact;
 mod facts;
+mod facts_dynamics;
 mod metadata;
 mod number;
 mod scene;
@@ -80,8 +81,11 @@ pub const METADATA_SUMMARY: &str = "carom.summary";
 /// `carom.summary` each carry a checksum (`crc32`, see `checksum`), so that a
 /// damaged summary is left out with a warning, a damaged `carom.run` is an error,
 /// and a failed data-section CRC in a log whose chunks and both records hold is a
-/// warning; older files read as before. Readers accept 1.x (full records) and 2.x.
-pub const LOG_FORMAT_VERSION: &str = "2.3";
+/// warning; older files read as before. 2.4: `run_facts` holds the resolved
+/// dynamics too — thermostat, growth, floor ([`RunFacts`]) — each only when the
+/// run had it; older facts read without them. Readers accept 1.x (full records)
+/// and 2.x.
+pub const LOG_FORMAT_VERSION: &str = "2.4";
 
 /// Major versions of the log format this carom reads.
 pub const READABLE_MAJOR_VERSIONS: [&str; 2] = ["1", "2"];

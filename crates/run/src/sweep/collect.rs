@@ -15,7 +15,8 @@ use rayon::prelude::*;
 use serde::Serialize;
 use serde_json::Value;
 
-use carom_analysis::{analyze_log, AnalysisOptions, ReadObserver};
+use carom_analysis::{analyze_log_with, AnalysisOptions, ReadObserver};
+use carom_config::derive_facts_for_old_log;
 use carom_log::ReadProgress;
 
 use super::{point_state, PointState, SweepDir, SweepError};
@@ -140,13 +141,16 @@ pub fn collect(
             .into_par_iter()
             .map(|i| {
                 let r = match point_state(sweep, i) {
-                    PointState::Done { .. } => {
-                        analyze_log(&sweep.log_path(i), opts.analysis, &mut Quiet)
-                            .map(|(report, _)| {
-                                pick(&serde_json::to_value(report).expect("a Report serialises"))
-                            })
-                            .map_err(|e| (format!("analysis failed: {e}"), true))
-                    }
+                    PointState::Done { .. } => analyze_log_with(
+                        &sweep.log_path(i),
+                        opts.analysis,
+                        &derive_facts_for_old_log,
+                        &mut Quiet,
+                    )
+                    .map(|(report, _)| {
+                        pick(&serde_json::to_value(report).expect("a Report serialises"))
+                    })
+                    .map_err(|e| (format!("analysis failed: {e}"), true)),
                     PointState::Mismatch { detail } | PointState::Unreadable { detail } => {
                         Err((detail, true))
                     }
