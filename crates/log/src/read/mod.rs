@@ -436,7 +436,7 @@ impl<R: Read + Seek> LogReader<R> {
         self.replay.is_some()
     }
 
-    /// Whether each channel (see [`TOPICS`]) has been defined so far.
+    /// Whether each channel (see [`TOPICS`](crate::TOPICS)) has been defined so far.
     pub fn channels_seen(&self) -> [bool; N_CHANNELS] {
         self.seen
     }
