@@ -479,6 +479,8 @@ fn ctrl_c_finishes_the_log_and_resume_continues_it() {
             "species.0.count=2000",
             "--set",
             "stop.duration=1e6",
+            // (The signal is under test, not the projection against a small disk.)
+            "--ignore-disk-estimate",
         ])
         .current_dir(&dir)
         .stdin(Stdio::null())
@@ -744,6 +746,8 @@ fn sigterm_and_sighup_stop_cleanly_also_when_resuming_in_place() {
         "species.0.count=2000",
         "--set",
         "stop.duration=1e6",
+        // (The signals are under test, not the projection against a small disk.)
+        "--ignore-disk-estimate",
     ];
     let out = signalled(&dir, &run, "TERM", 1500);
     let stderr = String::from_utf8_lossy(&out.stderr);
@@ -755,7 +759,12 @@ fn sigterm_and_sighup_stop_cleanly_also_when_resuming_in_place() {
     // Continued in place (through a temporary file) and hung up: the file is
     // finished (further on, unless the signal came before the first event), and
     // the temporary file is gone.
-    let out = signalled(&dir, &["resume", "job.mcap"], "HUP", 2500);
+    let out = signalled(
+        &dir,
+        &["resume", "job.mcap", "--ignore-disk-estimate"],
+        "HUP",
+        2500,
+    );
     let stderr = String::from_utf8_lossy(&out.stderr);
     assert_eq!(out.status.code(), Some(130), "{stderr}");
     let j = json_of(&carom(&dir, &["info", "job.mcap", "--json"]));

@@ -147,7 +147,15 @@ fn timeout_stops_the_run_cleanly_every_time() {
     for i in 0..6 {
         let log = format!("t{i}.mcap");
         let out = Command::new("timeout")
-            .args(["0.4", BIN, "run", "--out", &log, "--quiet"])
+            .args([
+                "0.4",
+                BIN,
+                "run",
+                "--out",
+                &log,
+                "--quiet",
+                "--ignore-disk-estimate",
+            ])
             .args([
                 "--set",
                 "species.0.count=1000",
