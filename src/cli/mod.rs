@@ -16,6 +16,7 @@ mod render;
 mod repair;
 mod report_text;
 mod run;
+mod run_display;
 mod sweep;
 
 use std::path::PathBuf;
