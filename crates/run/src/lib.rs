@@ -1,5 +1,4 @@
 //! # carom-run
-//!
 //! The run driver: builds the engine, asks it for observations at exact times,
 //! hands every event to the MCAP log writer, and ends the log cleanly; and
 //! [`sweep`], many runs from one plan (a local pool of processes, or Slurm).
@@ -7,8 +6,7 @@
 //! Two entry points, both blocking until the run ends: [`run`], a fresh run from a
 //! [`RunSpec`](carom_log::RunSpec) into a new log file, and [`resume`], which
 //! continues a log (complete, or cut short by a crash) from its last checkpoint.
-//! The caller steers both through a [`Control`] (stop flag, progress callbacks,
-//! the room on the log's disk).
+//! The caller steers both through a [`Control`] (stop flag, progress, free disk).
 //!
 //! ```no_run
 //! use carom_run::{run, Control, Progress};

@@ -5,19 +5,12 @@
 //! (`iter`: every collision, one channel, or all events). `scan` and `indexed`
 //! summarise a whole file, `scan` by reading it and `indexed` from its index.
 //!
-//! A file cut short (a killed run) reads up to its last complete chunk; the iterators
-//! then end normally and [`LogReader::end`] says [`LogEnd::Truncated`] (with
-//! [`ReadOptions::strict`] the cut is an error instead). Damage inside a file that
-//! was finished properly is a [`ReadError::Corrupt`] error, returned after
-//! everything before the damage, unless every message has been read: then the end
-//! is [`LogEnd::Damaged`], a warning. That is so when the damage comes after the
-//! data section (the index, the footer) whose CRC held, and, in logs whose two
-//! metadata records carry checksums (format 2.3 on), when the data section's CRC
-//! fails but every chunk's CRC held and `carom.run`'s checksum held: the damage
-//! lies in the records outside the chunks, read without harm. A `carom.summary`
-//! whose checksum fails is left out (a warning); a `carom.run` whose checksum
-//! fails is an error (the run it describes cannot be trusted). [`salvage`] reads
-//! around damaged chunks (for `carom repair`). Nothing here panics on bad input.
+//! A file cut short (a killed run) reads up to its last complete chunk and ends
+//! with [`LogEnd::Truncated`] (an error with [`ReadOptions::strict`]). Damage that
+//! loses messages is a [`ReadError::Corrupt`] error, after everything before it;
+//! damage outside the chunks once every message is read is [`LogEnd::Damaged`], a
+//! warning (`damage.rs` says when that is so). [`salvage`] reads around damaged
+//! chunks (for `carom repair`). Nothing here panics on bad input.
 //!
 //! ```no_run
 //! use carom_log::{LogEvent, LogReader};
