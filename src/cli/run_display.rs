@@ -231,3 +231,16 @@ impl Display {
 pub(super) fn outgrows(bytes: u64, total: f64, free: u64) -> bool {
     total - bytes as f64 > free as f64
 }
+
+#[cfg(test)]
+mod tests {
+    use super::outgrows;
+
+    #[test]
+    fn only_what_is_still_to_be_written_must_fit_on_the_disk() {
+        // 30 GB written of 100 GB: 70 GB still to come.
+        assert!(outgrows(30_000_000_000, 1e11, 69_000_000_000));
+        assert!(!outgrows(30_000_000_000, 1e11, 71_000_000_000));
+        assert!(!outgrows(0, 0.0, 0));
+    }
+}

@@ -18,7 +18,7 @@ use super::dynamics_report::{DynamicsReport, SpeciesDynamics};
 use super::msd::{fit_diffusion, overlap_factor, D_WINDOW_COLLISIONS};
 use super::origins::{plan, LagKey, Origin, OriginStore};
 use super::pair_correlation::mean_se;
-use super::self_scattering::{bessel_j0, first_peak_k, tau_alpha};
+use super::self_scattering::{first_peak_k, tau_alpha};
 use super::stats::StatsError;
 use super::{Analyzer, RunDescription};
 
@@ -149,7 +149,7 @@ impl Dynamics {
                 acc.dr2 += dr2;
                 acc.dr4 += dr2 * dr2;
                 acc.vv += o.vx[i] * v[0][i] + o.vy[i] * v[1][i];
-                acc.fs += bessel_j0(k * dr2.sqrt());
+                acc.fs += libm::j0(k * dr2.sqrt());
             }
         }
     }

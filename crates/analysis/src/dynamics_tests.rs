@@ -99,7 +99,7 @@ fn free_flight_through_wraps_is_ballistic() {
             assert!(close(s.msd[i], m2 * tau * tau, 1e-9), "MSD at {tau}");
             let a2 = m4 / (2.0 * m2 * m2) - 1.0;
             assert!((s.alpha2[i] - a2).abs() < 1e-8, "α₂ at {tau}");
-            let fs = mean(&|j| bessel_j0(k * v2(j).sqrt() * tau));
+            let fs = mean(&|j| libm::j0(k * v2(j).sqrt() * tau));
             assert!((s.fs[i] - fs).abs() < 1e-9, "F_s at {tau}");
         }
         // Samples: the species' discs times the pairings of the key; lag 0 has

@@ -98,7 +98,6 @@ pub use report::{
     HaffReport, HistogramReport, InelasticReport, KsReport, PressureReport, RateAt, Report,
     SonineReport, SpeciesInfo, SpeciesMb, SpeciesUntested, TemperatureReport, WindowReport,
 };
-pub use self_scattering::bessel_j0;
 pub use series::DRIFT_STD_ERRORS;
 pub use structure_factor::{
     StructureFactorReport, K_STAR_MIN_SIGMA, SK_K_MAX_SIGMA, SK_MAX_MODES, SK_SNAPSHOTS,

@@ -14,11 +14,6 @@ use carom_core::SimBox;
 
 use super::structure_factor::{first_peak, shells, snapshot_sk};
 
-/// The Bessel function J₀(x), from `libm` (to the last bits of f64).
-pub fn bessel_j0(x: f64) -> f64 {
-    libm::j0(x)
-}
-
 /// k* (1/length): the first peak of S(k) ([`first_peak`], physics.md §11) of the
 /// discs at (`x`, `y`) (any images) in the periodic `sim_box`; `None` for walls
 /// or when no shell reaches
@@ -68,47 +63,6 @@ pub fn tau_alpha(lag: &[f64], fs: &[f64]) -> Option<f64> {
 mod tests {
     use super::*;
     use std::f64::consts::PI;
-
-    /// J₀(x) = (1/π) ∫₀^π cos(x sin θ) dθ, by the midpoint rule on 2000 points
-    /// (exponentially accurate for this smooth periodic integrand): an
-    /// independent computation.
-    fn j0_integral(x: f64) -> f64 {
-        let n = 2000;
-        (0..n)
-            .map(|k| (x * (PI * (k as f64 + 0.5) / n as f64).sin()).cos())
-            .sum::<f64>()
-            / n as f64
-    }
-
-    #[test]
-    fn j0_matches_its_integral_tables_series_and_asymptote() {
-        // J₀(0) = 1; the first zero j₀,₁ = 2.404825557695773.
-        assert!((bessel_j0(0.0) - 1.0).abs() < 1e-12);
-        assert!(bessel_j0(2.404825557695773).abs() < 1e-15);
-        // Table values (A&S table 9.1): J₀(1) = 0.7651976866, J₀(5) =
-        // −0.1775967713, J₀(10) = −0.2459357645.
-        for (x, want) in [
-            (1.0, 0.765_197_686_6),
-            (5.0, -0.177_596_771_3),
-            (10.0, -0.245_935_764_5),
-        ] {
-            assert!((bessel_j0(x) - want).abs() < 1e-10, "J0({x})");
-        }
-        // The series 1 − x²/4 + x⁴/64 − x⁶/2304 at x = 0.1 (next term 4·10⁻¹⁴).
-        let x: f64 = 0.1;
-        let series = 1.0 - x * x / 4.0 + x.powi(4) / 64.0 - x.powi(6) / 2304.0;
-        assert!((bessel_j0(x) - series).abs() < 1e-13);
-        // Asymptote √(2/(πx)) cos(x − π/4), error ≈ (1/8x)·√(2/(πx)) ≤ 10⁻⁴ at 1000.
-        let x = 1000.0;
-        let asym = (2.0 / (PI * x)).sqrt() * (x - PI / 4.0).cos();
-        assert!((bessel_j0(x) - asym).abs() < 2e-5 * (2.0 / (PI * x)).sqrt() * 10.0);
-        // Everywhere on [−40, 40] (both branches, the switch at 3, even).
-        for k in 0..=800 {
-            let x = -40.0 + 0.1 * k as f64;
-            let (got, want) = (bessel_j0(x), j0_integral(x));
-            assert!((got - want).abs() < 1e-13, "J0({x}) = {got} vs {want}");
-        }
-    }
 
     /// F_s falling from 1 through 0.5 at τ = 1 to 0.25 at τ = 4: 1/e is crossed
     /// between them at ln τ = ln 4·(0.5 − 1/e)/(0.5 − 0.25); lag 0 is skipped;

@@ -135,12 +135,15 @@ pub fn resume(
             next_sequence: driver.next_sequence,
         },
     );
-    let writer = match (writer, output) {
-        (Ok(w), output) => (w, output),
-        (Err(e), Some(o)) => return Err(o.abandon(e.into())),
-        (Err(e), None) => return Err(e.into()),
+    let mut writer = match writer {
+        Ok(w) => w,
+        Err(e) => {
+            return Err(match output {
+                Some(o) => o.abandon(e.into()),
+                None => e.into(),
+            })
+        }
     };
-    let (mut writer, output) = writer;
     // The copy takes about as much room as the input up to its last checkpoint,
     // most of the file, and finishing the log after it its reserve: refuse at once
     // when that is not free, rather than fail part way (a log stopped because its
