@@ -14,7 +14,7 @@
 //!   the driver's hot loop: every event to a [`LogWriter`] with its default options
 //!   (batches of 4096 collisions, writer thread), into a file that is finished and
 //!   deleted after each sample;
-//! * `run/bare-engine` vs `run/logged` — a whole `carom::run::run` of 10⁶
+//! * `run/bare-engine` vs `run/logged` — a whole `carom_run::run` of 10⁶
 //!   collisions from the lattice start against building and running a bare engine
 //!   for as many collisions: `run/logged` with the default log options (snapshots,
 //!   thermo, checkpoints), `run/logged-collisions-only` with every collision and
@@ -23,8 +23,8 @@
 //! Each logged case prints the bytes per logged collision of the files it wrote.
 //! Run: `cargo bench --bench logging -- --warm-up-time 1 --measurement-time 5`.
 
-use carom::engine::{Engine, EngineParams, Event, SystemSpec};
-use carom::log::{
+use carom_engine::{Engine, EngineParams, Event, SystemSpec};
+use carom_log::{
     Compression, LogOptions, LogWriter, RunSpec, Stop, WriterOptions, WriterPosition,
 };
 use criterion::{criterion_group, Criterion, Throughput};
@@ -180,7 +180,7 @@ fn bench(c: &mut Criterion) {
         let mut size = 0;
         group.bench_function(name, |b| {
             b.iter(|| {
-                let s = carom::run::run(&spec, &path, Default::default()).expect("runs");
+                let s = carom_run::run(&spec, &path, Default::default()).expect("runs");
                 size = s.file_bytes;
                 s.collisions_this_process
             })
@@ -222,7 +222,7 @@ fn interleaved_at(n: usize, label: &str, level: i32, background: bool, rounds: u
         opts.background = background;
         // CAROM_BENCH_DETAIL=full: the full record (log format 1's) instead.
         if std::env::var("CAROM_BENCH_DETAIL").is_ok_and(|d| d == "full") {
-            opts.collision_detail = carom::log::CollisionDetail::Full;
+            opts.collision_detail = carom_log::CollisionDetail::Full;
         }
         let start = Instant::now();
         let mut w = LogWriter::create(&path, opts, &BTreeMap::new(), WriterPosition::default())

@@ -23,7 +23,7 @@
 
 mod common;
 
-use carom::engine::Engine;
+use carom_engine::Engine;
 use common::equilibrated_fluid as engine;
 use std::time::Instant;
 

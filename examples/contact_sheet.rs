@@ -46,7 +46,12 @@ fn main() {
             buf[i..i + 3].copy_from_slice(&p.0);
         }
     }
-    carom::render::register_font();
+    // The labels' font: DejaVu Sans, the one `carom`'s own figures use.
+    let _ = plotters::style::register_font(
+        "sans-serif",
+        FontStyle::Normal,
+        dejavu::sans::regular(),
+    );
     {
         let root = BitMapBackend::with_buffer(&mut buf, (w, h)).into_drawing_area();
         for (k, (name, img)) in tiles.iter().enumerate() {

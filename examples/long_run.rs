@@ -24,7 +24,7 @@
 
 use std::time::Instant;
 
-use carom::engine::{Engine, EngineParams, Event, InvariantChecker, SystemSpec};
+use carom_engine::{Engine, EngineParams, Event, InvariantChecker, SystemSpec};
 
 fn main() {
     let args: Vec<String> = std::env::args().collect();
@@ -118,7 +118,7 @@ fn main() {
 
 /// |Σ m v| / Σ m|v| now (the start has zero total momentum; unit masses).
 fn momentum_change(engine: &Engine) -> f64 {
-    let (mut p, mut scale) = (carom::core::DVec2::ZERO, 0.0);
+    let (mut p, mut scale) = (carom_core::DVec2::ZERO, 0.0);
     for i in 0..engine.len() {
         let v = engine.velocity(i);
         p += v;

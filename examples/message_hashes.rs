@@ -8,7 +8,7 @@
 //! cargo run --release --example message_hashes -- run.mcap
 //! ```
 
-use carom::log::{LogReader, TOPICS};
+use carom_log::{LogReader, TOPICS};
 
 fn main() {
     let path = std::env::args()

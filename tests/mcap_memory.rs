@@ -8,9 +8,9 @@ mod mcap_common;
 #[path = "integration/readers_common.rs"]
 mod readers_common;
 
-use carom::log::{CollisionDetail, Compression, LogOptions, Stop};
-use carom::log::{LogEnd, LogReader};
-use carom::run::{run, Control};
+use carom_log::{CollisionDetail, Compression, LogOptions, Stop};
+use carom_log::{LogEnd, LogReader};
+use carom_run::{run, Control};
 use mcap_common::*;
 
 /// Peak resident set size of this process (bytes), if the OS tells.
@@ -61,7 +61,7 @@ fn reading_a_large_log_takes_bounded_memory() {
     // to its checkpoint) takes bounded memory too: the message buffers the
     // writer thread hands back are reused, not queued.
     let copy = tmp("large-copy.mcap");
-    let repaired = carom::run::repair(&out, &copy).unwrap();
+    let repaired = carom_run::repair(&out, &copy).unwrap();
     assert!(repaired.bytes >= s.file_bytes / 10 * 9, "{repaired:?}");
     std::fs::remove_file(&copy).unwrap();
     let peak = peak_rss().unwrap();

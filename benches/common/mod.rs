@@ -17,7 +17,7 @@ macro_rules! bench_main {
     };
 }
 
-use carom::engine::{Engine, EngineParams, SystemSpec};
+use carom_engine::{Engine, EngineParams, SystemSpec};
 use criterion::measurement::WallTime;
 use criterion::BenchmarkGroup;
 use std::time::Instant;
@@ -40,8 +40,8 @@ pub fn equilibrated_fluid(n: usize, eta: f64) -> Engine {
 /// per disc.
 #[allow(dead_code)] // each bench binary uses only some of these systems
 pub fn equilibrated_mixture(small: usize, large: usize, ratio: f64, eta: f64) -> Engine {
-    use carom::core::{Boundary, Species};
-    use carom::engine::Placement;
+    use carom_core::{Boundary, Species};
+    use carom_engine::Placement;
     let species = vec![Species::reference(small), Species::scaled(large, ratio)];
     let mut spec = SystemSpec::square_box(species, eta, [Boundary::Periodic; 2], 42);
     spec.placement = Placement::Relaxed;

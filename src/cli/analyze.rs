@@ -1,4 +1,4 @@
-//! `carom analyze`: analyse a log (`carom::analysis::analyze_log_with`, with a progress
+//! `carom analyze`: analyse a log (`carom_analysis::analyze_log_with`, with a progress
 //! display) and print its [`Report`] as text or JSON.
 //!
 //! The JSON object is the [`Report`] (see its field documentation) with two more
@@ -6,9 +6,9 @@
 
 use std::process::ExitCode;
 
-use carom::analysis::{analyze_log_with, AnalysisOptions, ReadObserver, Report};
-use carom::config::derive_facts_for_old_log;
-use carom::log::ReadProgress;
+use carom_analysis::{analyze_log_with, AnalysisOptions, ReadObserver, Report};
+use carom_config::derive_facts_for_old_log;
+use carom_log::ReadProgress;
 
 #[path = "analyze_dynamics.rs"]
 mod dynamics;

@@ -4,7 +4,7 @@
 //! formatting: every number comes from the report; layout as in
 //! [`super::super::report_text`].
 
-use carom::analysis::{CompressionReport, FloorReport, GravityReport, ThermostatReport};
+use carom_analysis::{CompressionReport, FloorReport, GravityReport, ThermostatReport};
 
 use super::super::report_text::{pm, sig, sigmas, Text};
 

@@ -6,7 +6,7 @@
 //! the first lag and τ_α; and a warning when snapshot gaps could not be unwrapped
 //! with certainty.
 
-use carom::analysis::Report;
+use carom_analysis::Report;
 
 use super::transport::pm;
 use super::Num;

@@ -6,7 +6,7 @@
 //! approximation it is), and kT against time. One quantity per line
 //! ([`super::super::report_text`]).
 
-use carom::analysis::{InelasticReport, Report, ENSKOG_COOLING_TOLERANCE};
+use carom_analysis::{InelasticReport, Report, ENSKOG_COOLING_TOLERANCE};
 
 use super::super::report_text::{pm, sig, sigmas, Text};
 

@@ -4,7 +4,7 @@
 //! contact theorem, and the structure (ψ6, g6, S(k)). One quantity per line,
 //! value ± SE with its reference and verdict ([`super::report_text`]).
 
-use carom::analysis::{Report, SpeciesMb, CORRELATED_SPACING, DECORRELATION_COLLISIONS};
+use carom_analysis::{Report, SpeciesMb, CORRELATED_SPACING, DECORRELATION_COLLISIONS};
 
 use super::super::report_text::{pm, sig, sigmas, Text};
 use super::super::{AnalyzeArgs, Num};
@@ -157,7 +157,7 @@ pub(super) fn velocity_text(r: &Report, t: &mut Text) {
                 if m.passed { "≥" } else { "<" },
                 m.tests,
                 m.p_threshold,
-                carom::analysis::MB_FAMILY_ALPHA,
+                carom_analysis::MB_FAMILY_ALPHA,
                 m.tests
             ),
         );

@@ -12,7 +12,7 @@
 
 use std::fmt::Write;
 
-use carom::analysis::{Estimate, HelfandReport, Reliability, TransportReport};
+use carom_analysis::{Estimate, HelfandReport, Reliability, TransportReport};
 
 use super::sigmas;
 use crate::cli::Num;

@@ -9,8 +9,8 @@ use std::path::PathBuf;
 use std::process::ExitCode;
 use std::sync::atomic::{AtomicUsize, Ordering};
 
-use carom::analysis::AnalysisOptions;
-use carom::sweep::{
+use carom_analysis::AnalysisOptions;
+use carom_run::sweep::{
     collect as collect_sweep, cores, jobs_at_once, CollectOptions, Collected, SweepDir,
 };
 use clap::Args;
@@ -108,9 +108,9 @@ pub fn collect(args: CollectArgs) -> Result<ExitCode, CliError> {
     })
 }
 
-/// The quantities at least one grid point has, in [`carom::sweep::QUANTITIES`]'s order.
+/// The quantities at least one grid point has, in [`carom_run::sweep::QUANTITIES`]'s order.
 fn present(c: &Collected) -> Vec<&'static str> {
-    carom::sweep::QUANTITIES
+    carom_run::sweep::QUANTITIES
         .iter()
         .map(|q| q.0)
         .filter(|q| c.points.iter().any(|p| p.results.contains_key(*q)))
@@ -136,7 +136,7 @@ const CSV_COLUMNS: [(&str, CsvCell); 4] = [
 ];
 
 /// How a CSV cell reads its number from a quantity's combined result.
-type CsvCell = fn(&carom::sweep::Combined) -> Option<f64>;
+type CsvCell = fn(&carom_run::sweep::Combined) -> Option<f64>;
 
 /// One CSV field (RFC 4180): quoted when it holds a comma, a quote or a line break.
 fn csv_field(x: &str) -> String {

@@ -1,11 +1,11 @@
 //! `carom export`: a log's snapshots as HOOMD GSD or extended XYZ frames (see
-//! [`carom::export`]).
+//! [`crate::export`]).
 
 use std::path::PathBuf;
 use std::process::ExitCode;
 
-use carom::export::{export as export_frames, ExportFormat};
-use carom::frames::FrameRange;
+use crate::export::{export as export_frames, ExportFormat};
+use crate::frames::FrameRange;
 use clap::{Args, ValueEnum};
 
 use super::reading::ReadDisplay;

@@ -6,8 +6,8 @@
 
 use std::process::ExitCode;
 
-use carom::log::CH_SCENE;
-use carom::log::{scan_indexed, scan_observed, LogEnd, LogInfo, Stop, METADATA_SUMMARY, TOPICS};
+use carom_log::CH_SCENE;
+use carom_log::{scan_indexed, scan_observed, LogEnd, LogInfo, Stop, METADATA_SUMMARY, TOPICS};
 use std::fmt::Write;
 use std::io::Write as _;
 

@@ -23,7 +23,7 @@ use std::path::PathBuf;
 use std::process::ExitCode;
 use std::time::Duration;
 
-use carom::config::ConfigError;
+use carom_config::ConfigError;
 use clap::{Args, Parser, Subcommand};
 use thiserror::Error;
 
@@ -239,13 +239,13 @@ pub enum CliError {
     Usage(String),
     /// A run failed.
     #[error("{0}")]
-    Run(#[from] carom::run::RunError),
+    Run(#[from] carom_run::RunError),
     /// A log could not be read.
     #[error("{0}")]
-    Read(#[from] carom::log::ReadError),
+    Read(#[from] carom_log::ReadError),
     /// A log could not be analysed.
     #[error("{0}")]
-    Analysis(carom::analysis::AnalysisError),
+    Analysis(carom_analysis::AnalysisError),
     /// Writing output failed.
     #[error("{context}: {source}")]
     Io {
@@ -262,12 +262,12 @@ pub enum CliError {
     Frames(String),
     /// A sweep could not be laid out, run or collected.
     #[error("sweep: {0}")]
-    Sweep(#[from] carom::sweep::SweepError),
+    Sweep(#[from] carom_run::sweep::SweepError),
 }
 
-impl From<carom::frames::FrameError> for CliError {
-    fn from(e: carom::frames::FrameError) -> Self {
-        use carom::frames::FrameError;
+impl From<crate::frames::FrameError> for CliError {
+    fn from(e: crate::frames::FrameError) -> Self {
+        use crate::frames::FrameError;
         match e {
             FrameError::Read(e) => CliError::Read(e),
             FrameError::Unusable(why) => CliError::Usage(why),
@@ -276,9 +276,9 @@ impl From<carom::frames::FrameError> for CliError {
     }
 }
 
-impl From<carom::analysis::AnalysisError> for CliError {
-    fn from(e: carom::analysis::AnalysisError) -> Self {
-        use carom::analysis::AnalysisError;
+impl From<carom_analysis::AnalysisError> for CliError {
+    fn from(e: carom_analysis::AnalysisError) -> Self {
+        use carom_analysis::AnalysisError;
         match e {
             AnalysisError::Read(e) => CliError::Read(e),
             AnalysisError::Unusable(why) => CliError::Usage(why),
@@ -292,11 +292,11 @@ impl CliError {
         match self {
             CliError::Config(_) | CliError::Usage(_) => 2,
             CliError::Sweep(
-                carom::sweep::SweepError::Plan { .. } | carom::sweep::SweepError::Point { .. },
+                carom_run::sweep::SweepError::Plan { .. } | carom_run::sweep::SweepError::Point { .. },
             ) => 2,
             // Interrupted before the log existed: the shell's code for SIGINT, as
             // for a run interrupted later (with its log finished).
-            CliError::Run(carom::run::RunError::InterruptedPlacing { .. }) => 130,
+            CliError::Run(carom_run::RunError::InterruptedPlacing { .. }) => 130,
             _ => 1,
         }
     }

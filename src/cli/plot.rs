@@ -13,7 +13,7 @@
 
 use std::path::Path;
 
-use carom::analysis::Report;
+use carom_analysis::Report;
 use plotters::prelude::*;
 
 use super::CliError;
@@ -47,7 +47,7 @@ fn plot_err<E: std::error::Error + Send + Sync + 'static>(
     path: &Path,
     e: DrawingAreaErrorKind<E>,
 ) -> CliError {
-    let reason = carom::render::drawing_error_reason(&e);
+    let reason = crate::render::drawing_error_reason(&e);
     CliError::Plot(format!("cannot write {}: {reason}", path.display()))
 }
 
@@ -186,7 +186,7 @@ pub fn write_all(report: &Report, dir: &Path) -> Result<Written, CliError> {
         context: format!("cannot create {}", dir.display()),
         source,
     })?;
-    carom::render::register_font();
+    crate::render::register_font();
     let u = Units::of(report);
     let mut w = Written::default();
     w.not_computed(report);
@@ -321,7 +321,7 @@ pub fn write_all(report: &Report, dir: &Path) -> Result<Written, CliError> {
 
 /// Write the figures of a collected sweep into `dir`: `equation_of_state` when
 /// the sweep varies a packing fraction and has pressures. Returns their number.
-pub fn write_sweep(c: &carom::sweep::Collected, dir: &Path) -> Result<usize, CliError> {
+pub fn write_sweep(c: &carom_run::sweep::Collected, dir: &Path) -> Result<usize, CliError> {
     let Some(eta) = c.axes.iter().find(|a| a.ends_with("packing_fraction")) else {
         return Ok(0);
     };
@@ -333,7 +333,7 @@ pub fn write_sweep(c: &carom::sweep::Collected, dir: &Path) -> Result<usize, Cli
         context: format!("cannot create {}", dir.display()),
         source,
     })?;
-    carom::render::register_font();
+    crate::render::register_font();
     both!(dir, "equation_of_state", |root| sweep::draw_eos(
         root, &series
     ));

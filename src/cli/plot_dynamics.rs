@@ -5,7 +5,7 @@
 //! log–log axes with a τ⁻¹ guide (the 2D long-time tail; `vacf`); and
 //! F_s(k*, τ) against log τ with 1/e and τ_α marked (`self_scattering`).
 
-use carom::analysis::DynamicsReport;
+use carom_analysis::DynamicsReport;
 use plotters::coord::Shift;
 use plotters::prelude::*;
 

@@ -9,7 +9,7 @@
 //! - F_s(k*, τ) that is below 1/e already at the first lag decayed between
 //!   snapshots: τ_α is shorter than their spacing and the curve is flat at 0.
 
-use carom::analysis::{BondOrderReport, DynamicsReport, Report};
+use carom_analysis::{BondOrderReport, DynamicsReport, Report};
 
 /// The relative spread below which a series is flat.
 pub(super) const FLAT: f64 = 1e-9;

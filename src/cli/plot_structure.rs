@@ -5,7 +5,7 @@
 //! with its band, both fitted decays and the hexatic bound r^(−1/4) (`g6`); and
 //! S(k) against kσ with error bars and S = 1 (`structure_factor`).
 
-use carom::analysis::{
+use carom_analysis::{
     BondCorrelationReport, BondOrderReport, PairCorrelationReport, StructureFactorReport,
 };
 use plotters::coord::Shift;

@@ -5,8 +5,8 @@
 //! near melting, and Henderson's closed form as a line; under it the residual
 //! of each point against its reference in standard errors.
 
-use carom::analysis::{henderson_z, kolafa_rottner, li_2022, KOLAFA_ROTTNER};
-use carom::sweep::Collected;
+use carom_analysis::{henderson_z, kolafa_rottner, li_2022, KOLAFA_ROTTNER};
+use carom_run::sweep::Collected;
 use plotters::coord::Shift;
 use plotters::prelude::*;
 

@@ -1,7 +1,7 @@
 //! Tests of the figures at the data level: each figure is drawn to SVG and
 //! its text (tick labels, legend entries) and elements read back.
 
-use carom::analysis::{DiffusionFit, DynamicsReport, SpeciesDynamics};
+use carom_analysis::{DiffusionFit, DynamicsReport, SpeciesDynamics};
 use plotters::prelude::*;
 
 use super::dynamics::{draw_fs, draw_msd, draw_vacf};
@@ -79,7 +79,7 @@ macro_rules! svg {
 /// Each figure draws with its guides and labels in its legend.
 #[test]
 fn the_dynamics_figures_carry_their_guides() {
-    carom::render::register_font();
+    crate::render::register_font();
     let d = report();
     let figures = [
         (

@@ -7,8 +7,8 @@
 //! and n(y) per species on a log axis with the fitted barometric law
 //! n(a) e^{−β(y − a)} (`density_profile`). Axes are in the run's units.
 
-use carom::analysis::Report;
-use carom::analysis::{GravityReport, HaffReport, HistogramReport, PressureReport, SpeciesMb};
+use carom_analysis::Report;
+use carom_analysis::{GravityReport, HaffReport, HistogramReport, PressureReport, SpeciesMb};
 use plotters::coord::Shift;
 use plotters::prelude::*;
 

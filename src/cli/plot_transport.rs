@@ -11,7 +11,7 @@
 //! (± one standard error) with the report's verdict on it (physics.md §14.6): an
 //! unreliable value is not titled as a result.
 
-use carom::analysis::{HelfandReport, TransportReport};
+use carom_analysis::{HelfandReport, TransportReport};
 use plotters::coord::Shift;
 use plotters::prelude::*;
 

@@ -9,7 +9,7 @@
 use std::io::IsTerminal;
 use std::time::{Duration, Instant};
 
-use carom::log::ReadProgress;
+use carom_log::ReadProgress;
 use indicatif::{ProgressBar, ProgressStyle};
 
 use super::output::say;

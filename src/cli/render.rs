@@ -1,11 +1,11 @@
 //! `carom render`: a picture of a log's snapshot (PNG or SVG), or a movie of a
-//! range of snapshots (animated GIF); see [`carom::render`].
+//! range of snapshots (animated GIF); see [`crate::render`].
 
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
-use carom::frames::{for_each_frame, nearest_snapshot, time_text, FrameRange};
-use carom::render::{render_snapshot, ColourBy, ImageFormat, Movie};
+use crate::frames::{for_each_frame, nearest_snapshot, time_text, FrameRange};
+use crate::render::{render_snapshot, ColourBy, ImageFormat, Movie};
 use clap::{Args, ValueEnum};
 
 use super::reading::ReadDisplay;
@@ -104,7 +104,7 @@ pub(crate) fn default_out(file: &Path, ext: &str) -> PathBuf {
 
 /// Refuse to write over the log itself, or over an existing file without --force.
 pub(crate) fn check_out(file: &Path, out: &Path, force: bool) -> Result<(), CliError> {
-    if out == file || carom::run::same_file(out, file) {
+    if out == file || carom_run::same_file(out, file) {
         return Err(CliError::Usage(format!(
             "--out {}: that is the log being read (choose another --out)",
             out.display()
@@ -119,13 +119,13 @@ pub(crate) fn check_out(file: &Path, out: &Path, force: bool) -> Result<(), CliE
     Ok(())
 }
 
-/// The lock on a file a command writes ([`carom::run::lock_log`], the lock a run
+/// The lock on a file a command writes ([`carom_run::lock_log`], the lock a run
 /// holds on its log), taken after [`check_out`] and before anything is written:
 /// a file another process writes (a run's log, another export) is refused and
 /// left as it is. A file created here is removed again unless [`OutLock::keep`]
 /// is called (the command failed).
 pub(crate) struct OutLock {
-    _lock: Option<carom::run::LogLock>,
+    _lock: Option<carom_run::LogLock>,
     created: Option<PathBuf>,
 }
 
@@ -134,8 +134,8 @@ impl OutLock {
     /// (no such directory) is left to the writer, which says why.
     pub(crate) fn take(out: &Path) -> Result<OutLock, CliError> {
         let created = (!out.exists()).then(|| out.to_path_buf());
-        let lock = match carom::run::lock_log(out, true) {
-            Err(carom::run::RunError::Lock { .. }) => None,
+        let lock = match carom_run::lock_log(out, true) {
+            Err(carom_run::RunError::Lock { .. }) => None,
             lock => Some(lock?),
         };
         Ok(OutLock {
@@ -153,7 +153,7 @@ impl OutLock {
 impl Drop for OutLock {
     fn drop(&mut self) {
         if let Some(out) = &self.created {
-            carom::frames::remove_output(out);
+            crate::frames::remove_output(out);
         }
     }
 }
@@ -253,7 +253,7 @@ fn movie(
     let count = match result {
         Ok(c) => c,
         Err(e) => {
-            carom::frames::remove_output(out);
+            crate::frames::remove_output(out);
             return Err(e.into());
         }
     };

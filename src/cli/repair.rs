@@ -1,12 +1,12 @@
 //! `carom repair`: a complete, indexed log from one cut short (see
-//! [`carom::run::repair`]). Never writes over its input, nor over a file that
+//! [`carom_run::repair`]). Never writes over its input, nor over a file that
 //! another process writes (a run's log).
 
 use std::io::Write;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
-use carom::log::LogEnd;
+use carom_log::LogEnd;
 
 use super::{emit, CliError, RepairArgs};
 
@@ -24,7 +24,7 @@ fn default_out(file: &Path) -> PathBuf {
 /// Run `carom repair`.
 pub fn repair(args: RepairArgs) -> Result<ExitCode, CliError> {
     let out = args.out.unwrap_or_else(|| default_out(&args.file));
-    if out == args.file || carom::run::same_file(&out, &args.file) {
+    if out == args.file || carom_run::same_file(&out, &args.file) {
         return Err(CliError::Usage(format!(
             "--out {}: that is the input; repair writes a new file (choose another --out)",
             out.display()
@@ -37,7 +37,7 @@ pub fn repair(args: RepairArgs) -> Result<ExitCode, CliError> {
         )));
     }
     let lock = super::render::OutLock::take(&out)?;
-    let r = carom::run::repair(&args.file, &out)?;
+    let r = carom_run::repair(&args.file, &out)?;
     lock.keep();
     let how = match &r.input_end {
         LogEnd::Complete => "the input was already complete; copied whole".to_string(),

@@ -10,10 +10,10 @@ use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::OnceLock;
 use std::time::{Duration, Instant};
 
-use carom::config::{load_config, ConfigError};
-use carom::engine::{Placement, PlacementProgress};
-use carom::log::{ReadProgress, Stop, StopReason};
-use carom::run::{Control, Progress, ResumeOptions, ResumePass, RunError, RunSummary};
+use carom_config::{load_config, ConfigError};
+use carom_engine::{Placement, PlacementProgress};
+use carom_log::{ReadProgress, Stop, StopReason};
+use carom_run::{Control, Progress, ResumeOptions, ResumePass, RunError, RunSummary};
 
 use super::output::say;
 use super::reading::ReadDisplay;
@@ -186,7 +186,7 @@ pub fn run(args: RunArgs) -> Result<ExitCode, CliError> {
     }
     let spec = load_config(args.config.as_deref(), &args.set)?;
     // Before placement allocates anything of the size of N.
-    carom::run::check_memory(&spec)?;
+    carom_run::check_memory(&spec)?;
     if args.dry_run {
         super::emit(&format!("{}\n", spec.config_json))?;
         return Ok(ExitCode::SUCCESS);
@@ -220,7 +220,7 @@ pub fn run(args: RunArgs) -> Result<ExitCode, CliError> {
         ignore_disk_estimate: args.ignore_disk_estimate,
         ..Control::new(&STOP, &mut progress)
     };
-    let summary = carom::run::run(&spec, &out, control);
+    let summary = carom_run::run(&spec, &out, control);
     display.borrow().finish();
     if summary.is_err() {
         // A run that failed before its log held a byte leaves no empty file behind
@@ -247,7 +247,7 @@ pub fn resume(args: ResumeArgs) -> Result<ExitCode, CliError> {
         _ => None,
     };
     let out = args.out.unwrap_or_else(|| args.file.clone());
-    if !args.force && out.exists() && !carom::run::same_file(&out, &args.file) {
+    if !args.force && out.exists() && !carom_run::same_file(&out, &args.file) {
         return Err(CliError::Usage(format!(
             "{} exists; use --force to overwrite it, choose another --out, or leave \
              --out away to continue {} in place",
@@ -282,7 +282,7 @@ pub fn resume(args: ResumeArgs) -> Result<ExitCode, CliError> {
         end_reads();
         display.update(p)
     };
-    let summary = carom::run::resume(
+    let summary = carom_run::resume(
         &args.file,
         &out,
         &ResumeOptions { stop },

@@ -6,10 +6,10 @@ use std::io::IsTerminal;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
-use carom::engine::PlacementProgress;
-use carom::log::Stop;
-use carom::run::Bytes;
-use carom::run::Progress;
+use carom_engine::PlacementProgress;
+use carom_log::Stop;
+use carom_run::Bytes;
+use carom_run::Progress;
 use indicatif::{ProgressBar, ProgressStyle};
 
 use super::output::say;
@@ -113,7 +113,7 @@ impl Display {
         let Some(total) = projected else {
             return;
         };
-        let Ok(free) = carom::run::free_space_for(&self.log) else {
+        let Ok(free) = carom_run::free_space_for(&self.log) else {
             return;
         };
         if outgrows(p.log_bytes, total, free) {

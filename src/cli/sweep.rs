@@ -12,8 +12,8 @@ use std::path::PathBuf;
 use std::process::ExitCode;
 use std::sync::atomic::{AtomicBool, Ordering};
 
-use carom::sweep::slurm::{submit, SlurmOptions};
-use carom::sweep::{
+use carom_run::sweep::slurm::{submit, SlurmOptions};
+use carom_run::sweep::{
     cores, jobs_at_once, point_command, point_state, run_point, run_pool, Plan, PointOutcome,
     PointState, PoolEvent, SweepDir, SweepLock,
 };

@@ -41,7 +41,7 @@ fn psi6_of(s: &Snapshot, periodic: [bool; 2]) -> Vec<[f64; 2]> {
         }
     }
     let (x, y): (Vec<f64>, Vec<f64>) = s.positions.iter().map(|p| (p.x, p.y)).unzip();
-    crate::analysis::local_psi6(&sim_box, &x, &y)
+    carom_analysis::local_psi6(&sim_box, &x, &y)
 }
 
 /// How discs are drawn.

@@ -13,10 +13,9 @@ mod draw;
 mod layout;
 mod raster;
 
-pub use colours::{scale_colour, species_colour, speed_scale, wheel_colour, BACKGROUND, SPECIES};
-pub use draw::{draw_snapshot, Colouring, DiscStyle, DrawResult};
+use colours::speed_scale;
+use draw::{draw_snapshot, Colouring, DiscStyle};
 pub use layout::Layout;
-pub use raster::Raster;
 
 use std::path::Path;
 use std::sync::Once;
@@ -184,7 +183,6 @@ pub struct Movie {
     layout: Layout,
     colouring: Colouring,
     path: std::path::PathBuf,
-    frames: u64,
 }
 
 impl Movie {
@@ -212,7 +210,6 @@ impl Movie {
             layout,
             colouring: colouring_for(first, by),
             path: out.to_path_buf(),
-            frames: 0,
         })
     }
 
@@ -226,18 +223,14 @@ impl Movie {
             DiscStyle::Raster,
         )
         .and_then(|()| self.area.present())
-        .map_err(|e| write_error(&self.path, e))?;
-        self.frames += 1;
-        Ok(())
+        .map_err(|e| write_error(&self.path, e))
     }
 
     /// The layout of every frame.
     pub fn layout(&self) -> &Layout {
         &self.layout
     }
-
-    /// Frames written so far.
-    pub fn frames(&self) -> u64 {
-        self.frames
-    }
 }
+
+#[cfg(test)]
+mod tests;

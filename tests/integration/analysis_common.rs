@@ -2,8 +2,8 @@
 //! straight from the engine (no log file), and the standard fluid.
 #![allow(dead_code)]
 
-use carom::analysis::{AnalysisOptions, Analyzer, Report, RunDescription};
-use carom::engine::{Engine, EngineParams, Event, State, SystemSpec, Velocities};
+use carom_analysis::{AnalysisOptions, Analyzer, Report, RunDescription};
+use carom_engine::{Engine, EngineParams, Event, State, SystemSpec, Velocities};
 
 /// Run the engine from `spec` until `t_end`, with a snapshot (and thermo record)
 /// every `dt`, feeding every event to an analyzer.
@@ -74,7 +74,7 @@ pub fn feed(engine: &mut Engine, a: &mut Analyzer, t0: f64, dt: f64, steps: u64)
             Event::Pair(p) => {
                 lost += p.energy_lost;
                 a.pair(p.time, p.virial, p.energy_lost);
-                let v = |d: carom::core::DVec2| [d.x, d.y];
+                let v = |d: carom_core::DVec2| [d.x, d.y];
                 a.pair_detail(
                     p.time,
                     (p.i, p.j),

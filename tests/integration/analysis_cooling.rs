@@ -4,9 +4,9 @@
 
 use crate::analysis_common::{analyse, analyse_state, fluid};
 use crate::stats_common::assert_within;
-use carom::analysis::AnalysisOptions;
-use carom::core::Restitution;
-use carom::engine::{Engine, EngineParams, Velocities};
+use carom_analysis::AnalysisOptions;
+use carom_core::Restitution;
+use carom_engine::{Engine, EngineParams, Velocities};
 
 /// Normal restitution `e` with the TC model's duration `tc`.
 fn cooling(e: f64, tc: f64) -> EngineParams {
@@ -163,7 +163,7 @@ fn mean_se(x: &[f64]) -> (f64, f64) {
 }
 
 /// a2 = ⟨v⁴⟩/(2⟨v²⟩²) − 1 of equal-mass discs (physics.md (8.5)).
-fn a2_of(state: &carom::engine::State) -> f64 {
+fn a2_of(state: &carom_engine::State) -> f64 {
     let n = state.velocities.len() as f64;
     let (s2, s4) = state.velocities.iter().fold((0.0, 0.0), |(a, b), v| {
         let x = v.length_squared();
@@ -214,7 +214,7 @@ fn a2_of_the_cooling_state_follows_the_second_sonine_approximation() {
         };
         let mut eng = Engine::new(eng.state(), params).unwrap();
         eng.run_collisions(5 * N as u64).unwrap();
-        let kinetic = |s: &carom::engine::State| -> f64 {
+        let kinetic = |s: &carom_engine::State| -> f64 {
             s.velocities.iter().map(|v| v.length_squared()).sum()
         };
         // 5 collisions per disc: K falls by exp(−(1 − e²)·5/2) in the cooling state.

@@ -4,8 +4,8 @@
 //! Gaussian exp(−k² kT τ²/(2m)) (the Maxwell average of J₀(k v τ) in 2D).
 
 use crate::analysis_common::fluid;
-use carom::analysis::{AnalysisOptions, Analyzer, RunDescription};
-use carom::engine::{Engine, EngineParams, Event, Velocities};
+use carom_analysis::{AnalysisOptions, Analyzer, RunDescription};
+use carom_engine::{Engine, EngineParams, Event, Velocities};
 
 #[test]
 fn a_dilute_gas_is_ballistic_at_short_lags() {
@@ -111,9 +111,9 @@ fn unwrapped(i: usize, t: f64) -> (f64, f64) {
 /// (wrapped positions and images) every `gap` over [0, 12] (`snapshot_interval`
 /// = `gap`).
 fn free_flight_log(name: &str, gap: f64) -> std::path::PathBuf {
-    use carom::core::{DVec2, SimBox, Species};
-    use carom::engine::State;
-    use carom::log::{
+    use carom_core::{DVec2, SimBox, Species};
+    use carom_engine::State;
+    use carom_log::{
         LogOptions, LogWriter, RunFacts, RunMetadata, Stop, StopReason, SummaryMetadata, Thermo,
         WriterOptions, WriterPosition,
     };
@@ -130,7 +130,7 @@ fn free_flight_log(name: &str, gap: f64) -> std::path::PathBuf {
         ..LogOptions::default()
     };
     let meta = RunMetadata {
-        log_format: carom::log::LOG_FORMAT_VERSION.into(),
+        log_format: carom_log::LOG_FORMAT_VERSION.into(),
         carom_version: "0.0.0-test".into(),
         config: "not json".into(),
         seed: 1,
@@ -222,11 +222,11 @@ const V: [(f64, f64); 4] = [(3.0, 0.0), (0.0, -1.0), (-1.2, 1.6), (1.5, -1.5)];
 /// ambiguous, and the lags are the multiples of 3 up to 12.
 #[test]
 fn a_log_is_unwrapped_through_its_images() {
-    use carom::analysis::analyze_log;
+    use carom_analysis::analyze_log;
     struct Quiet;
-    impl carom::analysis::ReadObserver for Quiet {
+    impl carom_analysis::ReadObserver for Quiet {
         fn pass(&mut self, _: &'static str) {}
-        fn progress(&mut self, _: carom::log::ReadProgress) {}
+        fn progress(&mut self, _: carom_log::ReadProgress) {}
         fn warn(&mut self, _: &str) {}
     }
     let opts = AnalysisOptions {

@@ -4,10 +4,10 @@
 
 use crate::analysis_common::{analyse, analyse_state, fluid};
 use crate::stats_common::{assert_within, dilute_wall_z};
-use carom::analysis::AnalysisOptions;
-use carom::core::rates::expected_mean_free_time;
-use carom::core::{SimBox, Species};
-use carom::engine::{box_size_for, Engine, EngineParams, Placement, SystemSpec, Velocities};
+use carom_analysis::AnalysisOptions;
+use carom_core::rates::expected_mean_free_time;
+use carom_core::{SimBox, Species};
+use carom_engine::{box_size_for, Engine, EngineParams, Placement, SystemSpec, Velocities};
 
 #[test]
 fn equation_of_state_at_eta_0_3_and_enskog_check() {
@@ -244,7 +244,7 @@ fn snapshots_closer_than_a_few_collisions_are_thinned_by_default() {
     // the Maxwell–Boltzmann tests reject an exact equilibrium run. Given the
     // collision rate, the analysis uses snapshots DECORRELATION_COLLISIONS
     // collision times apart by default, and the same run passes.
-    use carom::analysis::DECORRELATION_COLLISIONS;
+    use carom_analysis::DECORRELATION_COLLISIONS;
     let spec = fluid(2000, 0.5, 4, Velocities::MaxwellBoltzmann);
     let (t_end, dt) = (30.0, 0.02);
     let mut e = Engine::new(spec.build().unwrap(), EngineParams::default()).unwrap();
@@ -442,8 +442,8 @@ fn identical_species_mixture_has_equal_pair_correlations() {
     }
     // Over the first shells (σ to 3σ, coarse bins of 0.1σ) the three g agree.
     for lo in (50..150).step_by(5) {
-        let avg = |p: &carom::analysis::PairReport| p.g[lo..lo + 5].iter().sum::<f64>() / 5.0;
-        let se = |p: &carom::analysis::PairReport| {
+        let avg = |p: &carom_analysis::PairReport| p.g[lo..lo + 5].iter().sum::<f64>() / 5.0;
+        let se = |p: &carom_analysis::PairReport| {
             (p.std_error[lo..lo + 5].iter().map(|e| e * e).sum::<f64>()).sqrt() / 5.0
         };
         let (g00, g01, g11) = (avg(&pc.pairs[0]), avg(&pc.pairs[1]), avg(&pc.pairs[2]));

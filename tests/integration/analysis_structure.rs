@@ -5,8 +5,8 @@
 //! S(k → 0) is its compressibility from the equation of state.
 
 use crate::analysis_common::{analyse, fluid};
-use carom::analysis::{AnalysisOptions, Report};
-use carom::engine::{EngineParams, Velocities};
+use carom_analysis::{AnalysisOptions, Report};
+use carom_engine::{EngineParams, Velocities};
 
 fn run(n: usize, eta: f64, seed: u64, t_end: f64, dt: f64, equilibrate: f64) -> Report {
     let opts = AnalysisOptions {

@@ -4,8 +4,8 @@
 //! Green–Kubo) agree within their errors, and a dilute gas is near Enskog.
 
 use crate::analysis_common::{analyse, fluid};
-use carom::analysis::{AnalysisOptions, Estimate};
-use carom::engine::{EngineParams, Velocities};
+use carom_analysis::{AnalysisOptions, Estimate};
+use carom_engine::{EngineParams, Velocities};
 
 /// |a − b| within k standard errors of the difference.
 fn agree(what: &str, d: &Estimate, k: f64) {

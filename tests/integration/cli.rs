@@ -411,7 +411,7 @@ fn channel_pressure_comes_from_the_walls() {
 
 /// The last `/thermo` record's Z of the log `path`.
 fn final_thermo_z(path: &Path) -> f64 {
-    use carom::log::{LogMessage, LogReader};
+    use carom_log::{LogMessage, LogReader};
     let mut r = LogReader::open(path).unwrap();
     let last = r.thermo().filter_map(|m| match m.unwrap() {
         LogMessage::Thermo(t) => Some(t),

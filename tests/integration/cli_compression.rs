@@ -7,7 +7,7 @@
 
 use crate::cli_common::*;
 
-use carom::log::{GrowthEvent, GrowthPhase, LogMessage, LogReader, Snapshot, Thermo};
+use carom_log::{GrowthEvent, GrowthPhase, LogMessage, LogReader, Snapshot, Thermo};
 use serde_json::Value;
 use std::path::Path;
 

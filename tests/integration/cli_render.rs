@@ -1,14 +1,13 @@
-//! `carom render`: pictures of a log's snapshots. The colours are checked where
-//! they must be: at each disc's centre its species' (or speed's) colour, far from
-//! every disc the background, and a disc across a periodic edge also at the other
-//! edge; the movie has one frame per kept snapshot; bad times, a log without
-//! snapshots and an unwritable output fail cleanly, leaving no file behind.
+//! `carom render` through the command: it renders the snapshot asked for (or the
+//! nearest, or the last beside the log) at the width asked for, in PNG, SVG or as
+//! a movie of one frame per kept snapshot; bad times, a log without snapshots and
+//! an unwritable output fail cleanly, leaving no file behind. The colours and the
+//! layout of a picture are checked on the same two discs by the binary's unit
+//! tests (src/render/tests.rs).
 
 use std::path::{Path, PathBuf};
 
 use crate::cli_common::*;
-use carom::core::DVec2;
-use carom::render::{scale_colour, Layout, BACKGROUND, SPECIES};
 
 /// Width given to every render here.
 const WIDTH: u32 = 640;
@@ -34,17 +33,8 @@ fn two_disc_log(dir: &Path, boundary: &str, snapshots: bool) -> PathBuf {
     dir.join("two.mcap")
 }
 
-fn rgb_at(img: &image::RgbImage, layout: &Layout, x: f64, y: f64) -> [u8; 3] {
-    let (px, py) = layout.pixel(x, y);
-    img.get_pixel(px.round() as u32, py.round() as u32).0
-}
-
-fn rgb(c: plotters::style::RGBColor) -> [u8; 3] {
-    [c.0, c.1, c.2]
-}
-
 #[test]
-fn discs_have_their_species_colour_and_the_rest_is_background() {
+fn a_picture_of_the_time_asked_for_is_as_wide_as_asked_for() {
     let dir = scratch("species");
     two_disc_log(&dir, "periodic", true);
     let w = WIDTH.to_string();
@@ -56,38 +46,11 @@ fn discs_have_their_species_colour_and_the_rest_is_background() {
     ));
     assert!(out.contains("t = 0, N = 2"), "{out}");
     let img = image::open(dir.join("a.png")).unwrap().to_rgb8();
-    let layout = Layout::new(WIDTH, DVec2::new(20.0, 10.0), false);
-    assert_eq!(img.dimensions(), layout.size);
-    let a = rgb(SPECIES[0]);
-    let b = rgb(SPECIES[1]);
-    assert_eq!(rgb_at(&img, &layout, 1.0, 5.0), a);
-    assert_eq!(rgb_at(&img, &layout, 1.0, 7.5), a);
-    assert_eq!(rgb_at(&img, &layout, 12.0, 5.0), b);
-    assert_eq!(rgb_at(&img, &layout, 13.5, 5.0), b);
-    // A reaches 2 past x = 0: its image shows at the right edge.
-    assert_eq!(rgb_at(&img, &layout, 19.5, 5.0), a);
-    assert_eq!(rgb_at(&img, &layout, 7.0, 9.0), rgb(BACKGROUND));
-    assert_eq!(rgb_at(&img, &layout, 16.0, 2.0), rgb(BACKGROUND));
-    // Outside the box, left of x = 0, A's overhang is masked.
-    let (px, py) = layout.pixel(0.0, 5.0);
-    assert_eq!(img.get_pixel(px as u32 - 4, py as u32).0, rgb(BACKGROUND));
-
-    // Walls: A (now at x = 4) is drawn once, nothing at the far edge.
-    let dir = scratch("species-walls");
-    two_disc_log(&dir, "walls", true);
-    ok(&carom(
-        &dir,
-        &[
-            "render", "two.mcap", "--time", "0", "--size", &w, "-o", "w.png",
-        ],
-    ));
-    let img = image::open(dir.join("w.png")).unwrap().to_rgb8();
-    assert_eq!(rgb_at(&img, &layout, 4.0, 5.0), a);
-    assert_eq!(rgb_at(&img, &layout, 19.5, 5.0), rgb(BACKGROUND));
+    assert_eq!(img.width(), WIDTH);
 }
 
 #[test]
-fn scale_colours_follow_the_speeds_and_nearest_snapshots_are_chosen() {
+fn nearest_snapshots_are_chosen_and_the_default_is_the_last_beside_the_log() {
     let dir = scratch("speed");
     two_disc_log(&dir, "walls", true);
     let w = WIDTH.to_string();
@@ -98,16 +61,7 @@ fn scale_colours_follow_the_speeds_and_nearest_snapshots_are_chosen() {
         ],
     ));
     assert!(out.contains("t = 0"), "{out}");
-    let img = image::open(dir.join("s.png")).unwrap().to_rgb8();
-    let layout = Layout::new(WIDTH, DVec2::new(20.0, 10.0), true);
-    assert_eq!(img.dimensions(), layout.size);
-    // The scale's top is the faster disc's speed.
-    assert_eq!(rgb_at(&img, &layout, 4.0, 5.0), rgb(scale_colour(0.5, 0.5)));
-    assert_eq!(
-        rgb_at(&img, &layout, 12.0, 5.0),
-        rgb(scale_colour(0.25, 0.5))
-    );
-    assert_ne!(scale_colour(0.5, 0.5), scale_colour(0.25, 0.5));
+    assert_eq!(image::open(dir.join("s.png")).unwrap().width(), WIDTH);
     for (t, nearest) in [("1.4", "t = 1,"), ("1.6", "t = 2,"), ("1.5", "t = 1,")] {
         let out = ok(&carom(
             &dir,
@@ -122,7 +76,7 @@ fn scale_colours_follow_the_speeds_and_nearest_snapshots_are_chosen() {
 }
 
 #[test]
-fn svg_pictures_hold_the_discs_as_circles_of_their_colour() {
+fn svg_pictures_hold_the_discs_as_circles() {
     let dir = scratch("svg");
     two_disc_log(&dir, "walls", true);
     let w = WIDTH.to_string();
@@ -133,20 +87,9 @@ fn svg_pictures_hold_the_discs_as_circles_of_their_colour() {
         ],
     ));
     let svg = std::fs::read_to_string(dir.join("a.svg")).unwrap();
-    let layout = Layout::new(WIDTH, DVec2::new(20.0, 10.0), false);
     assert!(svg.starts_with("<svg"), "{}", &svg[..100]);
-    assert!(svg.contains(&format!(
-        "width=\"{}\" height=\"{}\"",
-        layout.size.0, layout.size.1
-    )));
-    let (px, py) = layout.pixel(4.0, 5.0);
-    let radius = (3.0 * layout.scale).round();
-    let circle = format!(
-        "<circle cx=\"{}\" cy=\"{}\" r=\"{radius}\" opacity=\"1\" fill=\"#1F77B4\"",
-        px.round(),
-        py.round()
-    );
-    assert!(svg.contains(&circle), "no {circle} in\n{svg}");
+    assert!(svg.contains(&format!("width=\"{WIDTH}\"")), "{svg}");
+    assert_eq!(svg.matches("<circle").count(), 2, "{svg}");
 }
 
 #[test]
@@ -168,11 +111,7 @@ fn a_movie_has_one_frame_per_kept_snapshot() {
         let mut options = gif::DecodeOptions::new();
         options.set_color_output(gif::ColorOutput::RGBA);
         let mut decoder = options.read_info(file).unwrap();
-        let layout = Layout::new(320, DVec2::new(20.0, 10.0), false);
-        assert_eq!(
-            (u32::from(decoder.width()), u32::from(decoder.height())),
-            layout.size
-        );
+        assert_eq!(u32::from(decoder.width()), 320);
         let mut n = 0;
         while decoder.read_next_frame().unwrap().is_some() {
             n += 1;

@@ -7,14 +7,14 @@
 //! run that logs every k-th collision keeps the full record.
 
 use crate::mcap_common::*;
-use carom::analysis::{analyze_log, AnalysisOptions, ReadObserver};
-use carom::core::{Boundary, Restitution};
-use carom::engine::EngineParams;
-use carom::log::{
+use carom_analysis::{analyze_log, AnalysisOptions, ReadObserver};
+use carom_core::{Boundary, Restitution};
+use carom_engine::EngineParams;
+use carom_log::{
     CollisionDetail, CollisionRecord, LogOptions, LogReader, ReadProgress, Stop,
     COMPACT_COLLISIONS_CHANNEL,
 };
-use carom::run::{resume, run, Control, ResumeOptions};
+use carom_run::{resume, run, Control, ResumeOptions};
 use serde_json::Value;
 use std::path::Path;
 
@@ -29,7 +29,7 @@ fn log_opts(detail: CollisionDetail) -> LogOptions {
 }
 
 /// The three runs: (name, system, dynamics).
-fn cases() -> Vec<(&'static str, carom::engine::SystemSpec, EngineParams)> {
+fn cases() -> Vec<(&'static str, carom_engine::SystemSpec, EngineParams)> {
     let mut walled = system(120, 0.35, true, true, 5);
     walled.sim_box.boundary[1] = Boundary::Walls { restitution: 0.9 };
     vec![
@@ -60,7 +60,7 @@ fn cases() -> Vec<(&'static str, carom::engine::SystemSpec, EngineParams)> {
 
 fn write(
     name: &str,
-    sys: &carom::engine::SystemSpec,
+    sys: &carom_engine::SystemSpec,
     params: EngineParams,
     log: LogOptions,
 ) -> std::path::PathBuf {
@@ -91,7 +91,7 @@ fn compact_and_full_logs_of_one_run_decode_to_the_same_collisions() {
         );
         let full = write("full.mcap", &sys, params, log_opts(CollisionDetail::Full));
         let r = LogReader::open(&compact).unwrap();
-        assert_eq!(r.run().log_format, carom::log::LOG_FORMAT_VERSION);
+        assert_eq!(r.run().log_format, carom_log::LOG_FORMAT_VERSION);
         let mut r = r;
         let _ = r.collisions().next();
         assert!(r.compact_collisions(), "{name}: compact schema expected");
@@ -261,7 +261,7 @@ fn a_strided_log_keeps_the_full_record() {
     assert!(recs.len() > 10 && recs.iter().all(|c| c.ordinal % 3 == 0));
     assert_ne!(
         COMPACT_COLLISIONS_CHANNEL.schema_name,
-        carom::log::CHANNELS[0].schema_name
+        carom_log::CHANNELS[0].schema_name
     );
     let _ = std::fs::remove_file(&out);
 }
@@ -272,7 +272,7 @@ fn a_strided_log_keeps_the_full_record() {
 /// records and its own format version.
 #[test]
 fn a_format_1_log_reads_and_resumes() {
-    use carom::log::{scan, LogWriter, WriterOptions, WriterPosition};
+    use carom_log::{scan, LogWriter, WriterOptions, WriterPosition};
     let (_, sys, params) = cases().swap_remove(1);
     let mut s = spec(
         sys.clone(),

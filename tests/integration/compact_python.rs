@@ -10,10 +10,10 @@
 //! set (tests/readers_common).
 
 use crate::mcap_common::*;
-use carom::core::{Boundary, Restitution, Species};
-use carom::engine::{EngineParams, SystemSpec};
-use carom::log::{LogOptions, Stop};
-use carom::run::{run, Control};
+use carom_core::{Boundary, Restitution, Species};
+use carom_engine::{EngineParams, SystemSpec};
+use carom_log::{LogOptions, Stop};
+use carom_run::{run, Control};
 use serde_json::Value;
 use std::path::Path;
 use std::process::Command;

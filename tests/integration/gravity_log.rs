@@ -5,10 +5,10 @@
 //! the barometric fit (physics.md §15).
 
 use crate::mcap_common::tmp;
-use carom::analysis::{analyze_log, AnalysisOptions, ReadObserver};
-use carom::config::Config;
-use carom::log::{LogEnd, LogReader, ReadProgress};
-use carom::run::{resume, run, Control, ResumeOptions};
+use carom_analysis::{analyze_log, AnalysisOptions, ReadObserver};
+use carom_config::Config;
+use carom_log::{LogEnd, LogReader, ReadProgress};
+use carom_run::{resume, run, Control, ResumeOptions};
 use std::path::Path;
 
 struct Quiet;

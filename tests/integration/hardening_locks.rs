@@ -14,8 +14,8 @@ use std::path::Path;
 use std::process::{Child, Command, Output, Stdio};
 use std::time::{Duration, Instant};
 
-use carom::log::LogReader;
-use carom::run::{resume, Control, ResumeOptions, ResumePass, RunError};
+use carom_log::LogReader;
+use carom_run::{resume, Control, ResumeOptions, ResumePass, RunError};
 
 /// A run of 300 discs that lasts until it is interrupted, logging no collisions
 /// (a small log), into `out`.
@@ -374,7 +374,7 @@ fn a_resume_over_an_older_log_keeps_it_until_the_copy_is_on_the_disk() {
     let (input, old) = (dir.join("in.mcap"), dir.join("old.mcap"));
     let before = std::fs::read(&old).unwrap();
     let later = ResumeOptions {
-        stop: Some(carom::log::Stop::Time(6.0)),
+        stop: Some(carom_log::Stop::Time(6.0)),
     };
     // No room for the copy: refused, the older log as it was, nothing beside it.
     let mut no_room = |_: &Path| -> std::io::Result<u64> { Ok(1000) };

@@ -10,7 +10,7 @@
 use std::path::Path;
 
 use crate::cli_common::{carom, json_of, ok, scratch};
-use carom::log::{
+use carom_log::{
     LogEnd, LogReader, LogWriter, SummaryMetadata, Thermo, WriterOptions, WriterPosition, CH_THERMO,
 };
 
@@ -74,7 +74,7 @@ fn non_finite_values_in_thermo_and_summary_read_back_everywhere() {
     let mut r = LogReader::open(&dir.join("nan.mcap")).unwrap();
     let mut thermo = 0;
     for t in r.thermo() {
-        let carom::log::LogMessage::Thermo(t) = t.unwrap() else {
+        let carom_log::LogMessage::Thermo(t) = t.unwrap() else {
             panic!("not a thermo record")
         };
         assert!(

@@ -11,8 +11,8 @@
 //! a field swapped consistently in a writer and its reader disagrees with it.
 #![allow(dead_code)]
 
-use carom::core::{Boundary, DVec2, Restitution, Species};
-use carom::log::{
+use carom_core::{Boundary, DVec2, Restitution, Species};
+use carom_log::{
     CollisionBatch, CompactBatch, DriverState, LogCheckpoint, LogReader, RunMetadata, Snapshot,
     SummaryMetadata, Thermo, CH_CHECKPOINT, CH_COLLISIONS, CH_SCENE, CH_SNAPSHOT, CH_THERMO,
     SPECIES_COLORS, TOPICS,
@@ -200,7 +200,7 @@ pub fn checkpoint(cp: &LogCheckpoint) -> Value {
         engine,
     } = cp;
     // Alphabetical: the order does not matter, only that every field is named.
-    let carom::engine::Checkpoint {
+    let carom_engine::Checkpoint {
         cell,
         cell_head,
         cell_next,
@@ -231,7 +231,7 @@ pub fn checkpoint(cp: &LogCheckpoint) -> Value {
         times,
         velocities,
     } = engine;
-    let carom::engine::EngineParams {
+    let carom_engine::EngineParams {
         restitution,
         tc,
         max_events_without_time_advance,
@@ -239,7 +239,7 @@ pub fn checkpoint(cp: &LogCheckpoint) -> Value {
         growth: gp,
         floor,
     } = params;
-    let carom::engine::Stats {
+    let carom_engine::Stats {
         pair_collisions,
         wall_collisions,
         cell_crossings,
@@ -260,7 +260,7 @@ pub fn checkpoint(cp: &LogCheckpoint) -> Value {
     let u = |v: &Vec<u32>| ints(v.iter().copied());
     let col = |v: &[[u32; 3]], k: usize| ints(v.iter().map(|p| p[k]));
     let state = json!({
-        "format_version": carom::log::CHECKPOINT_FORMAT_VERSION,
+        "format_version": carom_log::CHECKPOINT_FORMAT_VERSION,
         "run_start_time": f(*run_start_time), "logged_collisions": logged_collisions,
         "next_sequence": ints(next_sequence.iter().copied()),
         "box_x": f(sim_box.size.x), "box_y": f(sim_box.size.y),
@@ -306,8 +306,8 @@ pub fn checkpoint(cp: &LogCheckpoint) -> Value {
         None => (0, 0.0, 0.0, 0u128, 0, 0.0, 0.0),
         Some(t) => {
             let (kind, a, b) = match t.thermostat {
-                carom::engine::Thermostat::Andersen { kt, rate } => (1, kt, rate),
-                carom::engine::Thermostat::Driven { xi2, interval } => (2, xi2, interval),
+                carom_engine::Thermostat::Andersen { kt, rate } => (1, kt, rate),
+                carom_engine::Thermostat::Driven { xi2, interval } => (2, xi2, interval),
             };
             (
                 kind,
@@ -417,7 +417,7 @@ pub fn run_record(m: &RunMetadata) -> BTreeMap<String, String> {
         }
     }
     // Its checksum over exactly these fields (log format 2.3).
-    carom::log::seal(&mut r);
+    carom_log::seal(&mut r);
     r
 }
 
@@ -466,7 +466,7 @@ pub fn summary_record(s: &SummaryMetadata) -> BTreeMap<String, String> {
     ] {
         put(k, n.to_string());
     }
-    carom::log::seal(&mut r);
+    carom_log::seal(&mut r);
     r
 }
 

@@ -2,9 +2,9 @@
 //! bare-engine reference trajectory.
 #![allow(dead_code)]
 
-use carom::core::{Boundary, DVec2, Species};
-use carom::engine::{Engine, EngineParams, Event, SystemSpec};
-use carom::log::{LogOptions, RunSpec, Stop};
+use carom_core::{Boundary, DVec2, Species};
+use carom_engine::{Engine, EngineParams, Event, SystemSpec};
+use carom_log::{LogOptions, RunSpec, Stop};
 use serde_json::Value;
 use std::path::{Path, PathBuf};
 use std::process::Command;
@@ -53,9 +53,9 @@ pub fn spec(system: SystemSpec, stop: Stop, log: LogOptions) -> RunSpec {
 }
 
 /// `carom.run` metadata for a log written directly with a `LogWriter` in a test.
-pub fn test_run_metadata(n_discs: u64) -> carom::log::RunMetadata {
-    carom::log::RunMetadata {
-        log_format: carom::log::LOG_FORMAT_VERSION.into(),
+pub fn test_run_metadata(n_discs: u64) -> carom_log::RunMetadata {
+    carom_log::RunMetadata {
+        log_format: carom_log::LOG_FORMAT_VERSION.into(),
         carom_version: "test".into(),
         config: "{}".into(),
         seed: 1,
@@ -148,7 +148,7 @@ pub fn node_read(path: &Path) -> Option<Value> {
 /// record and to rounding (1e-12 relative) in a replayed compact one, which
 /// derives them (docs/log-format.md); a compact record's impulse bit for bit
 /// (a full record has none for a pair).
-pub fn same_as_engine(rec: &carom::log::CollisionRecord, ev: &Event) -> bool {
+pub fn same_as_engine(rec: &carom_log::CollisionRecord, ev: &Event) -> bool {
     let close = |a: f64, b: f64| (a - b).abs() <= 1e-12 * a.abs().max(b.abs()).max(1e-300);
     let near = |a: DVec2, b: DVec2| (a - b).length() <= 1e-12 * a.length().max(1.0);
     let (p, impulse) = match ev {
@@ -158,7 +158,7 @@ pub fn same_as_engine(rec: &carom::log::CollisionRecord, ev: &Event) -> bool {
         },
         Event::Wall(w) => match rec.as_wall() {
             Some(_) => {
-                let c = carom::log::CollisionRecord::from_wall(w, rec.ordinal);
+                let c = carom_log::CollisionRecord::from_wall(w, rec.ordinal);
                 (c.collision, w.impulse_vector())
             }
             None => return false,
@@ -170,9 +170,9 @@ pub fn same_as_engine(rec: &carom::log::CollisionRecord, ev: &Event) -> bool {
         == bits(&[p.vi_before, p.vj_before, p.vi_after, p.vj_after])
         && (c.time.to_bits(), c.i, c.j) == (p.time.to_bits(), p.i, p.j);
     // A full record stores no pair impulse (zero); a wall's follows from |Δp|.
-    let compact = c.impulse != DVec2::ZERO && rec.kind == carom::log::KIND_PAIR;
+    let compact = c.impulse != DVec2::ZERO && rec.kind == carom_log::KIND_PAIR;
     exact
-        && (rec.kind == carom::log::KIND_PAIR || c.impulse == impulse)
+        && (rec.kind == carom_log::KIND_PAIR || c.impulse == impulse)
         && if compact {
             bits(&[c.impulse]) == bits(&[impulse])
                 && near(c.normal, p.normal)

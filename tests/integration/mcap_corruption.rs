@@ -3,11 +3,11 @@
 //! original content, a clean cut (warning), or an error naming the problem.
 
 use crate::mcap_common::*;
-use carom::log::RunMetadata;
-use carom::log::{scan, scan_indexed, LogEnd, LogEvent, LogReader, ReadError, ReadOptions};
-use carom::log::{Compression, LogOptions, Stop};
-use carom::log::{LOG_FORMAT_VERSION, METADATA_RUN};
-use carom::run::{run, Control};
+use carom_log::RunMetadata;
+use carom_log::{scan, scan_indexed, LogEnd, LogEvent, LogReader, ReadError, ReadOptions};
+use carom_log::{Compression, LogOptions, Stop};
+use carom_log::{LOG_FORMAT_VERSION, METADATA_RUN};
+use carom_run::{run, Control};
 use std::collections::BTreeMap;
 use std::io::Cursor;
 use std::panic::{catch_unwind, AssertUnwindSafe};

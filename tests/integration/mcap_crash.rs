@@ -10,13 +10,13 @@
 //! runs "forever".
 
 use crate::mcap_common::*;
-use carom::engine::EngineParams;
-use carom::log::CollisionRecord;
-use carom::log::StopReason;
-use carom::log::CH_CHECKPOINT;
-use carom::log::{scan, scan_indexed, LogEnd, LogEvent, LogReader};
-use carom::log::{Compression, LogOptions, Stop};
-use carom::run::{resume, run, Control, ResumeOptions};
+use carom_engine::EngineParams;
+use carom_log::CollisionRecord;
+use carom_log::StopReason;
+use carom_log::CH_CHECKPOINT;
+use carom_log::{scan, scan_indexed, LogEnd, LogEvent, LogReader};
+use carom_log::{Compression, LogOptions, Stop};
+use carom_run::{resume, run, Control, ResumeOptions};
 use std::path::Path;
 use std::process::{Command, Stdio};
 use std::time::{Duration, Instant};
@@ -38,7 +38,7 @@ fn log_opts() -> LogOptions {
     }
 }
 
-fn crash_system() -> carom::engine::SystemSpec {
+fn crash_system() -> carom_engine::SystemSpec {
     system(400, 0.5, true, false, 77)
 }
 
@@ -136,7 +136,7 @@ fn sigkill_mid_run_leaves_a_readable_resumable_log() {
     // Strict reading reports the cut as an error.
     let mut strict = LogReader::open_with(
         &path,
-        carom::log::ReadOptions {
+        carom_log::ReadOptions {
             strict: true,
             ..Default::default()
         },
@@ -144,7 +144,7 @@ fn sigkill_mid_run_leaves_a_readable_resumable_log() {
     .unwrap();
     let last = strict.collisions().last().unwrap();
     assert!(
-        matches!(last, Err(carom::log::ReadError::Truncated { .. })),
+        matches!(last, Err(carom_log::ReadError::Truncated { .. })),
         "{last:?}"
     );
 
@@ -207,7 +207,7 @@ fn sigkill_mid_run_leaves_a_readable_resumable_log() {
 
     // Resume from the last checkpoint in the file; it must give exactly the log of
     // an uninterrupted run to the same end time.
-    let (cp, _, _) = carom::log::last_checkpoint(&path).unwrap();
+    let (cp, _, _) = carom_log::last_checkpoint(&path).unwrap();
     let t_cp = cp.engine.now;
     assert!((info.last_checkpoint_time.unwrap() - t_cp).abs() < 1e-6);
     let t_end = t_cp + 15.0;

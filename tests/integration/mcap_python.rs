@@ -16,11 +16,11 @@
 
 use crate::log_view_common as view;
 use crate::mcap_common::*;
-use carom::core::Restitution;
-use carom::engine::EngineParams;
-use carom::log::{CollisionDetail, Compression, LogOptions, Stop};
-use carom::log::{CHANNELS, CH_COLLISIONS, COMPACT_COLLISIONS_CHANNEL, TOPICS};
-use carom::run::{run, Control};
+use carom_core::Restitution;
+use carom_engine::EngineParams;
+use carom_log::{CollisionDetail, Compression, LogOptions, Stop};
+use carom_log::{CHANNELS, CH_COLLISIONS, COMPACT_COLLISIONS_CHANNEL, TOPICS};
+use carom_run::{run, Control};
 use serde_json::{json, Value};
 use std::path::Path;
 
@@ -245,7 +245,7 @@ fn the_documented_python_loop_decodes_every_channel() {
         String::from_utf8_lossy(&ran.stderr)
     );
     let counts: Value = serde_json::from_slice(&ran.stdout).unwrap();
-    let info = carom::log::scan(&out).unwrap();
+    let info = carom_log::scan(&out).unwrap();
     for (k, topic) in TOPICS.iter().enumerate() {
         let want = info.messages[k];
         let got = counts[*topic].as_u64().unwrap_or(0);

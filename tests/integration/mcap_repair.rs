@@ -10,8 +10,8 @@
 //! flush, and the file is copied while the chunk is still open.
 
 use crate::mcap_common::*;
-use carom::engine::{Engine, EngineParams};
-use carom::log::{Compression, LogEnd, LogReader, LogWriter, WriterOptions, WriterPosition};
+use carom_engine::{Engine, EngineParams};
+use carom_log::{Compression, LogEnd, LogReader, LogWriter, WriterOptions, WriterPosition};
 use serde_json::Value;
 use std::path::{Path, PathBuf};
 use std::process::Command;

@@ -5,11 +5,11 @@
 //! before the checkpoint is a clear error.
 
 use crate::mcap_common::*;
-use carom::log::StopReason;
-use carom::log::{scan, scan_indexed, LogEnd, LogEvent, LogReader, ReadError, ReadProgress};
-use carom::log::{CollisionDetail, Compression, LogOptions, Stop};
-use carom::log::{LogWriter, WriterOptions, WriterPosition};
-use carom::run::{resume, run, Control, ResumeOptions, ResumePass, RunError};
+use carom_log::StopReason;
+use carom_log::{scan, scan_indexed, LogEnd, LogEvent, LogReader, ReadError, ReadProgress};
+use carom_log::{CollisionDetail, Compression, LogOptions, Stop};
+use carom_log::{LogWriter, WriterOptions, WriterPosition};
+use carom_run::{resume, run, Control, ResumeOptions, ResumePass, RunError};
 use std::collections::BTreeMap;
 use std::path::Path;
 

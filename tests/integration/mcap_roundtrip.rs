@@ -4,14 +4,14 @@
 //! every k-th collision, with a collision budget, and when stopped by the flag.
 
 use crate::mcap_common::*;
-use carom::engine::{Engine, EngineParams, Event, SystemSpec};
-use carom::log::StopReason;
-use carom::log::{
+use carom_engine::{Engine, EngineParams, Event, SystemSpec};
+use carom_log::StopReason;
+use carom_log::{
     scan, scan_indexed, scan_observed, LogEnd, LogEvent, LogMessage, LogReader, ReadProgress,
 };
-use carom::log::{CollisionRecord, KIND_WALL};
-use carom::log::{Compression, LogOptions, Stop};
-use carom::run::{run, Control, Progress};
+use carom_log::{CollisionRecord, KIND_WALL};
+use carom_log::{Compression, LogOptions, Stop};
+use carom_run::{run, Control, Progress};
 use std::sync::atomic::{AtomicBool, Ordering};
 
 fn log_opts(compression: Compression) -> LogOptions {
@@ -334,8 +334,8 @@ fn bad_options_name_the_field() {
 
 #[test]
 fn docs_show_every_schema_verbatim() {
-    use carom::log::CHECKPOINT_MSG;
-    use carom::log::{
+    use carom_log::CHECKPOINT_MSG;
+    use carom_log::{
         COLLISION_BATCH_MSG, COMPACT_COLLISION_BATCH_MSG, SNAPSHOT_MSG, THERMO_JSON_SCHEMA,
     };
     let doc = std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/docs/log-format.md"))
@@ -356,8 +356,8 @@ fn docs_show_every_schema_verbatim() {
 
 #[test]
 fn relaxed_placement_reports_progress_and_the_stop_flag_ends_it_before_the_log() {
-    use carom::engine::{Placement, PlacementProgress};
-    use carom::run::RunError;
+    use carom_engine::{Placement, PlacementProgress};
+    use carom_run::RunError;
     let system = SystemSpec {
         placement: Placement::Relaxed,
         ..system(400, 0.82, false, false, 2)
@@ -428,7 +428,7 @@ fn snapshots_and_checkpoints_reuse_their_buffers_without_mixing_them_up() {
     // writer once written: on the writer thread and inline alike, every message
     // must hold its own state, also when a checkpoint (larger) and snapshots of
     // another engine (another N) alternate.
-    use carom::log::{LogWriter, WriterOptions, WriterPosition};
+    use carom_log::{LogWriter, WriterOptions, WriterPosition};
     use std::collections::BTreeMap;
     for background in [true, false] {
         let out = tmp("reuse.mcap");
@@ -505,7 +505,7 @@ fn the_log_describes_its_run() {
     // A walled mixture with inelastic collisions, every 3rd collision logged.
     let system = system(200, 0.35, true, true, 5);
     let params = EngineParams {
-        restitution: carom::core::Restitution::Normal(0.9),
+        restitution: carom_core::Restitution::Normal(0.9),
         tc: 1e-3,
         ..EngineParams::default()
     };
@@ -514,13 +514,13 @@ fn the_log_describes_its_run() {
         ..log_opts(Compression::Zstd)
     };
     let out = tmp("facts.mcap");
-    let run_spec = carom::log::RunSpec {
+    let run_spec = carom_log::RunSpec {
         params,
         ..spec(system.clone(), Stop::Time(0.5), log.clone())
     };
     run(&run_spec, &out, Control::default()).unwrap();
     let r = LogReader::open(&out).unwrap();
-    assert_eq!(r.run().log_format, carom::log::LOG_FORMAT_VERSION);
+    assert_eq!(r.run().log_format, carom_log::LOG_FORMAT_VERSION);
     let facts = r
         .run()
         .run_facts
@@ -528,23 +528,23 @@ fn the_log_describes_its_run() {
         .expect("a 1.2 log stores its facts");
     assert_eq!(
         facts,
-        carom::log::RunFacts::new(&system.species, &system.sim_box, &params, &log)
+        carom_log::RunFacts::new(&system.species, &system.sim_box, &params, &log)
     );
     assert_eq!(facts.species, system.species);
     assert_eq!(facts.sim_box, system.sim_box);
-    assert_eq!(facts.restitution, carom::core::Restitution::Normal(0.9));
+    assert_eq!(facts.restitution, carom_core::Restitution::Normal(0.9));
     assert_eq!(facts.tc, 1e-3);
     assert_eq!(facts.n_discs, 200);
     assert_eq!(facts.collision_every, Some(3));
     assert_eq!(
         facts.accessible_area,
-        carom::core::observables::accessible_area(&system.species, &system.sim_box)
+        carom_core::observables::accessible_area(&system.species, &system.sim_box)
     );
 }
 
 #[test]
 fn a_log_of_format_1_1_reads_without_facts() {
-    use carom::log::{LogWriter, WriterOptions, WriterPosition};
+    use carom_log::{LogWriter, WriterOptions, WriterPosition};
     // The `carom.run` record of a 1.1 log: every key but `run_facts`.
     let mut meta = test_run_metadata(4);
     meta.log_format = "1.1".into();

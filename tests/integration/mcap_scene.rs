@@ -8,8 +8,8 @@
 //! message otherwise, and fails instead when `CI` is set.
 
 use crate::mcap_common::*;
-use carom::log::{scan, LogOptions, LogReader, Stop, CH_SCENE, CH_SNAPSHOT, THERMO_JSON_SCHEMA};
-use carom::run::{resume, run, Control, ResumeOptions};
+use carom_log::{scan, LogOptions, LogReader, Stop, CH_SCENE, CH_SNAPSHOT, THERMO_JSON_SCHEMA};
+use carom_run::{resume, run, Control, ResumeOptions};
 use serde_json::Value;
 use std::path::Path;
 use std::process::Command;
@@ -104,7 +104,7 @@ fn foxglove_decodes_scene_frames_that_match_the_snapshots() {
         let text = String::from_utf8(o.stdout).unwrap();
         let mut r = LogReader::open(&out).unwrap();
         let snap = match r.snapshots().next().unwrap().unwrap() {
-            carom::log::LogMessage::Snapshot(s) => s,
+            carom_log::LogMessage::Snapshot(s) => s,
             m => panic!("{m:?}"),
         };
         let first = text.lines().next().unwrap();

@@ -4,11 +4,11 @@
 //! only the block starts for structure.
 
 use crate::mcap_common::*;
-use carom::analysis::{analyze_log, AnalysisOptions, ReadObserver, Report};
-use carom::log::{
+use carom_analysis::{analyze_log, AnalysisOptions, ReadObserver, Report};
+use carom_log::{
     Compression, LogMessage, LogOptions, LogReader, ReadProgress, SchedulePoints, Stop,
 };
-use carom::run::{resume, run, Control, ResumeOptions};
+use carom_run::{resume, run, Control, ResumeOptions};
 use std::path::Path;
 
 /// T = 1, thermo every 0.5, a checkpoint every 2, and `schedule` inside each T.

@@ -4,7 +4,7 @@
 //! item 3); plus the dilute-gas wall pressure the walled-box tests compare with.
 #![allow(dead_code)]
 
-use carom::analysis::stats::{block_average, blocking};
+use carom_analysis::stats::{block_average, blocking};
 
 /// Mean and standard error from the blocking analysis; when the analysis does not
 /// converge (the series is short for its correlation time) the error is the larger

@@ -10,7 +10,7 @@ use std::process::{Command, Stdio};
 use std::time::{Duration, Instant};
 
 use crate::cli_common::{carom, json_of, ok, python_with, scratch, BIN};
-use carom::log::last_checkpoint;
+use carom_log::last_checkpoint;
 use serde_json::Value;
 
 fn write(dir: &Path, name: &str, text: &str) {

@@ -23,13 +23,13 @@
 
 use crate::mcap_common::{spec, system, tmp};
 use crate::stats_common::{assert_within, est};
-use carom::core::{Boundary, Species};
-use carom::engine::SystemSpec;
-use carom::log::{
+use carom_core::{Boundary, Species};
+use carom_engine::SystemSpec;
+use carom_log::{
     CollisionDetail, CollisionRecord, LogMessage, LogOptions, LogReader, Stop, StopReason, Thermo,
 };
-use carom::log::{KIND_PAIR, KIND_WALL};
-use carom::run::{run, Control};
+use carom_log::{KIND_PAIR, KIND_WALL};
+use carom_run::{run, Control};
 
 /// Number of standard errors allowed between the two estimators.
 const K: f64 = 4.0;
@@ -215,7 +215,7 @@ fn thermo_pressure_matches_the_equation_of_state() {
     assert!((b.z.unwrap() - z_run).abs() < 1e-12 * z_run, "{:?}", b.z);
     let p = b.pressure.unwrap();
     let area = {
-        let snap = carom::engine::box_size_for(&[carom::core::Species::reference(n)], 0.5, 1.0);
+        let snap = carom_engine::box_size_for(&[carom_core::Species::reference(n)], 0.5, 1.0);
         snap.x * snap.y
     };
     assert!((p * area / (nf * b.temperature) - b.z.unwrap()).abs() < 1e-9);

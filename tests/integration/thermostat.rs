@@ -4,11 +4,11 @@
 //! an inelastic gas at the temperature the energy balance (16.6) predicts.
 
 use crate::analysis_common::{analyse_state_with, fluid};
-use carom::analysis::{
+use carom_analysis::{
     driven_a2, driven_steady_temperature, enskog_rate_coefficient, AnalysisOptions, Report,
 };
-use carom::core::{Restitution, Species};
-use carom::engine::{EngineParams, SystemSpec, Thermostat, ThermostatStats, Velocities};
+use carom_core::{Restitution, Species};
+use carom_engine::{EngineParams, SystemSpec, Thermostat, ThermostatStats, Velocities};
 
 /// Run `spec` with `params` and `thermostat` (seeded with the spec's seed) to
 /// `t_end`, a snapshot every `dt`, and analyse it from `equilibrate` on.

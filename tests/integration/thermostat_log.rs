@@ -4,10 +4,10 @@
 //! target in place of an energy budget.
 
 use crate::mcap_common::tmp;
-use carom::analysis::{analyze_log, AnalysisOptions, ReadObserver};
-use carom::config::load_config;
-use carom::log::{CollisionDetail, LogEnd, LogReader, ReadProgress};
-use carom::run::{resume, run, Control, ResumeOptions};
+use carom_analysis::{analyze_log, AnalysisOptions, ReadObserver};
+use carom_config::load_config;
+use carom_log::{CollisionDetail, LogEnd, LogReader, ReadProgress};
+use carom_run::{resume, run, Control, ResumeOptions};
 use std::path::Path;
 
 struct Quiet;
@@ -28,12 +28,12 @@ fn raw_messages(path: &Path) -> Vec<(usize, u32, u64, Vec<u8>)> {
 }
 
 /// `data/<name>` with 300 discs for 12 time units, a checkpoint every 2.
-fn example(name: &str) -> carom::log::RunSpec {
+fn example(name: &str) -> carom_log::RunSpec {
     example_with(name, &[])
 }
 
 /// [`example`] with more `--set`s.
-fn example_with(name: &str, more: &[&str]) -> carom::log::RunSpec {
+fn example_with(name: &str, more: &[&str]) -> carom_log::RunSpec {
     let data = Path::new(env!("CARGO_MANIFEST_DIR"))
         .join("data")
         .join(name);

@@ -21,13 +21,13 @@
 //!    Kolafa–Rottner 6.4553 ± 0.0034. Pass: within 3 combined standard errors
 //!    + 0.5 % (finite N).
 
-use carom::analysis::{
+use carom_analysis::{
     delaunay_neighbours, global_psi6, local_psi6, local_psi6_equal, local_psi6_nearest,
     six_neighbour_fraction,
 };
-use carom::core::observables::{degrees_of_freedom, packing_fraction, temperature, virial_z};
-use carom::core::{Boundary, SimBox, Species};
-use carom::engine::{
+use carom_core::observables::{degrees_of_freedom, packing_fraction, temperature, virial_z};
+use carom_core::{Boundary, SimBox, Species};
+use carom_engine::{
     box_size_for, Engine, EngineParams, Growth, GrowthEnd, Placement, State, SystemSpec, Velocities,
 };
 

@@ -18,11 +18,11 @@
 //! the state is equilibrated, its velocities scaled back to kT = 1 and equilibrated
 //! again, twice, before measuring.
 
-use carom::core::gravity::barometric_beta;
-use carom::core::observables::degrees_of_freedom;
-use carom::core::rates::henderson_contact_value;
-use carom::core::{Boundary, DVec2, SimBox, Species};
-use carom::engine::{Engine, EngineParams, Placement, State, SystemSpec, Velocities};
+use carom_core::gravity::barometric_beta;
+use carom_core::observables::degrees_of_freedom;
+use carom_core::rates::henderson_contact_value;
+use carom_core::{Boundary, DVec2, SimBox, Species};
+use carom_engine::{Engine, EngineParams, Placement, State, SystemSpec, Velocities};
 
 /// A column of `n` discs (σ = 1, m = 1) in an `lx` × `ly` box, periodic x, walls
 /// y, in the field `g`: run for `settle`, brought back to kT = 1, twice, then run

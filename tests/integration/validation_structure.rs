@@ -22,10 +22,10 @@ use std::time::Instant;
 
 use crate::analysis_common;
 use crate::validation_common::{fmt_se, Check, Fragment, Row};
-use carom::analysis::kolafa_rottner;
-use carom::analysis::{AnalysisOptions, Analyzer, Report, RunDescription};
-use carom::core::{Boundary, SimBox, Species};
-use carom::engine::{box_size_for, Engine, EngineParams, SystemSpec};
+use carom_analysis::kolafa_rottner;
+use carom_analysis::{AnalysisOptions, Analyzer, Report, RunDescription};
+use carom_core::{Boundary, SimBox, Species};
+use carom_engine::{box_size_for, Engine, EngineParams, SystemSpec};
 
 /// A run's analysis and what it cost.
 struct Measured {

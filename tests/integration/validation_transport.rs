@@ -23,8 +23,8 @@ use std::time::Instant;
 
 use crate::analysis_common;
 use crate::validation_common::{fmt_se, Check, Fragment, Row};
-use carom::analysis::{AnalysisOptions, Analyzer, Report, RunDescription};
-use carom::engine::{Engine, EngineParams, SystemSpec};
+use carom_analysis::{AnalysisOptions, Analyzer, Report, RunDescription};
+use carom_engine::{Engine, EngineParams, SystemSpec};
 
 /// A run's analysis and what it cost.
 struct Measured {
@@ -137,7 +137,7 @@ fn case10_transport_at_low_density_against_enskog() {
             l.value_helfand.std_error,
             e.thermal_conductivity,
         ));
-        let same = |q: &str, d: &carom::analysis::Estimate| {
+        let same = |q: &str, d: &carom_analysis::Estimate| {
             Row::new(format!("{q}, {label}"), d.value, d.std_error)
                 .reference(0.0, 0.0)
                 .check(Check::Sigma(3.0))

@@ -3,8 +3,8 @@
 
 use super::{engine, mono, periodic_spec};
 use crate::validation_common::{Check, Fragment, Row};
-use carom::core::Restitution;
-use carom::engine::{Engine, EngineError, EngineParams, Velocities};
+use carom_core::Restitution;
+use carom_engine::{Engine, EngineError, EngineParams, Velocities};
 
 // ===========================================================================
 // Case 5: inelastic collapse

@@ -3,9 +3,9 @@
 
 use super::{engine, mono, periodic_spec};
 use crate::validation_common::{Check, Fragment, Row};
-use carom::analysis::kolafa_rottner;
-use carom::core::{DVec2, Restitution};
-use carom::engine::{Engine, EngineParams, Event, Velocities};
+use carom_analysis::kolafa_rottner;
+use carom_core::{DVec2, Restitution};
+use carom_engine::{Engine, EngineParams, Event, Velocities};
 use std::f64::consts::PI;
 use std::fmt::Write as _;
 use std::time::Instant;

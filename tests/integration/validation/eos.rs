@@ -5,8 +5,8 @@ use super::{engine, kt, li2022, mono, periodic_spec, psi6};
 use crate::stats_common;
 use crate::stats_common::{est, Est};
 use crate::validation_common::{fmt_se, Check, Fragment, Row};
-use carom::analysis::kolafa_rottner;
-use carom::engine::{EngineParams, Velocities};
+use carom_analysis::kolafa_rottner;
+use carom_engine::{EngineParams, Velocities};
 use std::f64::consts::PI;
 use std::time::Instant;
 

@@ -3,11 +3,11 @@
 
 use super::{engine, kt, mono, periodic_spec};
 use crate::validation_common::{Check, Fragment, Row};
-use carom::analysis::stats::{
+use carom_analysis::stats::{
     chi_square_histogram, ks_test, mb_speed_test, Histogram, MaxwellBoltzmann2d,
 };
-use carom::core::Species;
-use carom::engine::{EngineParams, SystemSpec, Velocities};
+use carom_core::Species;
+use carom_engine::{EngineParams, SystemSpec, Velocities};
 
 // ===========================================================================
 // Case 3: Maxwell–Boltzmann

@@ -2,7 +2,7 @@
 //!
 //! Every case runs the engine directly (no log file) and compares a measured
 //! quantity with a reference, with one standard error from block averaging
-//! (`carom::analysis::stats::blocking`, via `stats_common`) where the quantity is
+//! (`carom_analysis::stats::blocking`, via `stats_common`) where the quantity is
 //! statistical:
 //!
 //! 1. Equation of state Z(η) in a periodic box: η = 0.2, 0.4, 0.5, 0.6 (N = 1024)
@@ -62,8 +62,8 @@
 //! One file per case: `eos` (1, 2), `maxwell_boltzmann` (3), `cooling` (4),
 //! `collapse` (5), `walls` (6); the systems they share are below.
 
-use carom::core::{Boundary, Species};
-use carom::engine::{Engine, EngineParams, State, SystemSpec, Velocities};
+use carom_core::{Boundary, Species};
+use carom_engine::{Engine, EngineParams, State, SystemSpec, Velocities};
 use std::path::Path;
 
 mod collapse;

@@ -4,8 +4,8 @@
 use super::{engine, mono};
 use crate::stats_common::{dilute_wall_z, est, Est};
 use crate::validation_common::{fmt_se, Check, Fragment, Row};
-use carom::core::{Axis, Boundary, WallSide};
-use carom::engine::{EngineParams, Event, State, SystemSpec};
+use carom_core::{Axis, Boundary, WallSide};
+use carom_engine::{EngineParams, Event, State, SystemSpec};
 use std::f64::consts::PI;
 use std::time::Instant;
 
