@@ -24,7 +24,7 @@ use super::{Control, RunError, RunSummary};
 /// Start a fresh run of `spec`, logging to `out` (created, or replaced once the
 /// run has started: see `replace.rs`). Blocks until the run stops (stop
 /// criterion, `control.stop`, or an engine failure, after which the log is still
-/// finished). The log holds what `run/driver.rs` describes.
+/// finished). The log holds what `driver/mod.rs` describes.
 pub fn run(spec: &RunSpec, out: &Path, mut control: Control<'_>) -> Result<RunSummary, RunError> {
     // Before placement, which can take a minute: a fresh state starts at time 0.
     check_log_options(&spec.log, &spec.stop, 0.0, "stop.time")?;

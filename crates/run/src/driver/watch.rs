@@ -1,0 +1,124 @@
+//! What the run looks at between events: its progress (reported through
+//! [`Control`](crate::Control)), the room on the log's disk (stop in time to
+//! finish the log, or at once when the log would far outgrow the disk) and the
+//! watchdog (stop when no collision has happened within its bound, `watchdog.rs`).
+
+use std::time::Instant;
+
+use carom_log::Stop;
+
+use crate::disk::{far_too_small, finish_reserve, free_bytes};
+use crate::observation::Observation;
+use crate::watchdog;
+use crate::{Progress, RunError};
+
+use super::Driver;
+
+impl Driver<'_> {
+    /// The watchdog's check at `now`: `true` when no collision has happened within
+    /// the bound (the run must stop); otherwise the next check is scheduled.
+    pub(super) fn quiet_too_long(&mut self, now: f64) -> Result<bool, RunError> {
+        let Some(b) = watchdog::bound(&self.engine, self.max_quiet, self.stop) else {
+            return Ok(false);
+        };
+        let next = self.last_collision + b;
+        if now - self.last_collision >= b || next <= now {
+            self.quiet_detail = Some(watchdog::explain(
+                self.last_collision,
+                now,
+                b,
+                self.max_quiet,
+            ));
+            return Ok(true);
+        }
+        self.schedule(next, Observation::Watchdog)?;
+        Ok(false)
+    }
+
+    pub(super) fn progress(&mut self) -> Progress {
+        let wall = self.started.elapsed().as_secs_f64();
+        let done = self.collisions - self.start_collisions;
+        let fraction = match self.stop {
+            Stop::Time(t) => {
+                let span = t - self.run_start_time;
+                if span > 0.0 {
+                    ((self.engine.now() - self.run_start_time) / span).clamp(0.0, 1.0)
+                } else {
+                    1.0
+                }
+            }
+            Stop::Collisions(c) => {
+                if c > 0 {
+                    (self.collisions as f64 / c as f64).min(1.0)
+                } else {
+                    1.0
+                }
+            }
+        };
+        let p = Progress {
+            sim_time: self.engine.now(),
+            collisions: self.collisions,
+            collisions_per_second: if wall > 0.0 { done as f64 / wall } else { 0.0 },
+            wall_seconds: wall,
+            fraction,
+            stop: self.stop,
+            log_bytes: self.log_bytes(),
+        };
+        if let Some(cb) = self.control.progress.as_mut() {
+            cb(&p);
+        }
+        self.last_progress = Instant::now();
+        p
+    }
+
+    /// Whether the log, projected to the stop from its growth so far, needs far
+    /// more than the room on its disk ([`far_too_small`]), unless the caller
+    /// ignores the estimate; if so, say why in the run's detail.
+    pub(super) fn disk_far_too_small(&mut self, p: &Progress) -> bool {
+        if self.control.ignore_disk_estimate || p.fraction >= 1.0 {
+            return false;
+        }
+        let Some(projected) = p.projected_log_bytes() else {
+            return false;
+        };
+        let Ok(free) = free_bytes(&mut self.control.free_space, self.writer.path()) else {
+            return false;
+        };
+        if !far_too_small(p.log_bytes, projected, free) {
+            return false;
+        }
+        self.quiet_detail = Some(format!(
+            "at the rate it grew over its first {:.3e} time units ({} bytes), the log would \
+             reach about {projected:.3e} bytes by the stop, more than {} times the {free} bytes \
+             free on its disk: stopped at once with a finished log (log fewer collisions or \
+             records, stop sooner, or run with --ignore-disk-estimate to go on until the disk \
+             is nearly full)",
+            p.sim_time - self.run_start_time,
+            p.log_bytes,
+            crate::disk::FAR_BEYOND_FREE
+        ));
+        true
+    }
+
+    /// The log file's size on disk (bytes; 0 if it cannot be read).
+    pub(super) fn log_bytes(&self) -> u64 {
+        std::fs::metadata(&self.path).map_or(0, |m| m.len())
+    }
+
+    /// Look at the room left on the log's disk, when the clock (`timed`) or the
+    /// log's growth says so ([`DiskWatch`]): whether the run must stop now to
+    /// finish its log. A disk whose room cannot be told is never low.
+    pub(super) fn disk_low(&mut self, timed: bool) -> bool {
+        let bytes = self.log_bytes();
+        if !timed && !self.disk.due(bytes) {
+            return false;
+        }
+        let free = free_bytes(&mut self.control.free_space, &self.path);
+        let finish = finish_reserve(
+            self.writer.finish_bound(bytes),
+            self.writer.stats().largest_message,
+            self.engine.len() as u64,
+        );
+        self.disk.look(bytes, free, finish)
+    }
+}
