@@ -26,11 +26,24 @@ mod driven;
 #[path = "analyze_sections.rs"]
 mod sections;
 
+#[path = "analyze_pressure.rs"]
+mod pressure;
+
+#[path = "analyze_structure.rs"]
+mod structure;
+
 #[path = "analyze_inelastic.rs"]
 mod inelastic;
 
 use super::report_text::{self, sigmas, Text};
-use sections::{pair_correlation_text, pressure_text, run_text, structure_text, velocity_text};
+use pressure::pressure_text;
+use sections::{run_text, velocity_text};
+use structure::{pair_correlation_text, structure_text};
+
+/// Whether the run cools freely: inelastic, with nothing putting energy in.
+fn cooling(r: &Report) -> bool {
+    !r.elastic && r.thermostat.is_none() && r.floor.is_none()
+}
 
 impl ReadObserver for ReadDisplay {
     fn pass(&mut self, what: &'static str) {
