@@ -24,9 +24,7 @@
 //! Run: `cargo bench --bench logging -- --warm-up-time 1 --measurement-time 5`.
 
 use carom_engine::{Engine, EngineParams, Event, SystemSpec};
-use carom_log::{
-    Compression, LogOptions, LogWriter, RunSpec, Stop, WriterOptions, WriterPosition,
-};
+use carom_log::{Compression, LogOptions, LogWriter, RunSpec, Stop, WriterOptions, WriterPosition};
 use criterion::{criterion_group, Criterion, Throughput};
 use std::collections::BTreeMap;
 use std::path::PathBuf;

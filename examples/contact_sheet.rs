@@ -47,11 +47,8 @@ fn main() {
         }
     }
     // The labels' font: DejaVu Sans, the one `carom`'s own figures use.
-    let _ = plotters::style::register_font(
-        "sans-serif",
-        FontStyle::Normal,
-        dejavu::sans::regular(),
-    );
+    let _ =
+        plotters::style::register_font("sans-serif", FontStyle::Normal, dejavu::sans::regular());
     {
         let root = BitMapBackend::with_buffer(&mut buf, (w, h)).into_drawing_area();
         for (k, (name, img)) in tiles.iter().enumerate() {

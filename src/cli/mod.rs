@@ -292,7 +292,8 @@ impl CliError {
         match self {
             CliError::Config(_) | CliError::Usage(_) => 2,
             CliError::Sweep(
-                carom_run::sweep::SweepError::Plan { .. } | carom_run::sweep::SweepError::Point { .. },
+                carom_run::sweep::SweepError::Plan { .. }
+                | carom_run::sweep::SweepError::Point { .. },
             ) => 2,
             // Interrupted before the log existed: the shell's code for SIGINT, as
             // for a run interrupted later (with its log finished).

@@ -132,7 +132,10 @@ fn movie_frames_have_the_layout_size() {
     let s = two_discs(false);
     {
         let mut movie = Movie::create(&out, &s, 320, ColourBy::Species, 100).unwrap();
-        assert_eq!(movie.layout(), &Layout::new(320, DVec2::new(20.0, 10.0), false));
+        assert_eq!(
+            movie.layout(),
+            &Layout::new(320, DVec2::new(20.0, 10.0), false)
+        );
         movie.push(&s).unwrap();
         movie.push(&s).unwrap();
     }

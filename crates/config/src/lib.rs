@@ -1,21 +1,14 @@
 //! The JSON configuration a physicist writes by hand, and how it becomes a
-//! [`RunSpec`](carom_log::RunSpec).
+//! [`RunSpec`](carom_log::RunSpec): `front` parses the file (or `{}`), applies the
+//! `--set key=value` overrides ([`apply_set`]) and deserialises a [`Config`]
+//! (`model`; unknown fields are errors); `validate` checks every value against its
+//! range, each [`ConfigError`] naming the field's dotted path, what was wrong and
+//! what is allowed; `resolve` ([`Config::to_run_spec`]) makes every default explicit,
+//! and the resolved configuration ([`Config::canonical_json`]) travels into the log.
 //!
-//! 1. `front`: the file (or `{}` when there is none) is parsed as JSON, the
-//!    `--set key=value` overrides are applied to that value ([`apply_set`]), and
-//!    the result is deserialised into [`Config`] (`model`; unknown fields are errors).
-//! 2. `validate`: every value is checked against its allowed range; the log
-//!    options through [`check_log_options`](carom_log::check_log_options), shared with
-//!    resume. Every error ([`ConfigError`], `error`) names the field as a dotted
-//!    path, says what was wrong and what is allowed.
-//! 3. `resolve`: [`Config::to_run_spec`] makes every default explicit and builds
-//!    the engine's spec; the resolved configuration ([`Config::canonical_json`])
-//!    travels with it into the log, so a log always says exactly what ran.
-//!
-//! Every field is optional; the defaults are a fluid of 10⁴ discs at η = 0.5 for
-//! 50 time units. The fields, their units and allowed values are documented on the
-//! structs of `model`; `data/config.schema.json` is generated from them
-//! ([`config_schema`]; `cargo run -p carom-config --example write_schema`).
+//! Every field is optional (the default: 10⁴ discs at η = 0.5 for 50 time units);
+//! fields, units and ranges are documented on the structs of `model`, from which
+//! `data/config.schema.json` is generated ([`config_schema`]).
 
 #![deny(missing_docs)]
 

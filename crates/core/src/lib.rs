@@ -1,26 +1,15 @@
 //! # carom-core
 //!
-//! The pure physics of hard discs in two dimensions, with no allocation and no state:
+//! The pure physics of hard discs in two dimensions, with no allocation and no
+//! state: free flight and exact contact times ([`kinematics`], physics.md §1–2), the
+//! collision rules ([`collision`], §3–4), free fall ([`gravity`], §15), growing discs
+//! ([`growth`], §17), the vibrating floor ([`vibrating_wall`], §18), the first root of
+//! a quartic ([`roots`], §15), boxes and walls ([`boundary`]), species
+//! ([`species`]), the observables' only definitions ([`observables`], §5) and the
+//! expected collision rates ([`rates`], §7).
 //!
-//! * [`kinematics`] — free flight and the exact contact time of two discs
-//!   (physics.md §1–2, seed 000 Eq. 14–17);
-//! * [`collision`] — elastic and inelastic resolution of a pair collision
-//!   (physics.md §3–4, seed 000 Eq. 8–13 and 22–27, seed 004);
-//! * [`gravity`] — free fall in a uniform field: heights, wall and cell-edge times
-//!   (physics.md §15);
-//! * [`growth`] — growing discs (compression): contact and wall times, the
-//!   contact rule (physics.md §17);
-//! * [`roots`] — the first descent through zero of a polynomial of degree ≤ 4,
-//!   isolated to rounding (the contact of a resting and a falling disc, §15);
-//! * [`boundary`] — rectangular boxes, periodic or walled per axis, and wall collisions;
-//! * [`species`] — what a disc is made of (radius, mass);
-//! * [`observables`] — degrees of freedom, kT, packing fraction, the area centres
-//!   reach, and the pressure estimators (physics.md §5): their only definitions;
-//! * [`rates`] — the collision rates expected from density and temperature (§7).
-//!
-//! Units are the caller's: lengths, times and masses in any consistent system. The
-//! reference values in physics.md use disc diameter σ = 1, m = 1, kT = 1.
-//! Every quantity is `f64`; vectors are [`glam::DVec2`].
+//! Units are the caller's (physics.md's reference values use σ = 1, m = 1, kT = 1);
+//! every quantity is `f64`, vectors are [`glam::DVec2`].
 
 #![deny(missing_docs)]
 

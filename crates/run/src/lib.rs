@@ -1,22 +1,14 @@
 //! # carom-run
+//!
 //! The run driver: builds the engine, asks it for observations at exact times,
-//! hands every event to the MCAP log writer, and ends the log cleanly; and
+//! hands every event to the MCAP log writer and ends the log cleanly; and
 //! [`sweep`], many runs from one plan (a local pool of processes, or Slurm).
 //!
 //! Two entry points, both blocking until the run ends: [`run`], a fresh run from a
 //! [`RunSpec`](carom_log::RunSpec) into a new log file, and [`resume`], which
 //! continues a log (complete, or cut short by a crash) from its last checkpoint.
-//! The caller steers both through a [`Control`] (stop flag, progress, free disk).
-//!
-//! ```no_run
-//! use carom_run::{run, Control, Progress};
-//! use std::sync::atomic::AtomicBool;
-//! # fn spec() -> carom_log::RunSpec { unimplemented!() }
-//! let stop = AtomicBool::new(false); // set it from a Ctrl-C handler
-//! let mut show = |p: &Progress| eprintln!("t = {:.3}, {} collisions", p.sim_time, p.collisions);
-//! let summary = run(&spec(), "out.mcap".as_ref(), Control::new(&stop, &mut show)).unwrap();
-//! println!("{} collisions/s", summary.collisions_per_second);
-//! ```
+//! The caller steers both through a [`Control`] (stop flag, progress, free disk;
+//! an example is on [`run`]).
 
 #![deny(missing_docs)]
 

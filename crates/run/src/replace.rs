@@ -1,24 +1,25 @@
-//! Writing a run's log over an older one (`carom run --force`) without losing the
-//! older one to a run that fails at its start.
+//! Writing a run's log over an older one (`carom run --force`, `carom resume
+//! --out NAME`) without losing the older one to a run that fails at its start.
 //!
 //! The new log is written beside the old one, as `NAME.run-tmp`, and renamed over
-//! it once the run has started: once its first checkpoint (written at the start
-//! of the run) is on the disk (the writer syncs it), so that the new log can be
-//! resumed on its own. `carom resume --out NAME` over an older NAME does the
-//! same once the copied prefix, which ends in a checkpoint, is on the disk. From then on NAME is the new log, as for a fresh run (a crash
-//! leaves it resumable in place). A run that fails before then (an engine that
-//! refuses the configuration, a write error, an abort for want of memory) leaves
-//! the old log as it was; its temporary file is removed, or, after a kill or an
-//! abort, replaced by the next run over NAME. Both names are locked
-//! ([`lock_log`]) from the start to the end of the run, so NAME is never
-//! unlocked across the rename. A fresh log (no file, an empty one, or a device
-//! such as /dev/null) is written in place.
+//! it once its first checkpoint is on the disk, so that it can be resumed on its
+//! own; a run that fails before then leaves the old log as it was. Both names are
+//! locked ([`lock_log`]) for the whole run, so NAME is never unlocked across the
+//! rename. A fresh log (no file, an empty one, a device) is written in place.
 
 use std::path::{Path, PathBuf};
 
 use super::lock::{lock_log, LogLock};
 use super::RunError;
 
+/// How the replacement goes: `carom run` renames once the checkpoint written at
+/// the start of the run is on the disk (the writer syncs it); `carom resume --out
+/// NAME` once the copied prefix, which ends in a checkpoint, is. From then on NAME
+/// is the new log, as for a fresh run (a crash leaves it resumable in place). A
+/// run that fails before then (an engine that refuses the configuration, a write
+/// error, an abort for want of memory) has its temporary file removed, or, after a
+/// kill or an abort, replaced by the next run over NAME.
+///
 /// The file a run writes its log to, locked, and the older log it replaces.
 #[derive(Debug)]
 pub(super) struct Output {

@@ -25,6 +25,16 @@ use super::{Control, RunError, RunSummary};
 /// run has started: see `replace.rs`). Blocks until the run stops (stop
 /// criterion, `control.stop`, or an engine failure, after which the log is still
 /// finished). The log holds what `driver/mod.rs` describes.
+///
+/// ```no_run
+/// use carom_run::{run, Control, Progress};
+/// use std::sync::atomic::AtomicBool;
+/// # fn spec() -> carom_log::RunSpec { unimplemented!() }
+/// let stop = AtomicBool::new(false); // set it from a Ctrl-C handler
+/// let mut show = |p: &Progress| eprintln!("t = {:.3}, {} collisions", p.sim_time, p.collisions);
+/// let summary = run(&spec(), "out.mcap".as_ref(), Control::new(&stop, &mut show)).unwrap();
+/// println!("{} collisions/s", summary.collisions_per_second);
+/// ```
 pub fn run(spec: &RunSpec, out: &Path, mut control: Control<'_>) -> Result<RunSummary, RunError> {
     // Before placement, which can take a minute: a fresh state starts at time 0.
     check_log_options(&spec.log, &spec.stop, 0.0, "stop.time")?;

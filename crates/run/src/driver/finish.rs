@@ -85,6 +85,5 @@ impl Driver<'_> {
             file_bytes,
             detail: self.quiet_detail.take(),
         })
-    
     }
 }

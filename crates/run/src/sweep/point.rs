@@ -4,15 +4,8 @@
 //! passes it on once), and a failure recorded in `failed.txt`. A log in the
 //! point's directory that is not the point's own readable run (a `mismatch` or
 //! `unreadable`, see [`super::status`]) is never overwritten: it is renamed to
-//! `run.set-aside-K.mcap` beside it first, and the sweep says so.
-//!
-//! The child writes its output (stdout and stderr) straight into the point's
-//! `carom.log`, not into pipes to the sweep: a sweep that dies (killed, or its own
-//! output closed as in `carom sweep … | head`) takes nothing of its points with it —
-//! they run on to their end and finish their logs; a sweep started meanwhile finds
-//! them `running` and skips them. The sweep follows a point's progress by reading
-//! the plain progress lines `carom run` prints when not on a terminal
-//! (`[   12.3 s]  45.2% t = …`) from that file.
+//! `run.set-aside-K.mcap` beside it first, and the sweep says so. The child's
+//! output goes straight into the point's `carom.log` (`start_point`).
 
 use std::fs::File;
 use std::io::{Read, Seek, SeekFrom, Write};
@@ -105,6 +98,14 @@ fn set_aside(sweep: &SweepDir, i: usize) -> Result<PathBuf, SweepError> {
     Ok(to)
 }
 
+/// The child writes its output (stdout and stderr) straight into the point's
+/// `carom.log`, not into pipes to the sweep: a sweep that dies (killed, or its own
+/// output closed as in `carom sweep … | head`) takes nothing of its points with it —
+/// they run on to their end and finish their logs; a sweep started meanwhile finds
+/// them `running` and skips them. The sweep follows a point's progress by reading
+/// the plain progress lines `carom run` prints when not on a terminal
+/// (`[   12.3 s]  45.2% t = …`) from that file.
+///
 /// Start point `i` with `exe` (the `carom` binary). `Err(state)` if it needs nothing.
 pub(super) fn start_point(
     exe: &Path,
