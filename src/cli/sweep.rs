@@ -24,6 +24,8 @@ use serde_json::json;
 use super::CliError;
 
 /// Arguments of `carom sweep`.
+// The field docs are `carom sweep --help`'s text (`DIR/<point>/…`), not HTML.
+#[allow(rustdoc::invalid_html_tags)]
 #[derive(Debug, Args)]
 #[command(args_conflicts_with_subcommands = true, subcommand_negates_reqs = true)]
 pub struct SweepArgs {
