@@ -76,7 +76,7 @@ fn nearest_snapshots_are_chosen_and_the_default_is_the_last_beside_the_log() {
 }
 
 #[test]
-fn svg_pictures_hold_the_discs_as_circles() {
+fn svg_pictures_hold_the_discs_as_circles_of_their_colour() {
     let dir = scratch("svg");
     two_disc_log(&dir, "walls", true);
     let w = WIDTH.to_string();
@@ -89,7 +89,19 @@ fn svg_pictures_hold_the_discs_as_circles() {
     let svg = std::fs::read_to_string(dir.join("a.svg")).unwrap();
     assert!(svg.starts_with("<svg"), "{}", &svg[..100]);
     assert!(svg.contains(&format!("width=\"{WIDTH}\"")), "{svg}");
-    assert_eq!(svg.matches("<circle").count(), 2, "{svg}");
+    // Each species' disc is a circle of its colour (A blue, B orange), larger
+    // than the legend's 6-pixel markers.
+    let discs: Vec<&str> = svg
+        .lines()
+        .filter(|l| l.starts_with("<circle") && !l.contains("r=\"6\""))
+        .collect();
+    for fill in ["#1F77B4", "#FF7F0E"] {
+        let f = format!("fill=\"{fill}\"");
+        assert!(
+            discs.iter().any(|l| l.contains(&f)),
+            "no disc {f} in\n{svg}"
+        );
+    }
 }
 
 #[test]
