@@ -281,9 +281,11 @@ impl Analyzer {
         [ux, uy]: [&[f64]; 2],
         [vx, vy]: [&[f64]; 2],
     ) -> Result<(), StatsError> {
-        self.check_snapshot(t, species_of, [ux, uy], ["ux", "uy"])?;
-        self.check_snapshot(t, species_of, [vx, vy], ["vx", "vy"])?;
-        let start = self.block_start(t);
+        self.samples
+            .check_snapshot(t, species_of, [ux, uy], ["ux", "uy"])?;
+        self.samples
+            .check_snapshot(t, species_of, [vx, vy], ["vx", "vy"])?;
+        let start = self.samples.block_start(t);
         self.dynamics.add(t, start, species_of, [ux, uy], [vx, vy]);
         Ok(())
     }

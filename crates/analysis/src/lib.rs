@@ -49,6 +49,7 @@ mod pressure;
 mod psi6_estimators;
 mod quadrature;
 mod report;
+mod samples;
 mod self_scattering;
 mod series;
 mod sonine;
