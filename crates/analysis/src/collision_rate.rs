@@ -8,10 +8,10 @@
 
 use carom_core::observables::{collision_rate, has_walls};
 
-use super::report::{CollisionRateReport, EnskogReport, PressureReport, RateAt};
 use super::samples::Samples;
 use super::series::{blocked, drift};
 use super::stats::StatsError;
+use super::thermo_report::{CollisionRateReport, EnskogReport, PressureReport, RateAt};
 
 /// ω of each time bin (logged pair collisions × stride, plus those from running
 /// totals).

@@ -18,7 +18,7 @@ use carom_engine::Growth;
 use carom_log::{GrowthEvent, GrowthPhase, LogMessage, LogReader};
 use serde::Serialize;
 
-use super::from_log::AnalysisError;
+use super::error::AnalysisError;
 use super::report::Report;
 
 /// How the compression in a log went.

@@ -23,27 +23,13 @@ use carom_log::{
     scan_indexed, scan_observed, LogEnd, LogMessage, LogReader, ReadError, ReadProgress,
 };
 use carom_log::{Snapshot, KIND_PAIR};
-use thiserror::Error;
 
 use super::compression::Compression;
 use super::description::describe;
+use super::error::AnalysisError;
 use super::log_facts::{log_facts, no_old_log_facts, OldLogFacts};
 use super::stats::StatsError;
 use super::{AnalysisOptions, Analyzer, Report, Unwrapper};
-
-/// Why a log could not be analysed.
-#[derive(Debug, Error)]
-pub enum AnalysisError {
-    /// The log could not be read.
-    #[error(transparent)]
-    Read(#[from] ReadError),
-    /// A statistic could not be computed.
-    #[error("analysis: {0}")]
-    Stats(#[from] StatsError),
-    /// The log holds nothing to analyse, or an option does not fit it.
-    #[error("{0}")]
-    Unusable(String),
-}
 
 /// Who hears how reading a log goes (a progress display).
 pub trait ReadObserver {

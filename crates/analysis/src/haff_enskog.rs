@@ -12,7 +12,7 @@
 use carom_core::observables::{has_walls, packing_fraction};
 use carom_core::rates::henderson_contact_value;
 
-use super::report::HaffEnskog;
+use super::inelastic_report::HaffEnskog;
 use super::samples::Samples;
 use super::thermostat::enskog_rate_coefficient;
 

@@ -15,7 +15,7 @@ use carom_core::Restitution;
 
 use super::haff_enskog::haff_enskog;
 use super::hcs_sonine::a2_sonine;
-use super::report::{EnergyBudget, HaffReport, InelasticReport, SonineReport};
+use super::inelastic_report::{EnergyBudget, HaffReport, InelasticReport, SonineReport};
 use super::samples::Samples;
 use super::series::blocked;
 

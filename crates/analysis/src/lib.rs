@@ -29,6 +29,7 @@ mod description;
 mod dynamics;
 mod dynamics_report;
 mod eos_reference;
+mod error;
 mod floor;
 mod from_log;
 mod haff_enskog;
@@ -37,6 +38,7 @@ mod helfand;
 mod hydrostatic;
 mod increment_correlator;
 mod inelastic;
+mod inelastic_report;
 mod log_facts;
 mod msd;
 mod neighbours;
@@ -52,12 +54,14 @@ mod report;
 mod samples;
 mod self_scattering;
 mod series;
+mod sixfold;
 mod sonine;
 pub mod stats;
 mod structure_factor;
 mod temperature;
 #[cfg(test)]
 mod test_lattice;
+mod thermo_report;
 mod thermostat;
 mod transport;
 mod transport_reliability;
@@ -66,6 +70,7 @@ mod transport_theory;
 mod unwrap;
 mod vacf_exact;
 mod velocity;
+mod velocity_report;
 
 pub use analyzer::Analyzer;
 pub use atmosphere::{BarometricFit, GravityReport};
@@ -83,25 +88,25 @@ pub use description::RunDescription;
 pub use dynamics::SEGMENTS as DYNAMICS_SEGMENTS;
 pub use dynamics_report::{DiffusionFit, DynamicsReport, SpeciesDynamics};
 pub use eos_reference::{henderson_z, kolafa_rottner, li_2022, KOLAFA_ROTTNER};
+pub use error::AnalysisError;
 pub use floor::FloorReport;
-pub use from_log::{analyze_log, analyze_log_with, AnalysisError, ReadObserver};
+pub use from_log::{analyze_log, analyze_log_with, ReadObserver};
 pub use haff_enskog::ENSKOG_COOLING_TOLERANCE;
+pub use inelastic_report::{EnergyBudget, HaffEnskog, HaffReport, InelasticReport, SonineReport};
 pub use log_facts::{no_old_log_facts, OldLogFacts};
 pub use msd::D_WINDOW_COLLISIONS;
 pub use neighbours::{delaunay_neighbours, Neighbours, GHOST_SPACINGS};
-pub use not_computed::NotComputed;
 pub use options::{AnalysisOptions, CORRELATED_SPACING, DECORRELATION_COLLISIONS, MAX_VELOCITIES};
 pub use origins::{MAX_DISC_ORIGINS, ORIGINS_PER_LEVEL};
 pub use pair_correlation::{BIN_WIDTH_SIGMA, BLOCKS as PAIR_CORRELATION_BLOCKS, R_MAX_SIGMA};
 pub use psi6_estimators::{local_psi6_equal, local_psi6_nearest, six_neighbour_fraction};
-pub use report::{
-    ChiSquareReport, CollisionRateReport, DriftReport, EnergyBudget, EnskogReport, HaffEnskog,
-    HaffReport, HistogramReport, InelasticReport, KsReport, PressureReport, RateAt, Report,
-    SonineReport, SpeciesInfo, SpeciesMb, SpeciesUntested, TemperatureReport, WindowReport,
-};
+pub use report::{NotComputed, Report, SpeciesInfo, WindowReport};
 pub use series::DRIFT_STD_ERRORS;
 pub use structure_factor::{
     StructureFactorReport, K_STAR_MIN_SIGMA, SK_K_MAX_SIGMA, SK_MAX_MODES, SK_SNAPSHOTS,
+};
+pub use thermo_report::{
+    CollisionRateReport, DriftReport, EnskogReport, PressureReport, RateAt, TemperatureReport,
 };
 pub use thermostat::{
     driven_a2, driven_steady_temperature, enskog_rate_coefficient, ThermostatReport,
@@ -113,3 +118,4 @@ pub use transport_report::{
 };
 pub use unwrap::Unwrapper;
 pub use velocity::{MAX_SNAPSHOT_CORRELATION, MB_FAMILY_ALPHA, MB_TESTS_PER_SPECIES};
+pub use velocity_report::{ChiSquareReport, HistogramReport, KsReport, SpeciesMb, SpeciesUntested};

@@ -7,10 +7,10 @@
 
 use carom_core::observables::{accessible_area, has_walls, pressure, virial_z, wall_z};
 
-use super::report::PressureReport;
 use super::samples::Samples;
 use super::series::{blocked, coarse_series, drift};
 use super::stats::StatsError;
+use super::thermo_report::PressureReport;
 
 /// Z of each time bin, with kT of each bin from `kt_bins`.
 pub(super) fn z_per_bin(a: &Samples, kt_bins: &[f64]) -> Vec<f64> {

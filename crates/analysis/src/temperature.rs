@@ -4,9 +4,9 @@
 
 use carom_core::observables::{degrees_of_freedom, temperature};
 
-use super::report::TemperatureReport;
 use super::samples::Samples;
 use super::series::{subsample, MAX_SERIES};
+use super::thermo_report::TemperatureReport;
 
 /// kT averaged over the snapshots used (`None` without any).
 pub(super) fn snapshot_kt(a: &Samples) -> Option<f64> {

@@ -6,9 +6,11 @@
 //! still correlate between the snapshots used (a heavy species) is tested on every
 //! k-th snapshot only. See docs/performance.md, 'analyze defaults'.
 
-use super::report::{ChiSquareReport, HistogramReport, KsReport, SpeciesMb, SpeciesUntested};
 use super::samples::Samples;
 use super::stats::{ks_test, mb_speed_test, Histogram, StatsError};
+use super::velocity_report::{
+    ChiSquareReport, HistogramReport, KsReport, SpeciesMb, SpeciesUntested,
+};
 #[cfg(doc)]
 use super::{AnalysisOptions, DECORRELATION_COLLISIONS};
 
