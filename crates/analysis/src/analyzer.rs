@@ -17,16 +17,21 @@ use super::bond_correlation::BondCorrelation;
 use super::bond_order::BondOrder;
 use super::bond_order::MIN_BOND_ORDER_DISCS;
 use super::dynamics::Dynamics;
+use super::inelastic::Driven;
 use super::not_computed;
 use super::options::AnalysisOptions;
 use super::pair_correlation::PairCorrelation;
 use super::report::Report;
 use super::report::SpeciesInfo;
+use super::run_dynamics::RunDynamics;
 use super::samples::Samples;
 use super::stats::StatsError;
 use super::structure_factor::StructureFactor;
 use super::transport::Transport;
-use super::{collision_rate, contact, inelastic, pressure, temperature, velocity, RunDescription};
+use super::{
+    collision_rate, contact, floor, inelastic, pressure, temperature, thermostat, velocity,
+    RunDescription,
+};
 
 /// Accumulates a run's events and produces a [`Report`].
 #[derive(Debug, Clone)]
@@ -289,63 +294,82 @@ impl Analyzer {
         }
     }
 
-    /// Compute everything: one function per observable.
-    pub fn finish(mut self) -> Result<Report, StatsError> {
-        self.samples.kt_series.sort_by(|a, b| a.0.total_cmp(&b.0));
-        self.samples
-            .energy_series
-            .sort_by(|a, b| a.0.total_cmp(&b.0));
-        let elastic = self.samples.run.restitution.is_elastic()
-            && self.samples.run.sim_box.boundary.iter().all(
+    /// Compute everything for a run with neither thermostat, compression nor
+    /// vibrating floor: [`Analyzer::finish_with`] and the default [`RunDynamics`].
+    pub fn finish(self) -> Result<Report, StatsError> {
+        self.finish_with(RunDynamics::default())
+    }
+
+    /// Compute everything: each observable its section from its data (and from
+    /// the sections it reads, passed in), `run`'s thermostat, compression and
+    /// floor included; the report assembled once from the sections.
+    pub fn finish_with(mut self, run_dynamics: RunDynamics) -> Result<Report, StatsError> {
+        let RunDynamics {
+            thermostat,
+            compression,
+            floor,
+        } = run_dynamics;
+        let s = &mut self.samples;
+        s.kt_series.sort_by(|a, b| a.0.total_cmp(&b.0));
+        s.energy_series.sort_by(|a, b| a.0.total_cmp(&b.0));
+        let (species, sim_box) = (&s.run.species, &s.run.sim_box);
+        let elastic = s.run.restitution.is_elastic()
+            && sim_box.boundary.iter().all(
                 |b| !matches!(b, carom_core::Boundary::Walls { restitution } if *restitution < 1.0),
             );
-        let kt_used = temperature::snapshot_kt(&self.samples);
-        let temperature = temperature::report(&self.samples, kt_used);
+        let periodic = sim_box.boundary.iter().all(|b| b.is_periodic());
+        let phi = packing_fraction(species, sim_box);
+        let kt_used = temperature::snapshot_kt(s);
+        let temperature = temperature::report(s, kt_used);
         // A cooling gas is tested in its homogeneous cooling state: each
         // snapshot's velocities scaled to the mean kT of the snapshots used.
         if !elastic {
             if let Some(kt) = kt_used {
-                inelastic::scale_to(&mut self.samples, kt);
+                inelastic::scale_to(s, kt);
             }
         }
         let (maxwell_boltzmann, maxwell_boltzmann_untested) =
-            velocity::maxwell_boltzmann(&mut self.samples, kt_used, !elastic)?;
-        let kt_bins = self.samples.kt_per_bin();
-        let z_bins = pressure::z_per_bin(&self.samples, &kt_bins);
-        let omega_bins = collision_rate::omega_per_bin(&self.samples);
-        let pressure = pressure::report(&self.samples, &z_bins, &kt_bins)?;
-        let collision_rate = collision_rate::report(&self.samples, &omega_bins, elastic)?;
+            velocity::maxwell_boltzmann(s, kt_used, !elastic)?;
+        let s = &self.samples;
+        let run = &s.run;
+        let kt_bins = s.kt_per_bin();
+        let z_bins = pressure::z_per_bin(s, &kt_bins);
+        let omega_bins = collision_rate::omega_per_bin(s);
+        let pressure = pressure::report(s, &z_bins, &kt_bins)?;
+        let collision_rate = collision_rate::report(s, &omega_bins, elastic)?;
         let bins = [&z_bins[..], &omega_bins[..], &kt_bins[..]];
-        let enskog = collision_rate::enskog(&self.samples, elastic, pressure.as_ref(), bins)?;
-        let inelastic = (!elastic).then(|| inelastic::report(&self.samples));
-        let periodic = self
-            .samples
-            .run
-            .sim_box
-            .boundary
-            .iter()
-            .all(|b| b.is_periodic());
+        let enskog = collision_rate::enskog(s, elastic, pressure.as_ref(), bins)?;
+        let thermostat = thermostat.map(|(t, restitution)| {
+            thermostat::report(&t, restitution, run, &temperature, collision_rate.per_disc)
+        });
+        // A thermostat or a floor puts energy in; a floor's bed is no cooling state.
+        let driven = match (&thermostat, &floor) {
+            (_, Some(_)) => Some(Driven { a2_theory: None }),
+            (Some(t), None) => Some(Driven {
+                a2_theory: t.a2_theory,
+            }),
+            (None, None) => None,
+        };
+        let inelastic = (!elastic).then(|| inelastic::report(s, driven));
         let pair_correlation = contact::report(
             &self.pair_correlation,
             elastic && periodic,
             pressure.as_ref(),
         );
-        let phi = packing_fraction(&self.samples.run.species, &self.samples.run.sim_box);
-        let transport = self.transport.take().and_then(|tr| {
-            (tr.pairs() == self.transport_pairs)
-                .then(|| tr.report(self.samples.run.t_end, pressure.as_ref().map(|p| p.z), phi))
-                .flatten()
-        });
+        // The replay misses a thermostat's velocity changes.
+        let transport = match thermostat {
+            Some(_) => None,
+            None => self.transport.take().and_then(|tr| {
+                (tr.pairs() == self.transport_pairs)
+                    .then(|| tr.report(run.t_end, pressure.as_ref().map(|p| p.z), phi))
+                    .flatten()
+            }),
+        };
         let gravity = self.atmosphere.as_ref().and_then(|a| {
-            let kinetic: Vec<(f64, f64)> = self
-                .samples
-                .energy_series
-                .iter()
-                .map(|e| (e.0, e.1))
-                .collect();
-            a.report(&kinetic, kt_used)
+            let kinetic: Vec<(f64, f64)> = s.energy_series.iter().map(|e| (e.0, e.1)).collect();
+            a.report(&kinetic, kt_used, floor.is_none())
         });
-        let run = &self.samples.run;
+        let floor = floor.and_then(|f| floor::report(&f.floor, f.gravity, &f.totals, s.t_eq));
         let mut report = Report {
             n: run.n(),
             species: run
@@ -357,11 +381,11 @@ impl Analyzer {
                     mass: s.mass,
                 })
                 .collect(),
-            packing_fraction: packing_fraction(&run.species, &run.sim_box),
+            packing_fraction: phi,
             box_size: [run.sim_box.size.x, run.sim_box.size.y],
             periodic: run.sim_box.boundary.map(|b| b.is_periodic()),
             elastic,
-            window: self.samples.window(collision_rate.per_disc),
+            window: s.window(collision_rate.per_disc),
             dynamics: self.dynamics.report(collision_rate.per_disc),
             temperature,
             maxwell_boltzmann,
@@ -382,11 +406,12 @@ impl Analyzer {
                 .and_then(StructureFactor::report),
             transport,
             gravity,
-            thermostat: None,
-            compression: None,
-            floor: None,
+            thermostat,
+            compression,
+            floor,
             not_computed: Vec::new(),
         };
+        // What is absent, with its reason, read off the assembled sections.
         report.not_computed = not_computed::explain(&report);
         Ok(report)
     }

@@ -19,7 +19,6 @@ use carom_log::{GrowthEvent, GrowthPhase, LogMessage, LogReader};
 use serde::Serialize;
 
 use super::error::AnalysisError;
-use super::report::Report;
 
 /// How the compression in a log went.
 #[derive(Debug, Clone, PartialEq, Serialize)]
@@ -177,11 +176,6 @@ impl Compression {
             None => Ok(grown + 0.1 * (t_end - grown)),
         }
     }
-}
-
-/// Put the compression into the report.
-pub(super) fn apply(c: Compression, r: &mut Report) {
-    r.compression = Some(c.report);
 }
 
 #[cfg(test)]

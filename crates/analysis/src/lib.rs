@@ -51,6 +51,7 @@ mod pressure;
 mod psi6_estimators;
 mod quadrature;
 mod report;
+mod run_dynamics;
 mod samples;
 mod self_scattering;
 mod series;
@@ -101,6 +102,7 @@ pub use origins::{MAX_DISC_ORIGINS, ORIGINS_PER_LEVEL};
 pub use pair_correlation::{BIN_WIDTH_SIGMA, BLOCKS as PAIR_CORRELATION_BLOCKS, R_MAX_SIGMA};
 pub use psi6_estimators::{local_psi6_equal, local_psi6_nearest, six_neighbour_fraction};
 pub use report::{NotComputed, Report, SpeciesInfo, WindowReport};
+pub use run_dynamics::{FloorRun, RunDynamics};
 pub use series::DRIFT_STD_ERRORS;
 pub use structure_factor::{
     StructureFactorReport, K_STAR_MIN_SIGMA, SK_K_MAX_SIGMA, SK_MAX_MODES, SK_SNAPSHOTS,
