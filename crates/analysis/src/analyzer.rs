@@ -13,24 +13,19 @@ use carom_core::observables::{packing_fraction, temperature};
 use carom_core::rates::expected_mean_free_time;
 
 use super::atmosphere::Atmosphere;
-use super::bond_correlation::BondCorrelation;
-use super::bond_order::BondOrder;
-use super::bond_order::MIN_BOND_ORDER_DISCS;
 use super::dynamics::Dynamics;
 use super::inelastic::Driven;
 use super::not_computed;
 use super::options::AnalysisOptions;
-use super::pair_correlation::PairCorrelation;
 use super::report::Report;
 use super::report::SpeciesInfo;
 use super::run_dynamics::RunDynamics;
 use super::samples::Samples;
 use super::stats::StatsError;
-use super::structure_factor::StructureFactor;
+use super::structure::{smallest_diameter, Structure};
 use super::transport::Transport;
 use super::{
-    collision_rate, contact, floor, inelastic, pressure, temperature, thermostat, velocity,
-    RunDescription,
+    collision_rate, floor, inelastic, pressure, temperature, thermostat, velocity, RunDescription,
 };
 
 /// Accumulates a run's events and produces a [`Report`].
@@ -38,14 +33,8 @@ use super::{
 pub struct Analyzer {
     /// Time bins, kT and energy series, the velocities used.
     pub(crate) samples: Samples,
-    /// Pair-distance histograms per time block (physics.md §10).
-    pub(crate) pair_correlation: PairCorrelation,
-    /// |Ψ6| and local |ψ6| of every snapshot (physics.md §11).
-    pub(crate) bond_order: BondOrder,
-    /// g6(r) per time block.
-    pub(crate) bond_correlation: BondCorrelation,
-    /// S(k) of one snapshot per time block (periodic boxes only).
-    pub(crate) structure_factor: Option<StructureFactor>,
+    /// g(r), ψ6, g6(r) and S(k) per time block (physics.md §10–§11).
+    pub(crate) structure: Structure,
     /// MSD, snapshot VACF and F_s sums over time origins (physics.md §13).
     pub(crate) dynamics: Dynamics,
     /// Transport from the collision log, from the first snapshot analysed on
@@ -65,19 +54,15 @@ impl Analyzer {
     pub fn new(run: RunDescription, opts: AnalysisOptions) -> Result<Self, StatsError> {
         let samples = Samples::new(run, opts)?;
         let (run, t_eq) = (&samples.run, samples.t_eq);
-        let sigma_min = 2.0
-            * run
-                .species
-                .iter()
-                .filter(|s| s.count > 0)
-                .map(|s| s.radius)
-                .fold(f64::INFINITY, f64::min);
+        let sigma_min = smallest_diameter(&run.species);
         Ok(Analyzer {
-            pair_correlation: PairCorrelation::new(&run.species, &run.sim_box, t_eq, run.t_end),
-            bond_order: BondOrder::default(),
-            bond_correlation: BondCorrelation::new(&run.species, &run.sim_box, t_eq, run.t_end),
-            structure_factor: StructureFactor::new(&run.sim_box, sigma_min, t_eq, run.t_end),
-            dynamics: Dynamics::new(run, t_eq, sigma_min),
+            structure: Structure::new(&run.species, &run.sim_box, t_eq, run.t_end),
+            dynamics: Dynamics::new(
+                (&run.species, &run.sim_box),
+                [run.t_start, t_eq, run.t_end],
+                run.snapshot_interval,
+                sigma_min,
+            ),
             transport: None,
             transport_tried: false,
             transport_pairs: 0,
@@ -260,19 +245,38 @@ impl Analyzer {
             return Ok(());
         }
         let t = t.max(self.samples.t_eq);
-        // g(r) runs on all cores; the triangulation behind ψ6 is serial, so it
-        // runs beside g(r) rather than after it.
-        let (pair_correlation, bond_order) = (&mut self.pair_correlation, &mut self.bond_order);
-        let sim_box = &self.samples.run.sim_box;
-        let ((), psi) = rayon::join(
-            || pair_correlation.add(t, species_of, x, y),
-            || bond_order.add(t, sim_box, x, y),
-        );
-        self.bond_correlation.add(t, x, y, &psi);
-        if let Some(sf) = &mut self.structure_factor {
-            sf.add(t, x, y);
-        }
+        self.structure.add(t, species_of, x, y);
         Ok(())
+    }
+
+    /// A snapshot's unwrapped positions (`ux`, `uy`, length; continuous in time,
+    /// physics.md §12) and velocities (length/time) of every disc, with species
+    /// indices, for the MSD, D, snapshot VACF and F_s (physics.md §13). Snapshots
+    /// come in time order; block starts after the equilibration time become time
+    /// origins.
+    ///
+    /// Errors when the slices differ in length or a species index is not one of
+    /// the run's species.
+    pub fn motion(
+        &mut self,
+        t: f64,
+        species_of: &[u16],
+        [ux, uy]: [&[f64]; 2],
+        [vx, vy]: [&[f64]; 2],
+    ) -> Result<(), StatsError> {
+        self.samples
+            .check_snapshot(t, species_of, [ux, uy], ["ux", "uy"])?;
+        self.samples
+            .check_snapshot(t, species_of, [vx, vy], ["vx", "vy"])?;
+        let start = self.samples.block_start(t);
+        self.dynamics.add(t, start, species_of, [ux, uy], [vx, vy]);
+        Ok(())
+    }
+
+    /// The number of snapshot gaps that could not be unwrapped with certainty
+    /// ([`super::Unwrapper::ambiguous_gaps`]), for the report's warning.
+    pub fn ambiguous_gaps(&mut self, gaps: u64) {
+        self.dynamics.ambiguous_gaps = gaps;
     }
 
     /// The transport replay starts at the first snapshot analysed and checks
@@ -351,11 +355,9 @@ impl Analyzer {
             (None, None) => None,
         };
         let inelastic = (!elastic).then(|| inelastic::report(s, driven));
-        let pair_correlation = contact::report(
-            &self.pair_correlation,
-            elastic && periodic,
-            pressure.as_ref(),
-        );
+        let structure = self
+            .structure
+            .report(elastic && periodic, pressure.as_ref());
         // The replay misses a thermostat's velocity changes.
         let transport = match thermostat {
             Some(_) => None,
@@ -394,16 +396,10 @@ impl Analyzer {
             collision_rate,
             enskog,
             inelastic,
-            pair_correlation,
-            bond_order: self.bond_order.report(),
-            orientational_correlation: self
-                .bond_correlation
-                .report()
-                .filter(|_| run.n() >= MIN_BOND_ORDER_DISCS),
-            structure_factor: self
-                .structure_factor
-                .as_ref()
-                .and_then(StructureFactor::report),
+            pair_correlation: structure.pair_correlation,
+            bond_order: structure.bond_order,
+            orientational_correlation: structure.orientational_correlation,
+            structure_factor: structure.structure_factor,
             transport,
             gravity,
             thermostat,

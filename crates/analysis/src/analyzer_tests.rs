@@ -307,7 +307,7 @@ fn snapshots_count_from_the_window_start_within_a_rounding_tolerance() {
     for t in times {
         a.positions(t, &[0; 16], &x, &y).unwrap();
     }
-    assert_eq!(a.pair_correlation.snapshot_count(), 2);
+    assert_eq!(a.structure.pair_correlation.snapshot_count(), 2);
 }
 
 /// Snapshots at least `every` = 2.5 apart, to a relative 10⁻⁹: after 4, not 5;

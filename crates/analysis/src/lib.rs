@@ -1,18 +1,15 @@
-//! Analysis of carom runs: what `carom analyze` measures, in one streaming pass
-//! over a run's events, checked against theory with statistics independent of the
-//! engine (physics.md §5–§8, §10).
+//! Analysis of carom runs: what `carom analyze` measures, checked against
+//! theory with statistics independent of the engine (physics.md §5–§18).
 //!
-//! [`analyze_log`] reads a log (its facts, an older log's derived once by the
-//! caller's [`OldLogFacts`] through [`analyze_log_with`]; `describe`s its run once, then feeds every
-//! message to an [`Analyzer`]); the tests feed an [`Analyzer`] straight from the
-//! engine. [`Analyzer::finish`] makes one report per observable: temperature,
-//! the velocity distribution against Maxwell–Boltzmann, pressure and Z, the
-//! collision rate and the Enskog check, and for inelastic runs the energy budget
-//! and Haff's law; from the snapshots' positions the pair correlation g_ab(r),
-//! its contact values and the contact theorem, the bond-orientational order ψ6
-//! (Delaunay neighbours), g6(r), and S(k) with the translational order; from
-//! their unwrapped positions ([`Analyzer::motion`]) the MSD, D, the snapshot VACF
-//! and F_s(k*, τ) (physics.md §13).
+//! [`analyze_log`] reads a log in one streaming pass (an older log's facts
+//! derived once by the caller's [`OldLogFacts`], [`analyze_log_with`]) into an
+//! [`Analyzer`], which the tests also feed straight from the engine;
+//! [`Analyzer::finish_with`] (with the run's [`RunDynamics`]) assembles the
+//! [`Report`] from one section per observable: temperature, Maxwell–Boltzmann,
+//! pressure and Z, collision rate and Enskog, the inelastic checks, g_ab(r), ψ6,
+//! g6(r), S(k), MSD/D/F_s, transport, gravity, thermostat, compression, floor.
+//! [`frames`] computes the structure and dynamics sections from plain arrays
+//! (another code's snapshots, a GSD file) with the same accumulators.
 //! [`stats`] holds the statistics (histograms, χ², KS, blocking).
 
 #![deny(missing_docs)]
@@ -31,6 +28,7 @@ mod dynamics_report;
 mod eos_reference;
 mod error;
 mod floor;
+pub mod frames;
 mod from_log;
 mod haff_enskog;
 mod hcs_sonine;
@@ -58,6 +56,7 @@ mod series;
 mod sixfold;
 mod sonine;
 pub mod stats;
+mod structure;
 mod structure_factor;
 mod temperature;
 #[cfg(test)]
@@ -104,6 +103,7 @@ pub use psi6_estimators::{local_psi6_equal, local_psi6_nearest, six_neighbour_fr
 pub use report::{NotComputed, Report, SpeciesInfo, WindowReport};
 pub use run_dynamics::{FloorRun, RunDynamics};
 pub use series::DRIFT_STD_ERRORS;
+pub use structure::StructureReport;
 pub use structure_factor::{
     StructureFactorReport, K_STAR_MIN_SIGMA, SK_K_MAX_SIGMA, SK_MAX_MODES, SK_SNAPSHOTS,
 };
