@@ -2,12 +2,11 @@
 //! and shaking parameter Γ = A ω²/g, and the energy flows over the analysis
 //! window from the engine's totals in the log's checkpoints: the work W the floor
 //! did and the energy E_lost the collisions dissipated between the first
-//! checkpoint in the window and the last, as mean powers. In a steady state they
-//! are equal; their difference is the change of K + U over the window divided by
-//! its length. The energy budget and Haff's law of an inelastic run assume no
-//! input and are taken out, and so are the cooling state's a2 and the barometric
-//! law's known value: a driven
-//! bed is not in equilibrium (its n(y) and fitted β_g are still reported).
+//! checkpoint in the window and the last, as mean powers W/Δt and E_lost/Δt. In a
+//! steady state they are equal; their difference is Δ(K + U)/Δt. A driven bed is
+//! not in equilibrium nor a cooling state: the analyzer leaves out the energy
+//! budget, Haff's law and the cooling state's a2, and compares the barometric fit
+//! with no known value (its n(y) and fitted β_g are still reported).
 
 use carom_core::vibrating_wall::Floor;
 use serde::Serialize;

@@ -1,12 +1,13 @@
 //! Fixed-memory statistics of a series G sampled every Δ (the Helfand moments of
-//! physics.md §14) at lags τ = m·2^ℓ·Δ:
-//!     ⟨[G(t+τ) − G(t)]²⟩ (Einstein–Helfand),   ⟨J(t) J(t+τ)⟩, J = ΔG/Δt (Green–Kubo).
-//! No mean is subtracted (the fluxes have zero mean by symmetry; a segment's own
-//! mean would bias it low by about τ/segment, §14.2). Level ℓ keeps every 2^ℓ-th
-//! sample in a ring of p + 1: a new value pairs with m = 1..p−1 back on level 0
-//! and m = p/2..p−1 on higher levels, so lags grow geometrically in
-//! levels × p memory. Values are decimated, not averaged, so every increment is
-//! exact. Sums are kept per time segment, for errors from their spread.
+//! physics.md §14) at lags τ = m·2^ℓ·Δ: the mean square increment
+//!     ⟨[G(t+τ) − G(t)]²⟩ (Einstein–Helfand),
+//! and ⟨J(t) J(t+τ)⟩ of the flux J = ΔG/Δt (Green–Kubo). No mean is subtracted
+//! (the fluxes have zero mean by symmetry; a segment's own mean would bias it
+//! low by about τ/segment, §14.2). Level ℓ keeps every 2^ℓ-th sample in a ring
+//! of p + 1: a new value pairs with m = 1..p−1 back on level 0 and m = p/2..p−1
+//! on higher levels, so lags grow geometrically in levels × p memory. Values
+//! are decimated, not averaged, so every increment is exact. Sums are kept per
+//! time segment, for errors from their spread.
 
 /// Samples kept per level (the lag resolution: p/2 lags per octave).
 pub(super) const RING: usize = 16;

@@ -5,12 +5,11 @@
 //! derived once by the caller's [`OldLogFacts`], [`analyze_log_with`]) into an
 //! [`Analyzer`], which the tests also feed straight from the engine;
 //! [`Analyzer::finish_with`] (with the run's [`RunDynamics`]) assembles the
-//! [`Report`] from one section per observable: temperature, Maxwell–Boltzmann,
-//! pressure and Z, collision rate and Enskog, the inelastic checks, g_ab(r), ψ6,
-//! g6(r), S(k), MSD/D/F_s, transport, gravity, thermostat, compression, floor.
-//! [`frames`] computes the structure and dynamics sections from plain arrays
-//! (another code's snapshots, a GSD file) with the same accumulators.
-//! [`stats`] holds the statistics (histograms, χ², KS, blocking).
+//! [`Report`], one section per observable (temperature, Maxwell–Boltzmann, Z,
+//! collision rate, inelastic checks, g_ab(r), ψ6, g6(r), S(k), MSD/D/F_s,
+//! transport, gravity, thermostat, compression, floor). [`frames`] gives the
+//! structure and dynamics sections of plain arrays (another code's snapshots, a
+//! GSD file) with the same accumulators; [`stats`] the statistics.
 
 #![deny(missing_docs)]
 

@@ -1,18 +1,13 @@
 //! Thermostatted runs (physics.md §16): the temperature a thermostat should hold
-//! against the one measured, in place of the energy budget and Haff's law, which a
-//! thermostat's energy input voids.
-//!
-//! Andersen holds kT at its target with every velocity component free, so the
-//! measured kT is taken with f = 2N (momentum is not conserved):
-//!     kT = 2K/(2N),   compared with the target.
+//! against the one measured. Andersen holds kT at its target with every velocity
+//! component free (momentum is not conserved): kT = 2K/(2N), against the target.
 //! Driving holds an inelastic gas at the granular temperature T = K/N where the
 //! injection m ξ² (1 − 1/N) per disc balances the collisional loss (16.6):
 //!     T^{3/2} = 2 m ξ² (1 − 1/N) / [(1 − e²)(1 + 3a2/16) c],   ω = c √T,
 //! with c from Enskog and Henderson's g(σ) (7.2, 7.6), or from the measured ω, and
-//! a2 van Noije & Ernst's value for the driven gas (16.7). A thermostat also
-//! voids the energy budget and Haff's law (they assume no input) and the
-//! transport from replayed collisions (which misses its velocity changes): the
-//! analyzer leaves those sections out of a thermostatted run.
+//! a2 van Noije & Ernst's value for the driven gas (16.7). A thermostat voids the
+//! energy budget and Haff's law (no input assumed) and the replayed transport
+//! (blind to its velocity changes): the analyzer leaves those sections out.
 
 use carom_core::observables::packing_fraction;
 use carom_core::rates::henderson_contact_value;
