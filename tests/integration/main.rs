@@ -24,6 +24,7 @@ mod analysis_dynamics;
 mod analysis_engine;
 mod analysis_structure;
 mod analysis_transport;
+mod arrays;
 mod cli;
 mod cli_compression;
 mod cli_cooling;

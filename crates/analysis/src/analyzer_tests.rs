@@ -5,6 +5,7 @@
 //! computation in the test.
 
 use super::*;
+use crate::samples::TimeBin;
 use carom_core::{Boundary, Restitution, SimBox, Species};
 
 fn run() -> RunDescription {
@@ -45,7 +46,7 @@ fn inconsistent_snapshots_are_errors_not_panics() {
     assert!(a.positions(1.0, &[0, 0], &[1.0, 2.0], &[1.0]).is_err());
     assert!(a.positions(1.0, &[0, 1], &[1.0, 2.0], &[1.0, 1.0]).is_err());
     // Only the one consistent snapshot was counted.
-    assert_eq!(a.snapshots_seen, 1);
+    assert_eq!(a.samples.snapshots_seen, 1);
     let mut r = run();
     r.t_end = 0.0;
     assert!(Analyzer::new(r, AnalysisOptions::default()).is_err());
@@ -91,9 +92,9 @@ fn collisions_go_into_the_bin_of_their_time_weighted_by_the_stride() {
     }
     a.pair(10.5, 1.0, 0.0);
     a.wall(10.5, 1.0, 0.0);
-    assert_eq!((a.pair_total, a.wall_total), (5, 5));
+    assert_eq!((a.samples.pair_total, a.samples.wall_total), (5, 5));
     // Energy lost: 3·(0.25·(0 + 1 + 2 + 3)) + 3·(4·0.5) = 4.5 + 6.
-    assert!(close(a.lost_from_collisions, 10.5));
+    assert!(close(a.samples.lost_from_collisions, 10.5));
     let mut expected = [TimeBin::default(); 16];
     for (k, &(_, bin)) in events.iter().enumerate() {
         if let Some(b) = bin {
@@ -103,7 +104,7 @@ fn collisions_go_into_the_bin_of_their_time_weighted_by_the_stride() {
             expected[b].walls = 1;
         }
     }
-    for (b, e) in a.bins.iter().zip(&expected) {
+    for (b, e) in a.samples.bins.iter().zip(&expected) {
         assert!(close(b.virial, e.virial) && close(b.wall_impulse, e.wall_impulse));
         assert_eq!(
             (b.pairs, b.walls, b.pairs_weighted),
@@ -121,9 +122,10 @@ fn collisions_go_into_the_bin_of_their_time_weighted_by_the_stride() {
     .unwrap();
     a.pair(5.3, 1.0, 1.0);
     a.wall(5.3, 1.0, 1.0);
-    assert_eq!((a.pair_total, a.wall_total), (1, 1));
-    assert_eq!(a.lost_from_collisions, 0.0);
+    assert_eq!((a.samples.pair_total, a.samples.wall_total), (1, 1));
+    assert_eq!(a.samples.lost_from_collisions, 0.0);
     assert!(a
+        .samples
         .bins
         .iter()
         .all(|b| b.pairs + b.walls == 0 && b.virial == 0.0));
@@ -133,11 +135,11 @@ fn collisions_go_into_the_bin_of_their_time_weighted_by_the_stride() {
 fn increments_spread_over_time_bins_keep_their_total() {
     let mut a = Analyzer::new(run(), opts(0.0, None, 16)).unwrap();
     a.increment(0.3, 7.1, 68.0, 0.0, 34);
-    let v: f64 = a.bins.iter().map(|b| b.virial).sum();
-    let p: f64 = a.bins.iter().map(|b| b.pairs_weighted).sum();
+    let v: f64 = a.samples.bins.iter().map(|b| b.virial).sum();
+    let p: f64 = a.samples.bins.iter().map(|b| b.pairs_weighted).sum();
     assert!((v - 68.0).abs() < 1e-9 && (p - 34.0).abs() < 1e-9);
     // Bin 0 ([0, 0.625)) holds the overlap 0.325 of 6.8.
-    assert!((a.bins[0].virial - 68.0 * 0.325 / 6.8).abs() < 1e-9);
+    assert!((a.samples.bins[0].virial - 68.0 * 0.325 / 6.8).abs() < 1e-9);
 }
 
 /// [1, 3.3] over the window from 2 in bins of 0.5: 0.5, 0.5 and 0.3 of its 2.3 in
@@ -147,24 +149,24 @@ fn increments_spread_over_time_bins_keep_their_total() {
 fn an_increment_is_shared_by_the_bins_in_proportion_to_their_overlap() {
     let mut a = Analyzer::new(run(), opts(2.0, None, 16)).unwrap();
     a.increment(1.0, 3.3, 4.6, 2.3, 23);
-    assert_eq!(a.pairs_from_increments, 23);
+    assert_eq!(a.samples.pairs_from_increments, 23);
     let want = [(1.0, 0.5, 5.0), (1.0, 0.5, 5.0), (0.6, 0.3, 3.0)];
-    for (k, b) in a.bins.iter().enumerate() {
+    for (k, b) in a.samples.bins.iter().enumerate() {
         let (v, w, p) = want.get(k).copied().unwrap_or_default();
         assert!(close(b.virial, v) && close(b.wall_impulse, w), "bin {k}");
         assert!(close(b.pairs_weighted, p), "bin {k}");
     }
     // Empty, reversed or undefined intervals add nothing, not even to the count.
-    let before = a.bins.clone();
+    let before = a.samples.bins.clone();
     a.increment(3.0, 3.0, 1.0, 1.0, 7);
     a.increment(4.0, 3.0, 1.0, 1.0, 7);
     a.increment(f64::NAN, 5.0, 1.0, 1.0, 7);
     a.increment(3.0, f64::NAN, 1.0, 1.0, 7);
-    assert_eq!(a.pairs_from_increments, 23);
+    assert_eq!(a.samples.pairs_from_increments, 23);
     // Wholly before the window: counted, in no bin.
     a.increment(0.5, 1.5, 1.0, 1.0, 7);
-    assert_eq!(a.pairs_from_increments, 30);
-    for (b, e) in a.bins.iter().zip(&before) {
+    assert_eq!(a.samples.pairs_from_increments, 30);
+    for (b, e) in a.samples.bins.iter().zip(&before) {
         assert_eq!(
             (b.virial, b.wall_impulse, b.pairs_weighted),
             (e.virial, e.wall_impulse, e.pairs_weighted)
@@ -189,7 +191,7 @@ fn an_increment_reaches_exactly_the_bins_it_overlaps() {
             let mut a = Analyzer::new(span(t_start, t_end), opts(t_eq, None, 16)).unwrap();
             a.increment(t0, t1, 3.0, 5.0, 16);
             let width = (t_end - t_eq) / 16.0;
-            for (k, b) in a.bins.iter().enumerate() {
+            for (k, b) in a.samples.bins.iter().enumerate() {
                 let (lo, hi) = (t_eq + k as f64 * width, t_eq + (k + 1) as f64 * width);
                 let overlap = (t1.min(hi).min(t_end) - t0.max(lo)).max(0.0);
                 let share = overlap / (t1 - t0);
@@ -217,23 +219,26 @@ fn records_at_the_same_time_give_one_point() {
     let mut a = Analyzer::new(r, opts(0.0, Some(0.0), 16)).unwrap();
     a.thermo(1.0, 6.0, Some(0.5));
     a.thermo(1.0, 8.0, None);
-    assert_eq!(a.kt_series, [(1.0, 4.0)]);
-    assert_eq!(a.energy_series, [(1.0, 8.0, Some(0.5))]);
+    assert_eq!(a.samples.kt_series, [(1.0, 4.0)]);
+    assert_eq!(a.samples.energy_series, [(1.0, 8.0, Some(0.5))]);
     // K = ½·2·(1 + 1 + 4) = 6 → kT 3.
     a.snapshot(1.0, &[0, 0, 0], &[1.0, 0.0, 2.0], &[0.0, -1.0, 0.0])
         .unwrap();
-    assert_eq!(a.kt_series, [(1.0, 3.0)]);
-    assert_eq!(a.energy_series, [(1.0, 8.0, Some(0.5))]);
+    assert_eq!(a.samples.kt_series, [(1.0, 3.0)]);
+    assert_eq!(a.samples.energy_series, [(1.0, 8.0, Some(0.5))]);
     // K = ½·2·(4 + 0 + 1) = 5 at t = 2: a new point.
     a.snapshot(2.0, &[0, 0, 0], &[2.0, 0.0, 0.0], &[0.0, 0.0, 1.0])
         .unwrap();
-    assert_eq!(a.kt_series, [(1.0, 3.0), (2.0, 2.5)]);
-    assert_eq!(a.energy_series, [(1.0, 8.0, Some(0.5)), (2.0, 5.0, None)]);
+    assert_eq!(a.samples.kt_series, [(1.0, 3.0), (2.0, 2.5)]);
+    assert_eq!(
+        a.samples.energy_series,
+        [(1.0, 8.0, Some(0.5)), (2.0, 5.0, None)]
+    );
     a.thermo(2.0, 9.0, Some(0.75));
     a.thermo(3.0, 10.0, None);
-    assert_eq!(a.kt_series, [(1.0, 3.0), (2.0, 4.5), (3.0, 5.0)]);
+    assert_eq!(a.samples.kt_series, [(1.0, 3.0), (2.0, 4.5), (3.0, 5.0)]);
     assert_eq!(
-        a.energy_series,
+        a.samples.energy_series,
         [
             (1.0, 8.0, Some(0.5)),
             (2.0, 9.0, Some(0.75)),
@@ -253,10 +258,10 @@ fn a_snapshot_s_kinetic_energy_weighs_each_disc_by_its_species_mass() {
     let mut a = Analyzer::new(r, opts(0.0, Some(0.0), 16)).unwrap();
     let (s, vx, vy) = ([0, 1, 1], [1.0, -2.0, 0.5], [0.5, 1.0, -3.0]);
     a.snapshot(1.0, &s, &vx, &vy).unwrap();
-    assert_eq!(a.kt_series, [(1.0, 2.40625)]);
-    assert_eq!(a.energy_series, [(1.0, 4.8125, None)]);
+    assert_eq!(a.samples.kt_series, [(1.0, 2.40625)]);
+    assert_eq!(a.samples.energy_series, [(1.0, 4.8125, None)]);
     assert_eq!(
-        (a.mb_kinetic, a.snapshot_kt.clone()),
+        (a.samples.mb_kinetic, a.samples.snapshot_kt.clone()),
         (4.8125, vec![2.40625])
     );
     // The velocity tests see velocities relative to the centre of mass:
@@ -265,17 +270,17 @@ fn a_snapshot_s_kinetic_energy_weighs_each_disc_by_its_species_mass() {
     let near = |a: &[f64], b: &[f64]| {
         a.len() == b.len() && a.iter().zip(b).all(|(x, y)| (x - y).abs() < 1e-15)
     };
-    assert!(near(&a.vx[0], &[1.0 - u]) && near(&a.vy[0], &[0.5]));
-    assert!(near(&a.vx[1], &[-2.0 - u, 0.5 - u]) && near(&a.vy[1], &[1.0, -3.0]));
+    assert!(near(&a.samples.vx[0], &[1.0 - u]) && near(&a.samples.vy[0], &[0.5]));
+    assert!(near(&a.samples.vx[1], &[-2.0 - u, 0.5 - u]) && near(&a.samples.vy[1], &[1.0, -3.0]));
     assert!(near(
-        &a.speeds[1],
+        &a.samples.speeds[1],
         &[(-2.0 - u).hypot(1.0), (0.5 - u).hypot(-3.0)]
     ));
     // A second snapshot adds its K (½·2·4 + 0 + 0 = 4) to the sum.
     a.snapshot(2.0, &s, &[0.0, 0.0, 0.0], &[2.0, 0.0, 0.0])
         .unwrap();
-    assert_eq!(a.mb_kinetic, 8.8125);
-    assert_eq!(a.snapshot_a2.len(), 2);
+    assert_eq!(a.samples.mb_kinetic, 8.8125);
+    assert_eq!(a.samples.snapshot_a2.len(), 2);
 }
 
 /// Log [2, 12], window from 4: the tolerance for a snapshot's time rounded below
@@ -288,9 +293,9 @@ fn snapshots_count_from_the_window_start_within_a_rounding_tolerance() {
     for t in times {
         a.snapshot(t, &[0, 0], &[1.0, -1.0], &[0.5, 0.0]).unwrap();
     }
-    assert_eq!(a.snapshots_used, [times[2], times[3]]);
-    assert_eq!(a.snapshots_seen, 4);
-    assert_eq!(a.kt_series.len(), 4);
+    assert_eq!(a.samples.snapshots_used, [times[2], times[3]]);
+    assert_eq!(a.samples.snapshots_seen, 4);
+    assert_eq!(a.samples.kt_series.len(), 4);
     // The same rule for positions (into g(r) and ψ6): a 16-disc lattice.
     let (sim_box, x, y) = crate::test_lattice::triangular(4, 4, 2.0);
     let r = RunDescription {
@@ -302,7 +307,7 @@ fn snapshots_count_from_the_window_start_within_a_rounding_tolerance() {
     for t in times {
         a.positions(t, &[0; 16], &x, &y).unwrap();
     }
-    assert_eq!(a.pair_correlation.snapshot_count(), 2);
+    assert_eq!(a.structure.pair_correlation.snapshot_count(), 2);
 }
 
 /// Snapshots at least `every` = 2.5 apart, to a relative 10⁻⁹: after 4, not 5;
@@ -314,8 +319,11 @@ fn snapshots_used_are_at_least_every_apart() {
     for t in times {
         a.snapshot(t, &[0, 0], &[1.0, 0.0], &[0.0, 2.0]).unwrap();
     }
-    assert_eq!(a.snapshots_used, [times[0], times[2], times[3]]);
-    assert_eq!((a.snapshot_kt.len(), a.speeds[0].len()), (3, 6));
+    assert_eq!(a.samples.snapshots_used, [times[0], times[2], times[3]]);
+    assert_eq!(
+        (a.samples.snapshot_kt.len(), a.samples.speeds[0].len()),
+        (3, 6)
+    );
 }
 
 /// kT = K here (2 discs, periodic: f = 2). Records (1, 2), (3, 5), (7, 1): before
@@ -324,7 +332,7 @@ fn snapshots_used_are_at_least_every_apart() {
 #[test]
 fn kt_is_interpolated_linearly_between_records() {
     let mut a = Analyzer::new(run(), opts(0.0, None, 16)).unwrap();
-    assert_eq!(a.kt_at(1.0), None);
+    assert_eq!(a.samples.kt_at(1.0), None);
     for (t, k) in [(1.0, 2.0), (3.0, 5.0), (7.0, 1.0)] {
         a.thermo(t, k, None);
     }
@@ -337,7 +345,7 @@ fn kt_is_interpolated_linearly_between_records() {
         (6.0, 2.0),
     ];
     for (t, kt) in at.into_iter().chain([(7.0, 1.0), (8.0, 1.0)]) {
-        assert_eq!(a.kt_at(t), Some(kt), "t = {t}");
+        assert_eq!(a.samples.kt_at(t), Some(kt), "t = {t}");
     }
 }
 
@@ -348,7 +356,7 @@ fn each_bin_takes_kt_at_its_middle() {
     let mut a = Analyzer::new(run(), opts(2.0, None, 16)).unwrap();
     a.thermo(0.0, 1.0, None);
     a.thermo(10.0, 11.0, None);
-    let kt = a.kt_per_bin();
+    let kt = a.samples.kt_per_bin();
     assert_eq!(kt.len(), 16);
     for (k, v) in kt.iter().enumerate() {
         assert!(close(*v, 3.25 + 0.5 * k as f64), "bin {k}: {v}");

@@ -1,23 +1,23 @@
-//! Gravity in `analyze` (physics.md §15): the potential energy U = Σ m g y of the
-//! snapshots and the total energy K + U, the density profile n(y) per species,
-//! and per species the barometric fit β_g = m g/kT of (15.8) against the known
-//! m g/kT.
-//!
-//! The heights come from the snapshots after the equilibration time that start a
-//! block of the snapshot schedule (as for g(r)); the fit is made for each of up to
-//! [`BLOCKS`] consecutive groups of snapshots, and β_g is their mean with the
-//! standard error of their spread (neighbouring snapshots are correlated, groups
-//! much less). The ideal gas's value m g/kT uses kT = 2K/f of the same
-//! snapshots. (15.6) is a dilute gas's law: at higher density the fitted β_g comes
-//! out smaller than m g/kT, so a single species is judged by the β_g of the
-//! hydrostatic profile (15.7) with the equation of state ([`hydrostatic_beta`]).
-//! Neither is an equilibrium to judge a driven run by (a vibrated bed): there
-//! `not_applicable` says why, and no known value is compared.
+//! Gravity in `analyze` (physics.md §15): the potential energy U = Σ m g y and
+//! K + U of the snapshots, the density profile n(y) per species, and per
+//! species the barometric fit of (15.8),
+//!     n(y) ∝ e^{−β_g y},   against the dilute gas's β_g = m g/kT (15.6),
+//! and for one species against the hydrostatic profile (15.7) with the equation
+//! of state ([`hydrostatic_beta`]), which a dense column follows instead.
+//! Heights come from the block-start snapshots after the equilibration time (as
+//! for g(r)); β_g is the mean over up to [`BLOCKS`] consecutive groups of
+//! snapshots with the error of their spread (groups correlate much less than
+//! neighbouring snapshots). A driven bed (vibrating floor) is in no equilibrium:
+//! `not_applicable` says so and no known value is compared.
 
 use carom_core::gravity::barometric_beta;
 use serde::Serialize;
 
 use super::hydrostatic::hydrostatic_beta;
+
+/// Why the barometric law has no known value on a vibrating floor.
+pub const NOT_IN_EQUILIBRIUM: &str = "the barometric and hydrostatic laws hold in equilibrium; \
+     a bed driven by a vibrating floor and cooled by its collisions is not";
 
 /// Groups of snapshots the fit's standard error comes from.
 pub const BLOCKS: usize = 16;
@@ -131,8 +131,15 @@ impl Atmosphere {
     }
 
     /// The report, with the kinetic energies `kinetic` (time, K) of the snapshots
-    /// and kT (energy) of the snapshots used, `kt`; `None` without snapshots.
-    pub(super) fn report(&self, kinetic: &[(f64, f64)], kt: Option<f64>) -> Option<GravityReport> {
+    /// and kT (energy) of the snapshots used, `kt`; `None` without snapshots. A
+    /// run that is not in `equilibrium` (driven by a vibrating floor) has its
+    /// fits compared with no known value.
+    pub(super) fn report(
+        &self,
+        kinetic: &[(f64, f64)],
+        kt: Option<f64>,
+        equilibrium: bool,
+    ) -> Option<GravityReport> {
         let m = self.snapshots.len();
         if m == 0 {
             return None;
@@ -170,15 +177,21 @@ impl Atmosphere {
                         hydrostatic_beta(expected, n / self.size[0], self.radii[s], span_of(s))
                     })
                     .filter(|b| b.is_finite());
+                let (se_known, hydrostatic) = match equilibrium {
+                    true => (se, hydrostatic),
+                    false => (None, None),
+                };
                 BarometricFit {
                     species: s,
                     beta: mean,
                     beta_std_error: se,
                     beta_expected: expected,
-                    deviation_se: se.map(|se| (mean - expected) / se),
+                    deviation_se: se_known.map(|se| (mean - expected) / se),
                     beta_hydrostatic: hydrostatic,
-                    deviation_hydrostatic_se: se.zip(hydrostatic).map(|(se, h)| (mean - h) / se),
-                    not_applicable: None,
+                    deviation_hydrostatic_se: se_known
+                        .zip(hydrostatic)
+                        .map(|(se, h)| (mean - h) / se),
+                    not_applicable: (!equilibrium).then_some(NOT_IN_EQUILIBRIUM),
                     floor_density: n * mean / (self.size[0] * -(-mean * span_of(s)).exp_m1()),
                     floor: self.radii[s],
                 }
@@ -218,7 +231,9 @@ mod tests {
         let mut a = Atmosphere::new(3.0, [10.0, 4.0], vec![2.0], vec![0.5]);
         a.add(1.0, &[0, 0, 0], &[0.5, 1.5, 2.5]);
         a.add(2.0, &[0, 0, 0], &[0.5, 1.0, 1.5]);
-        let r = a.report(&[(1.0, 5.0), (2.0, 14.0)], Some(2.0)).unwrap();
+        let r = a
+            .report(&[(1.0, 5.0), (2.0, 14.0)], Some(2.0), true)
+            .unwrap();
         assert_eq!(r.potential_energy, 22.5);
         assert_eq!(
             (r.total_energy_first, r.total_energy_last),

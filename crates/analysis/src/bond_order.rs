@@ -18,21 +18,13 @@ use serde::Serialize;
 use super::neighbours::{delaunay_neighbours, Neighbours};
 use super::pair_correlation::mean_se;
 use super::psi6_estimators::{local_psi6_equal, local_psi6_nearest, six_neighbour_fraction};
+use super::sixfold::sixfold;
 
 /// Fewer discs than this get no bond order, g6 or χ6: a disc with its six
 /// neighbours is seven, and below that ψ6 measures the box, not an order.
 pub const MIN_BOND_ORDER_DISCS: usize = 7;
-use super::report::DriftReport;
 use super::series::{blocked, drift, subsample, MAX_SERIES};
-
-/// z⁶ for the unit complex number z = (dx + i dy)/r.
-pub fn sixfold(dx: f64, dy: f64) -> [f64; 2] {
-    let r2 = dx * dx + dy * dy;
-    let (a, b) = (dx * dx - dy * dy, 2.0 * dx * dy); // z² r²
-    let (c, d) = (a * a - b * b, 2.0 * a * b); // z⁴ r⁴
-    let s = 1.0 / (r2 * r2 * r2);
-    [(a * c - b * d) * s, (a * d + b * c) * s]
-}
+use super::thermo_report::DriftReport;
 
 /// ψ6 of every disc from its neighbour list (0 for a disc without neighbours).
 pub fn local_psi6_from(nb: &Neighbours) -> Vec<[f64; 2]> {
@@ -205,15 +197,6 @@ mod tests {
     use super::*;
     use std::f64::consts::{PI, SQRT_2};
 
-    #[test]
-    fn sixfold_is_the_sixth_power_of_the_bond_direction() {
-        for th in [0.0, 0.3, 1.0, 2.5, -2.0, 3.1] {
-            let z = sixfold(2.0 * f64::cos(th), 2.0 * f64::sin(th));
-            assert!((z[0] - (6.0 * th).cos()).abs() < 1e-14);
-            assert!((z[1] - (6.0 * th).sin()).abs() < 1e-14);
-        }
-    }
-
     /// A perfect triangular lattice: six neighbours each at distance a, every
     /// ψ6 = e^{6iφ} of the lattice's orientation (here φ = 0: ψ6 = 1), |Ψ6| = 1.
     #[test]
@@ -236,26 +219,6 @@ mod tests {
         let r = bo.report().unwrap();
         assert!((r.global - 1.0).abs() < 1e-12 && (r.local - 1.0).abs() < 1e-12);
         assert!(r.susceptibility.abs() < 1e-9);
-    }
-
-    /// z = (3 + 4i)/5 by hand: z² = (−7 + 24i)/25, z⁴ = (z²)² = (−527 − 336i)/625,
-    /// z⁶ = z⁴ z² = (3689 + 8064 + (−12648 + 2352)i)/15625 = (11753 − 10296i)/15625
-    /// (|z⁶|² = 15625²/15625² checks it). The bond's length, 5 or 0.35, drops out;
-    /// the mirror image (3, −4) is the conjugate.
-    #[test]
-    fn sixfold_of_a_three_four_five_bond_is_worked_by_hand() {
-        let exact = [11753.0 / 15625.0, -10296.0 / 15625.0];
-        for (k, [dx, dy]) in [[3.0, 4.0], [0.21, 0.28], [3.0, -4.0]]
-            .into_iter()
-            .enumerate()
-        {
-            let z = sixfold(dx, dy);
-            let im = if k == 2 { -exact[1] } else { exact[1] };
-            assert!(
-                (z[0] - exact[0]).abs() < 1e-15 && (z[1] - im).abs() < 1e-15,
-                "{z:?}"
-            );
-        }
     }
 
     /// Hand-built neighbour lists, with bonds whose e^{6iθ} is exact: θ = 0 → 1,

@@ -8,14 +8,14 @@
 
 use carom_core::observables::{collision_rate, has_walls};
 
-use super::analyzer::Analyzer;
-use super::report::{CollisionRateReport, EnskogReport, PressureReport, RateAt};
+use super::samples::Samples;
 use super::series::{blocked, drift};
 use super::stats::StatsError;
+use super::thermo_report::{CollisionRateReport, EnskogReport, PressureReport, RateAt};
 
 /// ω of each time bin (logged pair collisions × stride, plus those from running
 /// totals).
-pub(super) fn omega_per_bin(a: &Analyzer) -> Vec<f64> {
+pub(super) fn omega_per_bin(a: &Samples) -> Vec<f64> {
     let (n, stride) = (a.run.n(), a.run.collision_stride as f64);
     a.bins
         .iter()
@@ -25,7 +25,7 @@ pub(super) fn omega_per_bin(a: &Analyzer) -> Vec<f64> {
 
 /// The collision-rate report from the bins' ω.
 pub(super) fn report(
-    a: &Analyzer,
+    a: &Samples,
     omega_bins: &[f64],
     elastic: bool,
 ) -> Result<CollisionRateReport, StatsError> {
@@ -50,7 +50,7 @@ pub(super) fn report(
 
 /// ω over the first (`last` false) or last sixteenth of the window's bins, with
 /// its blocked error; `None` when the part has too few bins to block.
-fn rate_at(a: &Analyzer, omega_bins: &[f64], last: bool) -> Option<RateAt> {
+fn rate_at(a: &Samples, omega_bins: &[f64], last: bool) -> Option<RateAt> {
     let k = omega_bins.len() / 16;
     let first = if last { omega_bins.len() - k } else { 0 };
     let est = blocked(&omega_bins[first..first + k]).ok()?;
@@ -67,7 +67,7 @@ fn rate_at(a: &Analyzer, omega_bins: &[f64], last: bool) -> Option<RateAt> {
 /// The Enskog check from the bins' Z, ω and kT; `None` unless the run is
 /// periodic, monodisperse and `elastic`, and has a pressure.
 pub(super) fn enskog(
-    a: &Analyzer,
+    a: &Samples,
     elastic: bool,
     pressure: Option<&PressureReport>,
     [z_bins, omega_bins, kt_bins]: [&[f64]; 3],
@@ -104,6 +104,7 @@ mod tests {
     use super::*;
     use crate::description::RunDescription;
     use crate::AnalysisOptions;
+    use crate::Analyzer;
     use carom_core::Species;
 
     /// A pressure report with only Z set (the Enskog check reads nothing else).
@@ -143,8 +144,8 @@ mod tests {
             a.pair(t, 1.0, 0.0);
         }
         a.increment(0.0, 5.0, 0.0, 0.0, 5);
-        let omega = omega_per_bin(&a);
-        let h = a.bin_width;
+        let omega = omega_per_bin(&a.samples);
+        let h = a.samples.bin_width;
         let expected: Vec<f64> = (0..omega.len())
             .map(|k| {
                 let (lo, hi) = (k as f64 * h, (k + 1) as f64 * h);
@@ -177,7 +178,7 @@ mod tests {
         let z: Vec<f64> = (0..n).map(|k| 3.0 + 0.01 * (k % 3) as f64).collect();
         let omega: Vec<f64> = (0..n).map(|k| 1.5 + 0.02 * (k % 5) as f64).collect();
         let kt = vec![0.5; n];
-        let e = enskog(&a, true, Some(&pressure), [&z, &omega, &kt])
+        let e = enskog(&a.samples, true, Some(&pressure), [&z, &omega, &kt])
             .unwrap()
             .expect("one species with discs, periodic, elastic");
         let c = std::f64::consts::PI.sqrt() / 4.0;
@@ -209,7 +210,7 @@ mod tests {
         let (z, omega, kt) = (vec![2.0; 16], vec![1.0; 16], vec![1.0; 16]);
         let check = |run: RunDescription, elastic, pr: Option<&PressureReport>| {
             let a = Analyzer::new(run, AnalysisOptions::default()).unwrap();
-            enskog(&a, elastic, pr, [&z, &omega, &kt]).unwrap()
+            enskog(&a.samples, elastic, pr, [&z, &omega, &kt]).unwrap()
         };
         let base = RunDescription::for_tests;
         assert!(check(base(), true, Some(&pressure)).is_some());

@@ -18,8 +18,7 @@ use carom_engine::Growth;
 use carom_log::{GrowthEvent, GrowthPhase, LogMessage, LogReader};
 use serde::Serialize;
 
-use super::from_log::AnalysisError;
-use super::report::Report;
+use super::error::AnalysisError;
 
 /// How the compression in a log went.
 #[derive(Debug, Clone, PartialEq, Serialize)]
@@ -177,11 +176,6 @@ impl Compression {
             None => Ok(grown + 0.1 * (t_end - grown)),
         }
     }
-}
-
-/// Put the compression into the report.
-pub(super) fn apply(c: Compression, r: &mut Report) {
-    r.compression = Some(c.report);
 }
 
 #[cfg(test)]

@@ -10,7 +10,7 @@
 use serde::Serialize;
 
 use super::pair_correlation::{mean_se, pairs, PairCorrelation, BLOCKS};
-use super::report::PressureReport;
+use super::thermo_report::PressureReport;
 
 /// Width of the contact fit in units of σ_ab.
 pub const CONTACT_FIT_SIGMA: f64 = 0.2;

@@ -11,7 +11,7 @@ use carom_core::{Boundary, Restitution, SimBox, Species};
 use carom_log::{LogInfo, ReadError, RunFacts};
 use carom_log::{Snapshot, SnapshotSchedule};
 
-use super::from_log::AnalysisError;
+use super::error::AnalysisError;
 #[cfg(doc)]
 use super::{AnalysisOptions, Analyzer};
 

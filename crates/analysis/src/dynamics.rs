@@ -1,6 +1,6 @@
 //! Single-disc dynamics from the snapshots (physics.md §13), in one streaming
 //! pass and fixed memory: every snapshot's unwrapped positions u_i and velocities
-//! v_i ([`Analyzer::motion`]) are paired with stored origins ([`super::origins`]),
+//! v_i (`Analyzer::motion`) are paired with stored origins ([`super::origins`]),
 //! and per pairing key, species and time segment of the origin the sums
 //!
 //!   Σ 1, Σ |Δu|², Σ |Δu|⁴, Σ v_i(t₀)·v_i(t), Σ J₀(k*|Δu|),   Δu = u_i(t) − u_i(t₀),
@@ -12,15 +12,13 @@
 
 use std::collections::BTreeMap;
 
-use carom_core::SimBox;
+use carom_core::{SimBox, Species};
 
 use super::dynamics_report::{DynamicsReport, SpeciesDynamics};
 use super::msd::{fit_diffusion, overlap_factor, D_WINDOW_COLLISIONS};
 use super::origins::{plan, LagKey, Origin, OriginStore};
 use super::pair_correlation::mean_se;
 use super::self_scattering::{first_peak_k, tau_alpha};
-use super::stats::StatsError;
-use super::{Analyzer, RunDescription};
 
 /// Time segments of [t_eq, t_end] whose spread gives the standard errors.
 pub const SEGMENTS: usize = 10;
@@ -53,7 +51,7 @@ struct KeySums {
     species: Vec<[Sums; SEGMENTS]>,
 }
 
-/// The accumulator behind [`Analyzer::motion`].
+/// The accumulator behind `Analyzer::motion`.
 #[derive(Debug, Clone)]
 pub(super) struct Dynamics {
     store: OriginStore,
@@ -75,21 +73,29 @@ pub(super) struct Dynamics {
 }
 
 impl Dynamics {
-    /// For `run` analysed from `t_eq`, σ_min the smallest diameter.
-    pub(super) fn new(run: &RunDescription, t_eq: f64, sigma_min: f64) -> Self {
-        let interval = run.snapshot_interval.filter(|i| i.is_finite() && *i > 0.0);
-        let blocks = interval.map(|i| ((run.t_end - t_eq) / i).floor().max(0.0) as u64 + 1);
-        let (p, levels, capped) = plan(run.n(), blocks);
+    /// For `species` in `sim_box` over [t_start, t_end] analysed from `t_eq`,
+    /// snapshots every `snapshot_interval` (or block of the schedule) when known,
+    /// σ_min the smallest diameter.
+    pub(super) fn new(
+        (species, sim_box): (&[Species], &SimBox),
+        [t_start, t_eq, t_end]: [f64; 3],
+        snapshot_interval: Option<f64>,
+        sigma_min: f64,
+    ) -> Self {
+        let interval = snapshot_interval.filter(|i| i.is_finite() && *i > 0.0);
+        let blocks = interval.map(|i| ((t_end - t_eq) / i).floor().max(0.0) as u64 + 1);
+        let n = species.iter().map(|s| s.count).sum();
+        let (p, levels, capped) = plan(n, blocks);
         Dynamics {
             store: OriginStore::new(p, levels),
             capped,
-            t_start: run.t_start,
+            t_start,
             interval,
             t_eq,
-            t_end: run.t_end,
-            sim_box: run.sim_box,
+            t_end,
+            sim_box: *sim_box,
             sigma_min,
-            counts: run.species.iter().map(|s| s.count).collect(),
+            counts: species.iter().map(|s| s.count).collect(),
             k_star: None,
             sums: BTreeMap::new(),
             origins: 0,
@@ -106,7 +112,14 @@ impl Dynamics {
 
     /// One snapshot, a block start when `start` (slices already checked to
     /// agree).
-    fn add(&mut self, t: f64, start: bool, species_of: &[u16], u: [&[f64]; 2], v: [&[f64]; 2]) {
+    pub(super) fn add(
+        &mut self,
+        t: f64,
+        start: bool,
+        species_of: &[u16],
+        u: [&[f64]; 2],
+        v: [&[f64]; 2],
+    ) {
         let tol = 1e-12 * self.t_eq.abs().max(self.t_end - self.t_start);
         if t > self.t_end + tol {
             return;
@@ -263,36 +276,6 @@ fn species_report(
     r.tau_alpha = tau_alpha(&r.lag, &r.fs);
     r.diffusion = fit_diffusion(&r.lag, &r.msd, &r.msd_std_error, &msd_segments, t_a, w);
     r
-}
-
-impl Analyzer {
-    /// A snapshot's unwrapped positions (`ux`, `uy`, length; continuous in time,
-    /// physics.md §12) and velocities (length/time) of every disc, with species
-    /// indices, for the MSD, D, snapshot VACF and F_s (physics.md §13). Snapshots
-    /// come in time order; block starts after the equilibration time become time
-    /// origins.
-    ///
-    /// Errors when the slices differ in length or a species index is not one of
-    /// the run's species.
-    pub fn motion(
-        &mut self,
-        t: f64,
-        species_of: &[u16],
-        [ux, uy]: [&[f64]; 2],
-        [vx, vy]: [&[f64]; 2],
-    ) -> Result<(), StatsError> {
-        self.check_snapshot(t, species_of, [ux, uy], ["ux", "uy"])?;
-        self.check_snapshot(t, species_of, [vx, vy], ["vx", "vy"])?;
-        let start = self.block_start(t);
-        self.dynamics.add(t, start, species_of, [ux, uy], [vx, vy]);
-        Ok(())
-    }
-
-    /// The number of snapshot gaps that could not be unwrapped with certainty
-    /// ([`super::Unwrapper::ambiguous_gaps`]), for the report's warning.
-    pub fn ambiguous_gaps(&mut self, gaps: u64) {
-        self.dynamics.ambiguous_gaps = gaps;
-    }
 }
 
 #[cfg(test)]

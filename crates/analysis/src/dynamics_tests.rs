@@ -2,6 +2,7 @@
 //! (every quantity known in closed form) and a Gaussian random walk of known D.
 
 use super::*;
+use crate::RunDescription;
 use carom_core::{Restitution, Species};
 use rand::SeedableRng;
 use rand_distr::{Distribution, StandardNormal};
@@ -40,7 +41,12 @@ fn close(a: f64, b: f64, rel: f64) -> bool {
 fn free_flight_through_wraps_is_ballistic() {
     let species = vec![Species::new(3, 0.5, 1.0), Species::new(2, 0.5, 4.0)];
     let r = run(species, 20.0, 1.0);
-    let mut d = Dynamics::new(&r, 0.0, 1.0);
+    let mut d = Dynamics::new(
+        (&r.species, &r.sim_box),
+        [r.t_start, 0.0, r.t_end],
+        r.snapshot_interval,
+        1.0,
+    );
     let species_of = [0u16, 1, 0, 1, 0];
     let u0 = [(1.0, 2.0), (5.5, 7.25), (9.0, 0.5), (3.3, 3.3), (0.1, 8.8)];
     let v = [
@@ -119,7 +125,12 @@ fn a_random_walk_has_its_diffusion_coefficient() {
     let dc: f64 = 0.5;
     let n = 300;
     let r = run(vec![Species::new(n, 0.5, 1.0)], 400.0, 1.0);
-    let mut d = Dynamics::new(&r, 0.0, 1.0);
+    let mut d = Dynamics::new(
+        (&r.species, &r.sim_box),
+        [r.t_start, 0.0, r.t_end],
+        r.snapshot_interval,
+        1.0,
+    );
     let mut rng = Pcg64::seed_from_u64(36);
     let (mut ux, mut uy) = (vec![5.0; n], vec![5.0; n]);
     let zero = vec![0.0; n];

@@ -2,21 +2,14 @@
 //! and shaking parameter Γ = A ω²/g, and the energy flows over the analysis
 //! window from the engine's totals in the log's checkpoints: the work W the floor
 //! did and the energy E_lost the collisions dissipated between the first
-//! checkpoint in the window and the last, as mean powers. In a steady state they
-//! are equal; their difference is the change of K + U over the window divided by
-//! its length. The energy budget and Haff's law of an inelastic run assume no
-//! input and are taken out, and so are the cooling state's a2 and the barometric
-//! law's known value: a driven
-//! bed is not in equilibrium (its n(y) and fitted β_g are still reported).
+//! checkpoint in the window and the last, as mean powers W/Δt and E_lost/Δt. In a
+//! steady state they are equal; their difference is Δ(K + U)/Δt. A driven bed is
+//! not in equilibrium nor a cooling state: the analyzer leaves out the energy
+//! budget, Haff's law and the cooling state's a2, and compares the barometric fit
+//! with no known value (its n(y) and fitted β_g are still reported).
 
 use carom_core::vibrating_wall::Floor;
 use serde::Serialize;
-
-use super::report::Report;
-
-/// Why the barometric law has no known value on a vibrating floor.
-pub const NOT_IN_EQUILIBRIUM: &str = "the barometric and hydrostatic laws hold in equilibrium; \
-     a bed driven by a vibrating floor and cooled by its collisions is not";
 
 /// The floor and the energy it puts in.
 #[derive(Debug, Clone, PartialEq, Serialize)]
@@ -42,34 +35,21 @@ pub struct FloorReport {
 
 /// The floor report of a run with floor `floor` in a field `g`, from the
 /// engine's totals (time, floor work, energy lost) at its checkpoints, over the
-/// first checkpoint at or after `from` to the last; added to `r`, whose
-/// input-free energy budget is taken out. Nothing over less than two checkpoints.
-pub(super) fn apply(floor: &Floor, g: f64, totals: &[(f64, f64, f64)], from: f64, r: &mut Report) {
-    if let Some(i) = r.inelastic.as_mut() {
-        i.energy = None;
-        i.haff = None;
-        // van Noije–Ernst's a2 is the homogeneous cooling state's.
-        if let Some(a2) = i.sonine.as_mut() {
-            a2.theory = None;
-        }
-    }
-    if let Some(g) = r.gravity.as_mut() {
-        for b in &mut g.barometric {
-            b.deviation_se = None;
-            b.beta_hydrostatic = None;
-            b.deviation_hydrostatic_se = None;
-            b.not_applicable = Some(NOT_IN_EQUILIBRIUM);
-        }
-    }
-    let Some(a) = totals.iter().find(|c| c.0 >= from) else {
-        return;
-    };
+/// first checkpoint at or after `from` to the last; `None` over less than two
+/// checkpoints.
+pub(super) fn report(
+    floor: &Floor,
+    g: f64,
+    totals: &[(f64, f64, f64)],
+    from: f64,
+) -> Option<FloorReport> {
+    let a = totals.iter().find(|c| c.0 >= from)?;
     let b = totals.last().expect("one found above");
     let span = b.0 - a.0;
     if span <= 0.0 {
-        return;
+        return None;
     }
-    r.floor = Some(FloorReport {
+    Some(FloorReport {
         amplitude: floor.amplitude,
         frequency: floor.omega / (2.0 * std::f64::consts::PI),
         shaking_parameter: (g > 0.0).then(|| floor.amplitude * floor.omega.powi(2) / g),
@@ -78,5 +58,5 @@ pub(super) fn apply(floor: &Floor, g: f64, totals: &[(f64, f64, f64)], from: f64
         energy_lost: b.2 - a.2,
         power_in: (b.1 - a.1) / span,
         power_out: (b.2 - a.2) / span,
-    });
+    })
 }

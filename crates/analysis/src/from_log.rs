@@ -1,20 +1,13 @@
-//! From a log file to a [`Report`]: the time span and collision counts come from a
-//! finished log's index (or, for a log cut short, a scan), the run from
-//! [`describe`], and then every message is read in one streaming pass into the
-//! [`Analyzer`]. Only the first snapshot of a log whose configuration cannot be
-//! read is needed before the analysis can start; the messages read up to it are
-//! kept and fed after it, so the pass stays one.
-//!
-//! The run's facts come from the log (`log_facts.rs`); a log written before they
-//! were complete has them derived once from its configuration by the caller's
-//! [`OldLogFacts`] ([`analyze_log_with`]).
-//!
-//! A compression run is first read for its growth (`compression.rs`): the
-//! analysis then uses the radii after growth and a window that starts after it.
-//!
-//! Collisions give the virial and wall impulse bin by bin; a log without them, or
-//! with only every k-th, gets them from the differences of consecutive `/thermo`
-//! records' running totals instead.
+//! From a log file to a [`Report`] in one streaming pass: the time span and
+//! counts from the log's index (or a scan of a log cut short), the run from its
+//! facts ([`describe`]; a log before format 2.4 derives them once through the
+//! caller's [`OldLogFacts`]), a compression run's growth read first
+//! (`compression.rs`: radii after growth, window after it), then every message
+//! fed to the [`Analyzer`]. A log without collisions, or with every k-th, gives
+//! the virial and wall impulse from differences of consecutive `/thermo`
+//! running totals. A log described by its first snapshot keeps the messages
+//! read up to it and feeds them after, so the pass stays one. The thermostat,
+//! compression and floor go to [`Analyzer::finish_with`] as [`RunDynamics`].
 
 use std::path::Path;
 
@@ -23,27 +16,14 @@ use carom_log::{
     scan_indexed, scan_observed, LogEnd, LogMessage, LogReader, ReadError, ReadProgress,
 };
 use carom_log::{Snapshot, KIND_PAIR};
-use thiserror::Error;
 
 use super::compression::Compression;
 use super::description::describe;
+use super::error::AnalysisError;
 use super::log_facts::{log_facts, no_old_log_facts, OldLogFacts};
+use super::run_dynamics::{FloorRun, RunDynamics};
 use super::stats::StatsError;
 use super::{AnalysisOptions, Analyzer, Report, Unwrapper};
-
-/// Why a log could not be analysed.
-#[derive(Debug, Error)]
-pub enum AnalysisError {
-    /// The log could not be read.
-    #[error(transparent)]
-    Read(#[from] ReadError),
-    /// A statistic could not be computed.
-    #[error("analysis: {0}")]
-    Stats(#[from] StatsError),
-    /// The log holds nothing to analyse, or an option does not fit it.
-    #[error("{0}")]
-    Unusable(String),
-}
 
 /// Who hears how reading a log goes (a progress display).
 pub trait ReadObserver {
@@ -188,23 +168,18 @@ pub fn analyze_log_with(
     let totals = std::mem::take(&mut feed.totals);
     let gaps = feed.unwrapper.ambiguous_gaps();
     feed.analyzer.ambiguous_gaps(gaps);
-    let mut report = feed.analyzer.finish()?;
-    if let Some(d) = dynamics {
-        if let Some(t) = &d.thermostat {
-            super::thermostat::apply(t, d.restitution, &mut report);
-        }
-    }
-    if let Some(c) = compression {
-        super::compression::apply(c, &mut report);
-    }
-    if let Some(d) = dynamics {
-        if let Some(f) = &d.floor {
-            let from = report.window.equilibrate;
-            super::floor::apply(f, d.gravity, &totals, from, &mut report);
-        }
-    }
-    // What those took out is said with its reason too.
-    report.not_computed = super::not_computed::explain(&report);
+    let run_dynamics = RunDynamics {
+        thermostat: dynamics.and_then(|d| d.thermostat.map(|t| (t, d.restitution))),
+        compression: compression.map(|c| c.report),
+        floor: dynamics.and_then(|d| {
+            d.floor.map(|floor| FloorRun {
+                floor,
+                gravity: d.gravity,
+                totals,
+            })
+        }),
+    };
+    let report = feed.analyzer.finish_with(run_dynamics)?;
     Ok((report, complete))
 }
 

@@ -12,8 +12,8 @@
 use carom_core::observables::{has_walls, packing_fraction};
 use carom_core::rates::henderson_contact_value;
 
-use super::analyzer::Analyzer;
-use super::report::HaffEnskog;
+use super::inelastic_report::HaffEnskog;
+use super::samples::Samples;
 use super::thermostat::enskog_rate_coefficient;
 
 /// |measured/predicted slope − 1| accepted as agreement: Enskog's rate neglects
@@ -23,7 +23,7 @@ pub const ENSKOG_COOLING_TOLERANCE: f64 = 0.05;
 
 /// The prediction over the window [t_eq, t_end] with the measured `a2`; `None`
 /// for a mixture, a box with walls, or fewer than three kT records in the window.
-pub(super) fn haff_enskog(a: &Analyzer, e: f64, a2: f64) -> Option<HaffEnskog> {
+pub(super) fn haff_enskog(a: &Samples, e: f64, a2: f64) -> Option<HaffEnskog> {
     let run = &a.run;
     let mut present = run.species.iter().filter(|s| s.count > 0);
     let (Some(species), None) = (present.next(), present.next()) else {
@@ -82,6 +82,7 @@ mod tests {
     use super::*;
     use crate::description::RunDescription;
     use crate::AnalysisOptions;
+    use crate::Analyzer;
     use carom_core::{Restitution, SimBox, Species};
 
     /// A gas that follows Haff's law exactly with Enskog's rate: 1/√kT = 1/√kT0 +
@@ -106,25 +107,25 @@ mod tests {
         let omega_unit = 2.0 * 1.0 * 0.04 * g * (std::f64::consts::PI / 2.0).sqrt();
         let a2 = -0.02;
         let s = (1.0 - 0.64) * (1.0 + 3.0 * a2 / 16.0) * omega_unit / 4.0;
-        let f = a.dof() as f64 / 2.0;
+        let f = a.samples.dof() as f64 / 2.0;
         for k in 0..=10 {
             let t = k as f64;
             let kt = (1.0 / (1.0 + s * t)).powi(2);
             a.thermo(t, kt * f, None);
         }
-        let h = haff_enskog(&a, 0.8, a2).unwrap();
+        let h = haff_enskog(&a.samples, 0.8, a2).unwrap();
         assert!((h.slope_predicted - s).abs() < 1e-14 * s, "{h:?}");
         assert!((h.ratio - 1.0).abs() < 1e-12 && h.agrees, "{h:?}");
         assert!((h.kt_end_predicted / h.kt_end_measured - 1.0).abs() < 1e-12);
         assert!((h.g_contact - g).abs() < 1e-15);
         assert_eq!(h.window, [2.0, 10.0]);
         // Cooling 10 % slower than predicted is a disagreement.
-        let mut b = Analyzer::new(a.run.clone(), opts).unwrap();
+        let mut b = Analyzer::new(a.samples.run.clone(), opts).unwrap();
         for k in 0..=10 {
             let t = k as f64;
             b.thermo(t, (1.0 / (1.0 + 0.9 * s * t)).powi(2) * f, None);
         }
-        let h = haff_enskog(&b, 0.8, a2).unwrap();
+        let h = haff_enskog(&b.samples, 0.8, a2).unwrap();
         assert!((h.ratio - 0.9).abs() < 1e-12 && !h.agrees, "{h:?}");
     }
 }

@@ -1,18 +1,14 @@
-//! a2 of the homogeneous cooling state of hard discs with normal restitution e,
-//! beyond van Noije & Ernst's first Sonine approximation (physics.md §8).
-//!
-//! In reduced velocities c = v/√(2kT/m) the scaled distribution is
-//! f = φ(c)[1 + a2 S2(c²) + a3 S3(c²)], φ the 2D Maxwellian and S_p = L_p^(0)
-//! the Sonine (Laguerre) polynomials of discs. The Boltzmann (or Enskog)
-//! equation of the cooling state gives, for every moment, μ_p = (p/d) μ2 ⟨c^p⟩
-//! with μ_p = −∫ c^p I(f, f) dc the collisional moments (Brilliantov & Pöschel,
-//! Phys. Rev. E 61, 5573 (2000), and for a3 Europhys. Lett. 74, 424 (2006);
-//! physics.md (8.8)). Linear in a2 and a3: p = 4 alone with a3 = 0 is the first Sonine
-//! approximation (van Noije & Ernst's a2, which the tests recover to 10⁻¹²);
-//! p = 4 and 6 together the second. The collisional moments are integrals over
-//! both velocities and the contact normal, done here by product quadrature
-//! (Gauss–Legendre in the speeds and the normal's angle, the trapezoid rule in
-//! the centre-of-mass direction); g(σ) and every other constant factor cancel.
+//! a2 of the homogeneous cooling state of hard discs with normal restitution e
+//! in the second Sonine approximation (physics.md §8, (8.8)). With c =
+//! v/√(2kT/m) and f = φ(c)[1 + a2 S2(c²) + a3 S3(c²)], the cooling state gives
+//! for every moment
+//!     μ_p = (p/d) μ2 ⟨c^p⟩,   μ_p = −∫ c^p I(f, f) dc
+//! (Brilliantov & Pöschel, PRE 61, 5573 (2000); EPL 74, 424 (2006)), linear in
+//! a2 and a3: p = 4 with a3 = 0 is van Noije & Ernst's first approximation
+//! (recovered to 10⁻¹² in the tests), p = 4 and 6 together the second. The
+//! collisional moments are done by product quadrature (Gauss–Legendre in the
+//! speeds and the normal's angle, trapezoid in the centre-of-mass direction);
+//! g(σ) and every constant factor cancel.
 
 use std::f64::consts::PI;
 

@@ -1,18 +1,13 @@
-//! Fixed-memory statistics of a scalar series G sampled every Δ (the Helfand
-//! moments of physics.md §14): the mean square of its increments
-//! ⟨[G(t+τ) − G(t)]²⟩ (the Einstein–Helfand route), and the autocorrelation
-//! ⟨J(t) J(t+τ)⟩ of its flux J = ΔG/Δt over one sample interval (the Green–Kubo
-//! route), at lags τ = m·2^ℓ·Δ. The fluxes have zero mean by symmetry, so no mean
-//! is subtracted: a mean taken over a time segment would bias each segment's
-//! value low by about τ/(segment length) (physics.md §14.2, Errors).
-//!
-//! Level ℓ holds every 2^ℓ-th sample in a ring of the last p + 1; a new value
-//! pairs with the values m = 1..p−1 back on level 0 and m = p/2..p−1 back on
-//! higher levels, so the lags grow geometrically while memory stays
-//! levels × p. Values are decimated, not averaged: every increment is exact, and
-//! the flux on level ℓ is the exact mean flux over 2^ℓ·Δ. Sums are kept per
-//! time segment of the run, so that every estimate gets an error from the spread
-//! over segments.
+//! Fixed-memory statistics of a series G sampled every Δ (the Helfand moments of
+//! physics.md §14) at lags τ = m·2^ℓ·Δ: the mean square increment
+//!     ⟨[G(t+τ) − G(t)]²⟩ (Einstein–Helfand),
+//! and ⟨J(t) J(t+τ)⟩ of the flux J = ΔG/Δt (Green–Kubo). No mean is subtracted
+//! (the fluxes have zero mean by symmetry; a segment's own mean would bias it
+//! low by about τ/segment, §14.2). Level ℓ keeps every 2^ℓ-th sample in a ring
+//! of p + 1: a new value pairs with m = 1..p−1 back on level 0 and m = p/2..p−1
+//! on higher levels, so lags grow geometrically in levels × p memory. Values
+//! are decimated, not averaged, so every increment is exact. Sums are kept per
+//! time segment, for errors from their spread.
 
 /// Samples kept per level (the lag resolution: p/2 lags per octave).
 pub(super) const RING: usize = 16;

@@ -13,10 +13,10 @@
 
 use carom_core::Restitution;
 
-use super::analyzer::Analyzer;
 use super::haff_enskog::haff_enskog;
 use super::hcs_sonine::a2_sonine;
-use super::report::{EnergyBudget, HaffReport, InelasticReport, SonineReport};
+use super::inelastic_report::{EnergyBudget, HaffReport, InelasticReport, SonineReport};
+use super::samples::Samples;
 use super::series::blocked;
 
 /// a2 of the homogeneous cooling state of 2D hard discs with normal restitution
@@ -41,7 +41,7 @@ pub(super) fn sonine_a2(masses: &[f64], species_of: &[u16], vx: &[f64], vy: &[f6
 
 /// Scale each snapshot's velocities by √(kt/kT(t)), kT(t) that snapshot's
 /// temperature: the homogeneous cooling state at the common temperature `kt`.
-pub(super) fn scale_to(a: &mut Analyzer, kt: f64) {
+pub(super) fn scale_to(a: &mut Samples, kt: f64) {
     let snapshots = a.snapshots_used.len();
     for s in 0..a.speeds.len() {
         let per = a.speeds[s].len() / snapshots.max(1);
@@ -61,7 +61,7 @@ pub(super) fn scale_to(a: &mut Analyzer, kt: f64) {
 
 /// The measured a2 over the snapshots used, with a blocked standard error (the
 /// plain error of the mean with fewer than 16 snapshots); `None` with fewer than 2.
-fn sonine(a: &Analyzer) -> Option<SonineReport> {
+fn sonine(a: &Samples) -> Option<SonineReport> {
     let x: Vec<f64> = a
         .snapshot_a2
         .iter()
@@ -96,7 +96,28 @@ fn sonine(a: &Analyzer) -> Option<SonineReport> {
     })
 }
 
-pub(super) fn report(a: &Analyzer) -> InelasticReport {
+/// Energy put in besides the collisions' losses (a thermostat, a vibrating
+/// floor): the energy budget and Haff's law, which assume none, are not made,
+/// and the measured a2 is compared with `a2_theory` (the driven gas's, or none)
+/// instead of the cooling state's.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(super) struct Driven {
+    /// The a2 the driving predicts, if any (physics.md (16.7)).
+    pub(super) a2_theory: Option<f64>,
+}
+
+/// The inelastic section of `a`, driven by `driven` when energy is put in.
+pub(super) fn report(a: &Samples, driven: Option<Driven>) -> InelasticReport {
+    if let Some(d) = driven {
+        return InelasticReport {
+            energy: None,
+            haff: None,
+            sonine: sonine(a).map(|s| SonineReport {
+                theory: d.a2_theory,
+                ..s
+            }),
+        };
+    }
     let first = a.energy_series.first().copied();
     let last = a.energy_series.last().copied();
     let (e0, e1) = (first.map(|e| e.1), last.map(|e| e.1));
@@ -143,7 +164,7 @@ pub(super) fn report(a: &Analyzer) -> InelasticReport {
 
 /// Haff's law (physics.md §8) with the collision frequency measured over the
 /// run: in homogeneous cooling ω ∝ √T, so c = ω/√T = (2 N_pair/N) / ∫ √kT dt.
-fn haff(a: &Analyzer, e: f64) -> Option<HaffReport> {
+fn haff(a: &Samples, e: f64) -> Option<HaffReport> {
     let s = &a.kt_series;
     if s.len() < 3 {
         return None;
@@ -181,6 +202,7 @@ mod tests {
     use super::*;
     use crate::description::RunDescription;
     use crate::AnalysisOptions;
+    use crate::Analyzer;
     use carom_core::Species;
 
     fn close(a: f64, b: f64, tol: f64) -> bool {
@@ -264,10 +286,14 @@ mod tests {
         a.snapshot(1.0, &species, &vx, &vy).unwrap();
         a.snapshot(2.0, &species, &vx.map(|v| 3.0 * v), &vy.map(|v| 3.0 * v))
             .unwrap();
-        assert_eq!(a.snapshot_kt, [2.5, 22.5]);
+        assert_eq!(a.samples.snapshot_kt, [2.5, 22.5]);
         // a2 does not change with the temperature.
-        assert!(close(a.snapshot_a2[0], a.snapshot_a2[1], 1e-14));
-        scale_to(&mut a, 10.0);
+        assert!(close(
+            a.samples.snapshot_a2[0],
+            a.samples.snapshot_a2[1],
+            1e-14
+        ));
+        scale_to(&mut a.samples, 10.0);
         // Velocities relative to the centre of mass, u = (2, 2)/9 (masses 2, 0.5,
         // 2; 3u at the second snapshot), times √(10/2.5) = √(10/22.5)·3 = 2.
         let (ux, uy) = (2.0 / 9.0, 2.0 / 9.0);
@@ -281,7 +307,11 @@ mod tests {
             vec![sp(d1), sp(d1)],
             vec![],
         ];
-        for (got, want) in [(&a.vx, want_vx), (&a.vy, want_vy), (&a.speeds, want_speed)] {
+        for (got, want) in [
+            (&a.samples.vx, want_vx),
+            (&a.samples.vy, want_vy),
+            (&a.samples.speeds, want_speed),
+        ] {
             for s in 0..3 {
                 assert_eq!(got[s].len(), want[s].len());
                 for (g, w) in got[s].iter().zip(&want[s]) {
@@ -303,8 +333,8 @@ mod tests {
                 ..RunDescription::for_tests()
             };
             let mut a = analyzer(run);
-            a.snapshot_a2 = a2.to_vec();
-            sonine(&a)
+            a.samples.snapshot_a2 = a2.to_vec();
+            sonine(&a.samples)
         };
         let half = Restitution::Normal(0.5);
         let s = with(half, &[0.1, f64::NAN, -0.2, 0.4]).unwrap();
@@ -345,7 +375,7 @@ mod tests {
         a.thermo(0.0, 10.0, Some(1.0));
         a.thermo(5.0, 7.0, Some(3.0));
         a.thermo(10.0, 5.5, Some(5.0));
-        let e = report(&a).energy.unwrap();
+        let e = report(&a.samples, None).energy.unwrap();
         assert_eq!((e.initial, e.final_, e.dissipated), (10.0, 5.5, 4.0));
         assert_eq!(e.dissipated_source, "running total of the thermo records");
         assert!(close(e.residual, 0.5, 1e-15) && close(e.relative_residual, 0.05, 1e-15));
@@ -355,12 +385,12 @@ mod tests {
         a.pair(2.0, 0.0, 0.25);
         a.thermo(0.0, 10.0, None);
         a.thermo(10.0, 7.0, None);
-        let e = report(&a).energy.unwrap();
+        let e = report(&a.samples, None).energy.unwrap();
         assert_eq!(e.dissipated, 2.25);
         assert_eq!(e.dissipated_source, "sum over logged collisions × stride");
         assert!(close(e.residual, 0.75, 1e-15) && close(e.relative_residual, 0.075, 1e-15));
 
-        assert!(report(&analyzer(run(1))).energy.is_none());
+        assert!(report(&analyzer(run(1)).samples, None).energy.is_none());
     }
 
     /// Haff's law by hand. kT = 4, 1, 1/4 at t = 1, 2, 4: ∫√kT dt by trapezoids =
@@ -379,10 +409,10 @@ mod tests {
         };
         let with = |totals, series: &[(f64, f64)], logged, increments| {
             let mut a = analyzer(run(totals));
-            a.kt_series = series.to_vec();
-            a.pair_total = logged;
-            a.pairs_from_increments = increments;
-            haff(&a, 0.5)
+            a.samples.kt_series = series.to_vec();
+            a.samples.pair_total = logged;
+            a.samples.pairs_from_increments = increments;
+            haff(&a.samples, 0.5)
         };
         let series = [(1.0, 4.0), (2.0, 1.0), (4.0, 0.25)];
         let h = with(false, &series, 2, 5).unwrap();
@@ -416,7 +446,7 @@ mod tests {
             for (t, k) in [(0.0, 4.0), (5.0, 2.0), (10.0, 1.0)] {
                 a.thermo(t, k, None);
             }
-            report(&a).haff
+            report(&a.samples, None).haff
         };
         assert!(with(Restitution::Normal(0.5)).is_some());
         assert!(with(Restitution::Normal(1.0)).is_none());

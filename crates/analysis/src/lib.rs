@@ -1,19 +1,15 @@
-//! Analysis of carom runs: what `carom analyze` measures, in one streaming pass
-//! over a run's events, checked against theory with statistics independent of the
-//! engine (physics.md §5–§8, §10).
+//! Analysis of carom runs: what `carom analyze` measures, checked against
+//! theory with statistics independent of the engine (physics.md §5–§18).
 //!
-//! [`analyze_log`] reads a log (its facts, an older log's derived once by the
-//! caller's [`OldLogFacts`] through [`analyze_log_with`]; `describe`s its run once, then feeds every
-//! message to an [`Analyzer`]); the tests feed an [`Analyzer`] straight from the
-//! engine. [`Analyzer::finish`] makes one report per observable: temperature,
-//! the velocity distribution against Maxwell–Boltzmann, pressure and Z, the
-//! collision rate and the Enskog check, and for inelastic runs the energy budget
-//! and Haff's law; from the snapshots' positions the pair correlation g_ab(r),
-//! its contact values and the contact theorem, the bond-orientational order ψ6
-//! (Delaunay neighbours), g6(r), and S(k) with the translational order; from
-//! their unwrapped positions ([`Analyzer::motion`]) the MSD, D, the snapshot VACF
-//! and F_s(k*, τ) (physics.md §13).
-//! [`stats`] holds the statistics (histograms, χ², KS, blocking).
+//! [`analyze_log`] reads a log in one streaming pass (an older log's facts
+//! derived once by the caller's [`OldLogFacts`], [`analyze_log_with`]) into an
+//! [`Analyzer`], which the tests also feed straight from the engine;
+//! [`Analyzer::finish_with`] (with the run's [`RunDynamics`]) assembles the
+//! [`Report`], one section per observable (temperature, Maxwell–Boltzmann, Z,
+//! collision rate, inelastic checks, g_ab(r), ψ6, g6(r), S(k), MSD/D/F_s,
+//! transport, gravity, thermostat, compression, floor). [`frames`] gives the
+//! structure and dynamics sections of plain arrays (another code's snapshots, a
+//! GSD file) with the same accumulators; [`stats`] the statistics.
 
 #![deny(missing_docs)]
 
@@ -29,7 +25,9 @@ mod description;
 mod dynamics;
 mod dynamics_report;
 mod eos_reference;
+mod error;
 mod floor;
+pub mod frames;
 mod from_log;
 mod haff_enskog;
 mod hcs_sonine;
@@ -37,6 +35,7 @@ mod helfand;
 mod hydrostatic;
 mod increment_correlator;
 mod inelastic;
+mod inelastic_report;
 mod log_facts;
 mod msd;
 mod neighbours;
@@ -49,14 +48,19 @@ mod pressure;
 mod psi6_estimators;
 mod quadrature;
 mod report;
+mod run_dynamics;
+mod samples;
 mod self_scattering;
 mod series;
+mod sixfold;
 mod sonine;
 pub mod stats;
+mod structure;
 mod structure_factor;
 mod temperature;
 #[cfg(test)]
 mod test_lattice;
+mod thermo_report;
 mod thermostat;
 mod transport;
 mod transport_reliability;
@@ -65,6 +69,7 @@ mod transport_theory;
 mod unwrap;
 mod vacf_exact;
 mod velocity;
+mod velocity_report;
 
 pub use analyzer::Analyzer;
 pub use atmosphere::{BarometricFit, GravityReport};
@@ -82,25 +87,27 @@ pub use description::RunDescription;
 pub use dynamics::SEGMENTS as DYNAMICS_SEGMENTS;
 pub use dynamics_report::{DiffusionFit, DynamicsReport, SpeciesDynamics};
 pub use eos_reference::{henderson_z, kolafa_rottner, li_2022, KOLAFA_ROTTNER};
+pub use error::AnalysisError;
 pub use floor::FloorReport;
-pub use from_log::{analyze_log, analyze_log_with, AnalysisError, ReadObserver};
+pub use from_log::{analyze_log, analyze_log_with, ReadObserver};
 pub use haff_enskog::ENSKOG_COOLING_TOLERANCE;
+pub use inelastic_report::{EnergyBudget, HaffEnskog, HaffReport, InelasticReport, SonineReport};
 pub use log_facts::{no_old_log_facts, OldLogFacts};
 pub use msd::D_WINDOW_COLLISIONS;
 pub use neighbours::{delaunay_neighbours, Neighbours, GHOST_SPACINGS};
-pub use not_computed::NotComputed;
 pub use options::{AnalysisOptions, CORRELATED_SPACING, DECORRELATION_COLLISIONS, MAX_VELOCITIES};
 pub use origins::{MAX_DISC_ORIGINS, ORIGINS_PER_LEVEL};
 pub use pair_correlation::{BIN_WIDTH_SIGMA, BLOCKS as PAIR_CORRELATION_BLOCKS, R_MAX_SIGMA};
 pub use psi6_estimators::{local_psi6_equal, local_psi6_nearest, six_neighbour_fraction};
-pub use report::{
-    ChiSquareReport, CollisionRateReport, DriftReport, EnergyBudget, EnskogReport, HaffEnskog,
-    HaffReport, HistogramReport, InelasticReport, KsReport, PressureReport, RateAt, Report,
-    SonineReport, SpeciesInfo, SpeciesMb, SpeciesUntested, TemperatureReport, WindowReport,
-};
+pub use report::{NotComputed, Report, SpeciesInfo, WindowReport};
+pub use run_dynamics::{FloorRun, RunDynamics};
 pub use series::DRIFT_STD_ERRORS;
+pub use structure::StructureReport;
 pub use structure_factor::{
     StructureFactorReport, K_STAR_MIN_SIGMA, SK_K_MAX_SIGMA, SK_MAX_MODES, SK_SNAPSHOTS,
+};
+pub use thermo_report::{
+    CollisionRateReport, DriftReport, EnskogReport, PressureReport, RateAt, TemperatureReport,
 };
 pub use thermostat::{
     driven_a2, driven_steady_temperature, enskog_rate_coefficient, ThermostatReport,
@@ -112,3 +119,4 @@ pub use transport_report::{
 };
 pub use unwrap::Unwrapper;
 pub use velocity::{MAX_SNAPSHOT_CORRELATION, MB_FAMILY_ALPHA, MB_TESTS_PER_SPECIES};
+pub use velocity_report::{ChiSquareReport, HistogramReport, KsReport, SpeciesMb, SpeciesUntested};

@@ -4,19 +4,8 @@
 //! (`not_computed`) and in the text. The reasons are read off the report itself
 //! (box, elasticity, N, window, what the log holds), so they stay true to it.
 
-use serde::Serialize;
-
 use super::bond_order::MIN_BOND_ORDER_DISCS;
-use super::report::Report;
-
-/// One quantity the report lacks.
-#[derive(Debug, Clone, PartialEq, Serialize)]
-pub struct NotComputed {
-    /// The report's field (e.g. `structure_factor`).
-    pub quantity: &'static str,
-    /// Why it is absent, in words.
-    pub why: String,
-}
+use super::report::{NotComputed, Report};
 
 /// The quantities absent from `r` with the reason for each.
 pub fn explain(r: &Report) -> Vec<NotComputed> {

@@ -7,13 +7,13 @@
 
 use carom_core::observables::{accessible_area, has_walls, pressure, virial_z, wall_z};
 
-use super::analyzer::Analyzer;
-use super::report::PressureReport;
+use super::samples::Samples;
 use super::series::{blocked, coarse_series, drift};
 use super::stats::StatsError;
+use super::thermo_report::PressureReport;
 
 /// Z of each time bin, with kT of each bin from `kt_bins`.
-pub(super) fn z_per_bin(a: &Analyzer, kt_bins: &[f64]) -> Vec<f64> {
+pub(super) fn z_per_bin(a: &Samples, kt_bins: &[f64]) -> Vec<f64> {
     let (species, sim_box) = (&a.run.species, &a.run.sim_box);
     let (n, dt, walls) = (a.run.n(), a.bin_width, has_walls(sim_box));
     a.bins
@@ -29,7 +29,7 @@ pub(super) fn z_per_bin(a: &Analyzer, kt_bins: &[f64]) -> Vec<f64> {
 /// The pressure report from the bins' Z and kT; `None` when some bin has no
 /// finite Z (no temperature known).
 pub(super) fn report(
-    a: &Analyzer,
+    a: &Samples,
     z_bins: &[f64],
     kt_bins: &[f64],
 ) -> Result<Option<PressureReport>, StatsError> {
@@ -69,6 +69,7 @@ mod tests {
     use super::*;
     use crate::description::RunDescription;
     use crate::AnalysisOptions;
+    use crate::Analyzer;
     use carom_core::{SimBox, Species};
 
     /// 16 bins over [2, 10], 0.5 wide.
@@ -96,7 +97,7 @@ mod tests {
             a.pair(t, w, 0.0);
         }
         let kt: Vec<f64> = (0..16).map(|k| if k == 4 { 0.5 } else { 1.5 }).collect();
-        let z = z_per_bin(&a, &kt);
+        let z = z_per_bin(&a.samples, &kt);
         let want: Vec<f64> = (0..16)
             .map(|k| match k {
                 0 => 1.5,
@@ -120,7 +121,7 @@ mod tests {
         let mut a = analyzer(run);
         a.wall(2.7, 1.2, 0.0);
         a.wall(2.8, 1.5, 0.0);
-        let z = z_per_bin(&a, &[2.0; 16]);
+        let z = z_per_bin(&a.samples, &[2.0; 16]);
         let sum = 2.0 / 10.0 + 1.0 / 9.0 + 2.0 / 8.0 + 1.0 / 7.0;
         let z1 = 2.7 / (2.0 * 0.5 * 2.0 * sum);
         assert_eq!(z.len(), 16);
@@ -146,7 +147,7 @@ mod tests {
             .map(|k| 2.0 + 0.1 * ((k * k) % 7) as f64 - 0.05 * (k % 3) as f64)
             .collect();
         let kt: Vec<f64> = (0..16).map(|k| if k < 8 { 1.0 } else { 2.0 }).collect();
-        let r = report(&a, &z, &kt).unwrap().unwrap();
+        let r = report(&a.samples, &z, &kt).unwrap().unwrap();
         let z_mean = z.iter().sum::<f64>() / 16.0;
         assert!((r.z - z_mean).abs() < 1e-14);
         assert_eq!(r.area, 80.0);
@@ -157,6 +158,6 @@ mod tests {
         assert!((r.blocks as f64 * r.block_time - 8.0).abs() < 1e-12);
         let mut z_nan = z.clone();
         z_nan[3] = f64::NAN;
-        assert!(report(&a, &z_nan, &kt).unwrap().is_none());
+        assert!(report(&a.samples, &z_nan, &kt).unwrap().is_none());
     }
 }

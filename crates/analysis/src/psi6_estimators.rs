@@ -1,5 +1,5 @@
 //! Two textbook ψ6 estimators beside the Voronoi-weighted one of
-//! [`super::bond_order`] (physics.md §11, eqs. 11.7–11.8), kept for comparison:
+//! `bond_order.rs` (physics.md §11, eqs. 11.7–11.8), kept for comparison:
 //! the plain Delaunay estimator ψ6_j = (1/n_j) Σ_k e^{6iθ_jk} over the n_j
 //! Delaunay neighbours (each bond weighs the same, so a neighbour across a
 //! vanishing Voronoi edge — four nearly co-circular discs — counts in full and
@@ -15,8 +15,8 @@ use carom_core::SimBox;
 /// A neighbour's image: (disc, periodic image shifts) and its separation.
 type Image = ((u32, i64, i64), [f64; 2]);
 
-use super::bond_order::sixfold;
 use super::neighbours::Neighbours;
+use super::sixfold::sixfold;
 
 /// ψ6 of every disc with every Delaunay bond weighing the same (eq. 11.7; 0 for a
 /// disc without neighbours).

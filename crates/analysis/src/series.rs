@@ -3,8 +3,8 @@
 //! series thinned or coarsened to a few thousand points for the JSON and figures.
 
 use super::pair_correlation::mean_se;
-use super::report::DriftReport;
 use super::stats::{block_average, blocking, StatsError};
+use super::thermo_report::DriftReport;
 
 /// A blocked estimate: the automatic blocking analysis when it converges, else 16
 /// equal blocks.

@@ -4,18 +4,18 @@
 
 use carom_core::observables::{degrees_of_freedom, temperature};
 
-use super::analyzer::Analyzer;
-use super::report::TemperatureReport;
+use super::samples::Samples;
 use super::series::{subsample, MAX_SERIES};
+use super::thermo_report::TemperatureReport;
 
 /// kT averaged over the snapshots used (`None` without any).
-pub(super) fn snapshot_kt(a: &Analyzer) -> Option<f64> {
+pub(super) fn snapshot_kt(a: &Samples) -> Option<f64> {
     let used = a.snapshots_used.len();
     (used > 0).then(|| temperature(a.mb_kinetic / used as f64, a.dof()))
 }
 
 /// The temperature report; `kt_used` from [`snapshot_kt`].
-pub(super) fn report(a: &Analyzer, kt_used: Option<f64>) -> TemperatureReport {
+pub(super) fn report(a: &Samples, kt_used: Option<f64>) -> TemperatureReport {
     let sim_box = &a.run.sim_box;
     TemperatureReport {
         kt: kt_used.or_else(|| a.kt_at(a.t_eq)).unwrap_or(f64::NAN),
@@ -33,6 +33,7 @@ mod tests {
     use super::*;
     use crate::description::RunDescription;
     use crate::AnalysisOptions;
+    use crate::Analyzer;
     use carom_core::{Boundary, SimBox, Species};
 
     fn analyzer(run: RunDescription, equilibrate: f64) -> Analyzer {
@@ -53,13 +54,13 @@ mod tests {
             ..RunDescription::for_tests()
         };
         let mut a = analyzer(run, 0.0);
-        assert_eq!(snapshot_kt(&a), None);
+        assert_eq!(snapshot_kt(&a.samples), None);
         let s = [0, 0, 0];
         a.snapshot(1.0, &s, &[1.0, -1.0, 0.5], &[0.5, 0.0, -1.5])
             .unwrap();
         a.snapshot(3.0, &s, &[2.0, 0.0, -1.0], &[1.0, -1.0, 1.0])
             .unwrap();
-        let kt = snapshot_kt(&a).unwrap();
+        let kt = snapshot_kt(&a.samples).unwrap();
         assert!((kt - 3.1875).abs() < 1e-15, "{kt}");
     }
 
@@ -77,18 +78,18 @@ mod tests {
             ..RunDescription::for_tests()
         };
         let mut a = analyzer(run, 2.0);
-        let r = report(&a, None);
+        let r = report(&a.samples, None);
         assert!(r.kt.is_nan() && r.kt_initial.is_none() && r.kt_final.is_none());
         for (t, k) in [(0.0, 5.0), (4.0, 2.5), (10.0, 10.0)] {
             a.thermo(t, k, None);
         }
-        let r = report(&a, None);
+        let r = report(&a.samples, None);
         assert_eq!(
             (r.kt, r.kt_initial, r.kt_final),
             (1.5, Some(2.0), Some(4.0))
         );
         assert_eq!((r.dof, r.conserved_momentum_components), (5, 1));
         assert_eq!(r.series, [[0.0, 2.0], [4.0, 1.0], [10.0, 4.0]]);
-        assert_eq!(report(&a, Some(0.7)).kt, 0.7);
+        assert_eq!(report(&a.samples, Some(0.7)).kt, 0.7);
     }
 }

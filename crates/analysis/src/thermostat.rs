@@ -1,22 +1,22 @@
 //! Thermostatted runs (physics.md §16): the temperature a thermostat should hold
-//! against the one measured, in place of the energy budget and Haff's law, which a
-//! thermostat's energy input voids.
-//!
-//! Andersen holds kT at its target with every velocity component free, so the
-//! measured kT is taken with f = 2N (momentum is not conserved):
-//!     kT = 2K/(2N),   compared with the target.
+//! against the one measured. Andersen holds kT at its target with every velocity
+//! component free (momentum is not conserved): kT = 2K/(2N), against the target.
 //! Driving holds an inelastic gas at the granular temperature T = K/N where the
 //! injection m ξ² (1 − 1/N) per disc balances the collisional loss (16.6):
 //!     T^{3/2} = 2 m ξ² (1 − 1/N) / [(1 − e²)(1 + 3a2/16) c],   ω = c √T,
 //! with c from Enskog and Henderson's g(σ) (7.2, 7.6), or from the measured ω, and
-//! a2 van Noije & Ernst's value for the driven gas (16.7).
+//! a2 van Noije & Ernst's value for the driven gas (16.7). A thermostat voids the
+//! energy budget and Haff's law (no input assumed) and the replayed transport
+//! (blind to its velocity changes): the analyzer leaves those sections out.
 
+use carom_core::observables::packing_fraction;
 use carom_core::rates::henderson_contact_value;
 use carom_core::{Restitution, Species};
 use carom_engine::Thermostat;
 use serde::Serialize;
 
-use super::report::Report;
+use super::description::RunDescription;
+use super::thermo_report::TemperatureReport;
 
 /// What a thermostat should hold and what the run measured.
 #[derive(Debug, Clone, PartialEq, Serialize)]
@@ -74,16 +74,19 @@ pub fn enskog_rate_coefficient(species: &Species, density: f64, eta: f64) -> f64
         * (std::f64::consts::PI / species.mass).sqrt()
 }
 
-/// The thermostat report of a run with `thermostat` and pair rule `restitution`,
-/// from its analysis `r`.
+/// The thermostat report of the run `run` with `thermostat` and pair rule
+/// `restitution`, from its temperature report and its measured collision rate
+/// per disc `omega` (1/time).
 pub(super) fn report(
     thermostat: &Thermostat,
     restitution: Restitution,
-    r: &Report,
+    run: &RunDescription,
+    temperature: &TemperatureReport,
+    omega: f64,
 ) -> ThermostatReport {
-    let n = r.n;
+    let n = run.n();
     // K = kT f / 2 over the snapshots used.
-    let k = r.temperature.kt * r.temperature.dof as f64 / 2.0;
+    let k = temperature.kt * temperature.dof as f64 / 2.0;
     let kt_all = k / n as f64;
     let mut out = ThermostatReport {
         kind: thermostat.kind(),
@@ -109,36 +112,19 @@ pub(super) fn report(
             out.interval = Some(interval);
             let t = k / n as f64;
             out.granular_temperature = Some(t);
-            if let (Restitution::Normal(e), [s]) = (restitution, &r.species[..]) {
-                let species = Species::new(s.count, s.radius, s.mass);
+            if let (Restitution::Normal(e), [s]) = (restitution, &run.species[..]) {
                 out.a2_theory = Some(driven_a2(e));
-                let area = r.box_size[0] * r.box_size[1];
-                let c = enskog_rate_coefficient(&species, n as f64 / area, r.packing_fraction);
+                let area = run.sim_box.size.x * run.sim_box.size.y;
+                let eta = packing_fraction(&run.species, &run.sim_box);
+                let c = enskog_rate_coefficient(s, n as f64 / area, eta);
                 out.predicted_temperature = Some(driven_steady_temperature(xi2, s.mass, n, e, c));
-                let measured = r.collision_rate.per_disc / t.sqrt();
+                let measured = omega / t.sqrt();
                 out.predicted_temperature_from_rate = (measured.is_finite() && measured > 0.0)
                     .then(|| driven_steady_temperature(xi2, s.mass, n, e, measured));
             }
         }
     }
     out
-}
-
-/// Make `r` that of a run with `thermostat`: its report added; the energy budget
-/// and Haff's law (which assume no energy input) and the transport from replayed
-/// collisions (which misses the thermostat's velocity changes) taken out; a
-/// driven gas's Sonine coefficient compared with the driven a2.
-pub(super) fn apply(thermostat: &Thermostat, restitution: Restitution, r: &mut Report) {
-    let t = report(thermostat, restitution, r);
-    if let Some(i) = r.inelastic.as_mut() {
-        i.energy = None;
-        i.haff = None;
-        if let Some(s) = i.sonine.as_mut() {
-            s.theory = t.a2_theory;
-        }
-    }
-    r.transport = None;
-    r.thermostat = Some(t);
 }
 
 #[cfg(test)]

@@ -1,16 +1,13 @@
-//! Transport coefficients from the collision log (physics.md §14): the state of
-//! every disc is replayed from the first snapshot analysed (velocities, and the
-//! displacement since then, flight by flight), and each pair collision feeds the
-//! Helfand moments ([`Helfand`]) and the exact VACF ([`ExactVacf`]). Later
-//! snapshots check the replay bit for bit. [`Transport::report`] turns the sums
-//! into D (from the MSD and from the VACF integral), η and λ (Einstein–Helfand
-//! and Green–Kubo) over one lag window, each with an error from the spread over
-//! time segments, next to Enskog's values and the mode-coupling tail, each
-//! with its verdict (transport_reliability.rs).
-//!
-//! Only elastic, fully periodic runs that log every collision qualify; the lags
-//! are set from the mean collision time t_c: Helfand samples every t_c/20, the
-//! VACF from 0.01 t_c to 1000 t_c (or half a segment), window [10 t_c, 100 t_c].
+//! Transport coefficients from the collision log (physics.md §14). Every disc is
+//! replayed from the first snapshot analysed, flight by flight; each pair
+//! collision feeds the Helfand moments ([`Helfand`]) and the exact VACF
+//! ([`ExactVacf`]), and later snapshots check the replay bit for bit.
+//! [`Transport::report`] gives D (MSD and ∫VACF), η and λ (Einstein–Helfand and
+//! Green–Kubo, e.g. η = lim Var[ΔG_xy(τ)]/(2 V kT τ), (14.4)) over one lag window with errors
+//! from the spread over time segments, beside Enskog's values, the mode-coupling
+//! tail and a verdict each (`transport_reliability.rs`). Only elastic, periodic
+//! runs logging every collision qualify; lags scale with the collision time t_c
+//! (Helfand every t_c/20, VACF 0.01–1000 t_c, window 10–100 t_c).
 
 use carom_core::DVec2;
 

@@ -6,9 +6,11 @@
 //! still correlate between the snapshots used (a heavy species) is tested on every
 //! k-th snapshot only. See docs/performance.md, 'analyze defaults'.
 
-use super::analyzer::Analyzer;
-use super::report::{ChiSquareReport, HistogramReport, KsReport, SpeciesMb, SpeciesUntested};
+use super::samples::Samples;
 use super::stats::{ks_test, mb_speed_test, Histogram, StatsError};
+use super::velocity_report::{
+    ChiSquareReport, HistogramReport, KsReport, SpeciesMb, SpeciesUntested,
+};
 #[cfg(doc)]
 use super::{AnalysisOptions, DECORRELATION_COLLISIONS};
 
@@ -104,7 +106,7 @@ pub(super) fn every_nth_snapshot(v: &[f64], per: usize, step: usize) -> Vec<f64>
 /// `kt` (`None`: no snapshot used, nothing tested), and the species that could not
 /// be tested. Thins the analyzer's samples of a correlated species.
 pub(super) fn maxwell_boltzmann(
-    a: &mut Analyzer,
+    a: &mut Samples,
     kt: Option<f64>,
     scaled: bool,
 ) -> Result<(Vec<SpeciesMb>, Vec<SpeciesUntested>), StatsError> {
@@ -214,6 +216,7 @@ pub(super) fn maxwell_boltzmann(
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::Analyzer;
     use crate::{AnalysisOptions, RunDescription};
     use carom_core::{SimBox, Species};
 
@@ -455,14 +458,14 @@ mod tests {
             ..Default::default()
         };
         let mut a = Analyzer::new(r.clone(), opts).unwrap();
-        a.every_default = default_spacing;
+        a.samples.every_default = default_spacing;
         for k in 0..snapshots {
-            a.snapshots_used.push(k as f64);
+            a.samples.snapshots_used.push(k as f64);
             for (s, sp) in r.species.iter().enumerate() {
                 let (vx, vy) = maxwellian(sp.count, sp.mass, kt, 0.7 * k as f64);
-                a.speeds[s].extend(vx.iter().zip(&vy).map(|(x, y)| x.hypot(*y)));
-                a.vx[s].extend(vx);
-                a.vy[s].extend(vy);
+                a.samples.speeds[s].extend(vx.iter().zip(&vy).map(|(x, y)| x.hypot(*y)));
+                a.samples.vx[s].extend(vx);
+                a.samples.vy[s].extend(vy);
             }
         }
         a
@@ -482,7 +485,7 @@ mod tests {
             Species::new(40, 0.9, 4.5),
         ];
         let mut a = holding(species, 3, kt, false);
-        let (tested, untested) = maxwell_boltzmann(&mut a, Some(kt), false).unwrap();
+        let (tested, untested) = maxwell_boltzmann(&mut a.samples, Some(kt), false).unwrap();
         assert!(untested.is_empty(), "{untested:?}");
         let [light, heavy] = &tested[..] else {
             panic!("two species tested: {tested:?}");
@@ -521,18 +524,18 @@ mod tests {
     fn species_with_too_few_speeds_or_no_motion_are_untested() {
         let species = vec![Species::new(1, 0.5, 2.0), Species::new(0, 0.5, 1.0)];
         let mut a = holding(species.clone(), 2, 1.5, false);
-        let (tested, untested) = maxwell_boltzmann(&mut a, Some(1.5), false).unwrap();
+        let (tested, untested) = maxwell_boltzmann(&mut a.samples, Some(1.5), false).unwrap();
         assert!(tested.is_empty(), "{tested:?}");
         assert_eq!(untested.len(), 1, "{untested:?}");
         assert_eq!((untested[0].species, untested[0].samples), (0, 2));
         let mut a = holding(species, 2, 1.5, false);
-        let (tested, untested) = maxwell_boltzmann(&mut a, Some(0.0), false).unwrap();
+        let (tested, untested) = maxwell_boltzmann(&mut a.samples, Some(0.0), false).unwrap();
         assert!(tested.is_empty());
         assert_eq!(untested.len(), 1, "{untested:?}");
         assert!(untested[0].reason.contains("no thermal motion"));
         let mut a = holding(vec![Species::new(50, 0.5, 2.0)], 2, 1.5, false);
         assert_eq!(
-            maxwell_boltzmann(&mut a, None, false).unwrap(),
+            maxwell_boltzmann(&mut a.samples, None, false).unwrap(),
             (vec![], vec![])
         );
     }
