@@ -12,8 +12,6 @@ use carom_log::{LogInfo, ReadError, RunFacts};
 use carom_log::{Snapshot, SnapshotSchedule};
 
 use super::error::AnalysisError;
-#[cfg(doc)]
-use super::{AnalysisOptions, Analyzer};
 
 /// Which run is analysed: what the log's metadata and first snapshot say.
 #[derive(Debug, Clone, PartialEq)]
@@ -28,7 +26,7 @@ pub struct RunDescription {
     /// over logged collisions are multiplied by it.
     pub collision_stride: u64,
     /// The virial, wall impulse and collision counts come from running totals over
-    /// every collision ([`Analyzer::increment`], from the `/thermo` records), and
+    /// every collision ([`Analyzer::increment`](crate::Analyzer::increment), from the `/thermo` records), and
     /// logged collisions are only counted: for logs without collisions, and for
     /// logs of every k-th collision (k > 1), whose sums would only estimate them.
     pub totals_from_thermo: bool,
@@ -39,11 +37,11 @@ pub struct RunDescription {
     /// The pair collision rate ω (pair collisions per disc per unit time) known
     /// before the events are read, e.g. from the log's first and last `/thermo`
     /// records; it sets the default spacing of the snapshots used for the velocity
-    /// distribution (see [`AnalysisOptions::every`]). `None`: unknown.
+    /// distribution (see [`AnalysisOptions::every`](crate::AnalysisOptions::every)). `None`: unknown.
     pub pair_rate: Option<f64>,
     /// Time between the log's snapshots (time), from its configuration; `None`:
     /// unknown. With it the default spacing is widened only when the snapshots
-    /// would otherwise hold more than [`AnalysisOptions::max_velocities`]
+    /// would otherwise hold more than [`AnalysisOptions::max_velocities`](crate::AnalysisOptions::max_velocities)
     /// velocities; without it, whenever a window full of snapshots could.
     pub snapshot_interval: Option<f64>,
     /// The log's `log.snapshot_schedule`, when it has one: snapshots inside each
