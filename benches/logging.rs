@@ -62,7 +62,7 @@ fn log_next(e: &mut Engine, w: &mut LogWriter) -> u64 {
             w.observe_wall(&wc).expect("write");
             1
         }
-        Event::Scheduled { .. } => 0,
+        Event::Scheduled { .. } | Event::Pause { .. } => 0,
     }
 }
 

@@ -86,6 +86,7 @@ pub fn feed(engine: &mut Engine, a: &mut Analyzer, t0: f64, dt: f64, steps: u64)
                 lost += w.energy_lost;
                 a.wall(w.time, w.impulse, w.energy_lost);
             }
+            Event::Pause { .. } => {}
             Event::Scheduled { time, tag } => {
                 let s = engine.state();
                 let (vx, vy): (Vec<f64>, Vec<f64>) =

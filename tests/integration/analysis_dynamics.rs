@@ -39,6 +39,7 @@ fn a_dilute_gas_is_ballistic_at_short_lags() {
         match ev {
             Event::Pair(p) => a.pair(p.time, p.virial, p.energy_lost),
             Event::Wall(w) => a.wall(w.time, w.impulse, w.energy_lost),
+            Event::Pause { .. } => {}
             Event::Scheduled { time, tag } => {
                 let s = engine.state();
                 let l = s.sim_box.size;

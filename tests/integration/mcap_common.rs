@@ -163,7 +163,7 @@ pub fn same_as_engine(rec: &carom_log::CollisionRecord, ev: &Event) -> bool {
             }
             None => return false,
         },
-        Event::Scheduled { .. } => return false,
+        Event::Scheduled { .. } | Event::Pause { .. } => return false,
     };
     let c = &rec.collision;
     let exact = bits(&[c.vi_before, c.vj_before, c.vi_after, c.vj_after])

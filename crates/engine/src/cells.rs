@@ -291,7 +291,7 @@ impl CellGrid {
     }
 
     /// [`CellGrid::check_lists`] for a grid that holds only the discs `i` for
-    /// which `belongs(i)` (one size class of several, see [`crate::classes`]):
+    /// which `belongs(i)` (one size class of several, see the `classes` module):
     /// those discs are listed exactly once each, and no other disc is.
     pub fn check_lists_of<M: Member>(
         &self,

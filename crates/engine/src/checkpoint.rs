@@ -75,9 +75,11 @@ pub struct Checkpoint {
     pub cell_prev: Vec<u32>,
     /// Cell (column, row) of each disc.
     pub cell: Vec<[u32; 2]>,
-    /// Caller-scheduled events still pending: (time, sequence number, tag).
+    /// Caller-scheduled events still pending: (time, sequence number, tag), in
+    /// the order they come. The thermostat's next event is in `thermostat`.
     pub scheduled: Vec<(f64, u64, u64)>,
-    /// Sequence number the next scheduled event will get.
+    /// Sequence number the next scheduled event (the caller's or the
+    /// thermostat's) will get.
     pub next_seq: u64,
     /// External (user) index of each internal slot: the per-disc arrays above are in
     /// the engine's internal (space-filling-curve) order.
@@ -89,8 +91,7 @@ pub struct Checkpoint {
     /// per-disc arrays. Empty in checkpoints written before carom counted them: the
     /// count then restarts at 0.
     pub images: Vec<[i32; 2]>,
-    /// The thermostat with its generator and totals, if one is set; its next event
-    /// is the entry of `scheduled` with tag [`THERMOSTAT_TAG`](crate::THERMOSTAT_TAG).
+    /// The thermostat with its generator, totals and next event, if one is set.
     pub thermostat: Option<ThermostatState>,
     /// The growth of the radii (physics.md §17; [`GrowthState::NONE`] without
     /// growth, and in checkpoints written before carom had it).

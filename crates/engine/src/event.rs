@@ -87,6 +87,13 @@ pub enum Event {
         /// The caller's tag.
         tag: u64,
     },
+    /// The engine hands back control after long unobservable work (thermostat
+    /// events, growth rescales) so that the caller can stop or show progress;
+    /// nothing happened at `time`, and the next call goes on (`engine::pause`).
+    Pause {
+        /// The current time (time).
+        time: f64,
+    },
 }
 
 impl Event {
@@ -95,7 +102,7 @@ impl Event {
         match self {
             Event::Pair(p) => p.time,
             Event::Wall(w) => w.time,
-            Event::Scheduled { time, .. } => *time,
+            Event::Scheduled { time, .. } | Event::Pause { time } => *time,
         }
     }
 }

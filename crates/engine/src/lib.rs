@@ -43,7 +43,7 @@ mod state;
 mod thermostat;
 
 pub use checkpoint::Checkpoint;
-pub use engine::{Engine, EngineParams, Growth, GrowthEnd, GrowthState, Stats, PAUSE_TAG};
+pub use engine::{Engine, EngineParams, Growth, GrowthEnd, GrowthState, Stats};
 pub use error::{EngineError, InitError};
 pub use event::{Event, PairCollision, WallCollision};
 pub use init::{
@@ -52,7 +52,7 @@ pub use init::{
 };
 pub use invariants::{InvariantChecker, Violation};
 pub use state::State;
-pub use thermostat::{Thermostat, ThermostatState, ThermostatStats, THERMOSTAT_TAG};
+pub use thermostat::{Thermostat, ThermostatState, ThermostatStats};
 
 /// The most records of one kind (snapshots, thermo, checkpoints or scenes) a run
 /// may ask for through its log interval, and the most events of one kind its

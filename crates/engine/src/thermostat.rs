@@ -74,8 +74,7 @@ pub struct ThermostatStats {
 
 /// A thermostat's complete state, for a bit-identical resume: its parameters, its
 /// random generator (a `rand_pcg` `Pcg64Mcg`, whose state is one 128-bit number)
-/// and its totals. Its next event is one of the checkpoint's scheduled events (tag
-/// [`THERMOSTAT_TAG`]).
+/// its totals and its next event.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct ThermostatState {
     /// The thermostat.
@@ -86,8 +85,8 @@ pub struct ThermostatState {
     pub stats: ThermostatStats,
     /// The time it was set (time): driving kick k comes at `origin` + k Δt.
     pub origin: f64,
+    /// Its next event: (time, sequence number among the engine's scheduled
+    /// events, which orders it against the caller's at the same time); `None`
+    /// when the wait is infinite (a rate so small that N ν rounds to 0).
+    pub next: Option<(f64, u64)>,
 }
-
-/// The tag of the thermostat's next event among the engine's scheduled events;
-/// a caller may not schedule it ([`crate::Engine::schedule`]).
-pub const THERMOSTAT_TAG: u64 = u64::MAX - 1;

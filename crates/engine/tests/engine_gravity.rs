@@ -53,6 +53,7 @@ fn wall_hits(
             .expect("a falling disc always has an event")
         {
             Event::Wall(w) => hits.push(w),
+            Event::Pause { .. } => {}
             Event::Scheduled { time, .. } => seen.push((time, e.position(0), e.velocity(0))),
             Event::Pair(p) => panic!("no partner to collide with: {p:?}"),
         }

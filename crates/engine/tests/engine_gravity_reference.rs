@@ -97,7 +97,7 @@ fn key_of(ev: &Event) -> Key {
     match ev {
         Event::Pair(p) => Key::Pair(p.i.min(p.j) as usize, p.i.max(p.j) as usize),
         Event::Wall(w) => Key::Wall(w.i as usize, if w.axis == Axis::X { 0 } else { 1 }, w.side),
-        Event::Scheduled { .. } => unreachable!("nothing scheduled"),
+        Event::Scheduled { .. } | Event::Pause { .. } => unreachable!("nothing scheduled"),
     }
 }
 
@@ -229,7 +229,7 @@ fn every_event_is_the_references_earliest_at_its_time() {
                     );
                     floor_hits += usize::from(w.axis == Axis::Y && w.side == WallSide::Low);
                 }
-                Event::Scheduled { .. } => unreachable!(),
+                Event::Scheduled { .. } | Event::Pause { .. } => unreachable!(),
             }
         }
         assert!(floor_hits > 50, "system {k}: only {floor_hits} floor hits");

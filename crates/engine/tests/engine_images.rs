@@ -38,7 +38,7 @@ impl Flights {
                 self.turn(c.j, c.time, c.vj_after);
             }
             Event::Wall(w) => self.turn(w.i, w.time, w.v_after),
-            Event::Scheduled { .. } => {}
+            Event::Scheduled { .. } | Event::Pause { .. } => {}
         }
     }
 

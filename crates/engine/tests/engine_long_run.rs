@@ -73,7 +73,7 @@ fn checked(mut engine: Engine, collisions: u64, snapshot_at: u64) -> (State, Sta
                 !engine.sim_box().boundary[w.axis.index()].is_periodic(),
                 "wall collision on a periodic axis: {w:?}"
             ),
-            Event::Scheduled { .. } => panic!("nothing was scheduled"),
+            Event::Scheduled { .. } | Event::Pause { .. } => panic!("nothing was scheduled"),
         }
         if done == next_conservation {
             next_conservation += 10_000;

@@ -62,7 +62,9 @@ fn engine_event(ev: &Event) -> (Key, f64, Vec<DVec2>) {
             w.time,
             vec![w.v_after],
         ),
-        Event::Scheduled { .. } => panic!("nothing was scheduled, got {ev:?}"),
+        Event::Scheduled { .. } | Event::Pause { .. } => {
+            panic!("nothing was scheduled, got {ev:?}")
+        }
     }
 }
 

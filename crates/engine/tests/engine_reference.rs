@@ -203,7 +203,9 @@ fn key_of(ev: &Event) -> Key {
             let side = w.side;
             Key::Wall(w.i as usize, w.axis.index(), side)
         }
-        Event::Scheduled { .. } => panic!("no events were scheduled, got {ev:?}"),
+        Event::Scheduled { .. } | Event::Pause { .. } => {
+            panic!("no events were scheduled, got {ev:?}")
+        }
     }
 }
 
@@ -464,7 +466,7 @@ fn oracle(state0: State, params: EngineParams, name: &str, events: usize) -> Ora
                 };
                 assert!(towards, "{}: wall hit while moving away", name);
             }
-            Event::Scheduled { .. } => unreachable!(),
+            Event::Scheduled { .. } | Event::Pause { .. } => unreachable!(),
         }
     }
     report.end_time = engine.now();

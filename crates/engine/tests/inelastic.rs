@@ -362,7 +362,7 @@ fn wall_run(boundary: [Boundary; 2], seed: u64, events: u64) {
                 assert_eq!(p.energy_lost, 0.0);
                 assert!((k_prev - k).abs() <= 1e-12 * e0, "elastic pair changed K");
             }
-            Event::Scheduled { .. } => unreachable!(),
+            Event::Scheduled { .. } | Event::Pause { .. } => unreachable!(),
         }
         k_prev = k;
     }

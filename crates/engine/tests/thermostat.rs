@@ -4,10 +4,7 @@
 //! change at all to a run without one.
 
 use carom_core::{DVec2, Restitution};
-use carom_engine::{
-    Engine, EngineError, EngineParams, Event, SystemSpec, Thermostat, Velocities, PAUSE_TAG,
-    THERMOSTAT_TAG,
-};
+use carom_engine::{Engine, EngineParams, Event, SystemSpec, Thermostat, Velocities};
 
 fn fluid(n: usize, eta: f64, seed: u64) -> Engine {
     Engine::new(
@@ -80,8 +77,9 @@ fn thermostat_events_come_at_their_rate() {
     // Kicks at 0.125 k exactly; the one at t = 200 was scheduled after the stop
     // at 200, so it comes after it.
     assert_eq!(e.thermostat_stats().events, 1599);
-    let next = e.checkpoint().scheduled;
-    assert_eq!(next, vec![(200.0, next[0].1, THERMOSTAT_TAG)]);
+    let cp = e.checkpoint();
+    assert!(cp.scheduled.is_empty());
+    assert_eq!(cp.thermostat.unwrap().next.unwrap().0, 200.0);
 }
 
 /// Andersen events are a Poisson process: counted in 400 windows of 0.5 at
@@ -145,7 +143,7 @@ fn changed_discs(before: &[DVec2], after: &[DVec2], ev: &Event) -> usize {
     let involved: Vec<u32> = match ev {
         Event::Pair(p) => vec![p.i, p.j],
         Event::Wall(w) => vec![w.i],
-        Event::Scheduled { .. } => vec![],
+        Event::Scheduled { .. } | Event::Pause { .. } => vec![],
     };
     (0..before.len())
         .filter(|&k| before[k] != after[k] && !involved.contains(&(k as u32)))
@@ -243,7 +241,7 @@ fn a_thermostatted_run_resumes_bit_identically() {
         // engine's start, not stored in a checkpoint).
         let events = |e: &mut Engine| -> Vec<Event> {
             std::iter::from_fn(|| Some(e.next_event().unwrap().unwrap()))
-                .filter(|ev| !matches!(ev, Event::Scheduled { tag: PAUSE_TAG, .. }))
+                .filter(|ev| !matches!(ev, Event::Pause { .. }))
                 .take(30_000)
                 .collect()
         };
@@ -264,7 +262,7 @@ fn a_thermostatted_run_resumes_bit_identically() {
     }
 }
 
-/// Bad parameters and the reserved tag are refused, naming the field.
+/// Bad parameters are refused, naming the field.
 #[test]
 fn bad_thermostats_are_refused() {
     let mut e = fluid(50, 0.3, 1);
@@ -295,18 +293,15 @@ fn bad_thermostats_are_refused() {
         let err = e.set_thermostat(Some(t), 1).unwrap_err().to_string();
         assert!(err.contains(field) && err.contains("allowed"), "{err}");
     }
-    assert!(matches!(
-        e.schedule(1.0, THERMOSTAT_TAG),
-        Err(EngineError::BadThermostat(_))
-    ));
-    // A checkpoint whose thermostat lost its event is refused.
+    // A checkpoint whose thermostat's next event is not a time is refused.
     e.set_thermostat(Some(Thermostat::Andersen { kt: 1.0, rate: 1.0 }), 1)
         .unwrap();
     let mut cp = e.checkpoint();
-    cp.scheduled.retain(|s| s.2 != THERMOSTAT_TAG);
+    cp.thermostat.as_mut().unwrap().next.as_mut().unwrap().0 = f64::NAN;
     let err = Engine::from_checkpoint(cp).unwrap_err().to_string();
-    assert!(err.contains("thermostat events scheduled"), "{err}");
-    // Setting the thermostat again replaces the first (one event scheduled).
+    assert!(err.contains("next event time"), "{err}");
+    // Setting the thermostat again replaces the first (one next event, none of
+    // the caller's scheduled).
     e.set_thermostat(
         Some(Thermostat::Driven {
             xi2: 1.0,
@@ -316,15 +311,11 @@ fn bad_thermostats_are_refused() {
     )
     .unwrap();
     let cp = e.checkpoint();
-    assert_eq!(
-        cp.scheduled
-            .iter()
-            .filter(|s| s.2 == THERMOSTAT_TAG)
-            .count(),
-        1
-    );
+    assert!(cp.scheduled.is_empty());
+    assert_eq!(cp.thermostat.unwrap().next.unwrap().0, 0.5);
     e.set_thermostat(None, 0).unwrap();
-    assert!(e.checkpoint().scheduled.is_empty());
+    let cp = e.checkpoint();
+    assert!(cp.scheduled.is_empty() && cp.thermostat.is_none());
 }
 
 /// With either thermostat no two discs ever overlap (checked every 50 events over

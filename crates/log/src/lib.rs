@@ -16,14 +16,15 @@
 
 mod format;
 mod options;
+mod options_error;
 mod read;
 mod schedule;
 mod write;
 
 pub use options::{
-    check_log_options, CollisionDetail, Compression, LogOptions, OptionsError, RunSpec, Stop,
-    MAX_RECORDS,
+    check_log_options, CollisionDetail, Compression, LogOptions, RunSpec, Stop, MAX_RECORDS,
 };
+pub use options_error::OptionsError;
 pub use schedule::{SchedulePoints, SnapshotSchedule, MAX_SCHEDULE_POINTS, MIN_FIRST_FRACTION};
 
 pub use format::{encode_scene, CH_SCENE, N_CHANNELS, SCENE_UPDATE_MSG, SPECIES_COLORS};

@@ -4,9 +4,9 @@
 //! ([`check_log_options`]), which the configuration's validator and a resume both
 //! call.
 
+use crate::options_error::{options_error, OptionsError};
 use crate::schedule::{SchedulePoints, SnapshotSchedule};
 use carom_engine::{EngineParams, SystemSpec};
-use thiserror::Error;
 
 /// Compression of MCAP chunks.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -159,30 +159,6 @@ pub struct RunSpec {
 /// The most records of one kind a run may ask for through its log interval
 /// (defined with the engine's scheduled events, `carom_engine::MAX_RECORDS`).
 pub use carom_engine::MAX_RECORDS;
-
-/// A log option, or the stop, out of range (see [`check_log_options`]).
-#[derive(Debug, Clone, PartialEq, Eq, Error)]
-#[error("{field}: {problem} (allowed: {allowed})")]
-pub struct OptionsError {
-    /// The setting, as a dotted path (`log.snapshot_interval`, `stop.time`).
-    pub field: &'static str,
-    /// What was wrong.
-    pub problem: String,
-    /// What is allowed.
-    pub allowed: String,
-}
-
-pub(crate) fn options_error(
-    field: &'static str,
-    problem: String,
-    allowed: impl Into<String>,
-) -> OptionsError {
-    OptionsError {
-        field,
-        problem,
-        allowed: allowed.into(),
-    }
-}
 
 /// Check the log options and the stop of a run that is at time `now` (0 for a
 /// fresh run): each interval finite and > 0 (or none), `collision_every` ≥ 1,

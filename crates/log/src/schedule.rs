@@ -13,7 +13,7 @@
 //! start) is at t₀ + b·T + δ_j, with b·T computed as `b as f64 * T`: without a
 //! schedule (n = 0) snapshot k is at `t₀ + k as f64 * T`, as it always was.
 
-use crate::options::{options_error, OptionsError};
+use crate::options_error::{options_error, OptionsError};
 
 /// The most snapshots a schedule may add per block.
 pub const MAX_SCHEDULE_POINTS: u32 = 1000;

@@ -10,7 +10,7 @@
 //! velocity rescales of growing discs min(T, time left to the target)/Δt_r
 //! (§17), periods of the vibrating floor f T (§18). Each would otherwise keep the
 //! engine busy for hours between two collisions or observations; the engine hands
-//! back control meanwhile (`carom_engine::PAUSE_TAG`), so a stop is still heard.
+//! back control meanwhile (`carom_engine::Event::Pause`), so a stop is still heard.
 
 use carom_engine::{Engine, Thermostat};
 use carom_log::{Stop, MAX_RECORDS};

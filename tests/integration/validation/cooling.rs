@@ -121,7 +121,7 @@ fn cooling_run(rule: Restitution, n: usize, eta: f64, seed: u64, per_disc: f64) 
                 }
             }
             Event::Wall(_) => unreachable!("periodic box"),
-            Event::Scheduled { .. } => {}
+            Event::Scheduled { .. } | Event::Pause { .. } => {}
         }
     }
     // 1/t0 = (1 − e²)(1 + 3a2/16) ω_E(T0)/4, ω_E = 2σ n g(σ) √(πT0/m) with

@@ -84,6 +84,7 @@ fn walled_run(n: usize, eta: f64, seed: u64, t_eq: f64, bins: usize, bin: f64) -
                     "wall contact at {c}, not {expect}"
                 );
             }
+            Event::Pause { .. } => {}
             Event::Scheduled { time, tag } => {
                 // βP from the wall impulse per unit reachable wall length.
                 let pw = j_bin / (bin * perimeter_acc) / kt;

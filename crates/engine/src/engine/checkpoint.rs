@@ -7,12 +7,13 @@
 //! refused by a carom that does not know it), collision counter, pair
 //! candidate and pending event with its time, the cell lists in their exact order
 //! (the order breaks no ties, but it decides which discs a scan meets first), the
-//! clock and its epoch, the running totals, the renumbering schedule and the
-//! caller's scheduled events. The grids are rebuilt as the engine builds them (one
+//! clock and its epoch, the running totals, the renumbering schedule, the
+//! caller's scheduled events and the thermostat's next event. The grids are rebuilt as the engine builds them (one
 //! per size class, or one for all in a checkpoint written before size classes), and
 //! a checkpoint that is inconsistent in any way is refused with what is wrong.
 
 use super::body::{Aux, Body, Pending};
+use super::calendar::{Calendar, Whose};
 use super::clock::origin_limit;
 use super::{lookahead, thermostat, Engine};
 use crate::cells::Link;
@@ -22,18 +23,10 @@ use crate::error::EngineError;
 use crate::memory;
 use crate::queue::EventQueue;
 use crate::NO_DISC;
-use ordered_float::NotNan;
-use std::cmp::Reverse;
 
 impl Engine {
     /// Copy out the complete state (see [`Checkpoint`]).
     pub fn checkpoint(&self) -> Checkpoint {
-        let mut scheduled: Vec<(f64, u64, u64)> = self
-            .scheduled
-            .iter()
-            .map(|r| (r.0 .0.into_inner(), r.0 .1, r.0 .2))
-            .collect();
-        scheduled.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
         let n = self.bodies.len();
         Checkpoint {
             sim_box: self.sim_box,
@@ -80,8 +73,8 @@ impl Engine {
             cell_next: self.bodies.iter().map(|b| b.link.next).collect(),
             cell_prev: self.grids.prev_links(&self.bodies),
             cell: self.bodies.iter().map(|b| b.link.coords()).collect(),
-            scheduled,
-            next_seq: self.next_seq,
+            scheduled: self.calendar.caller_entries(),
+            next_seq: self.calendar.next_seq(),
             labels: self.label.clone(),
             next_reorder: self.next_reorder,
             images: self
@@ -89,7 +82,10 @@ impl Engine {
                 .iter()
                 .map(|&d| self.images[d as usize])
                 .collect(),
-            thermostat: self.thermostat.as_ref().map(|r| r.state()),
+            thermostat: self
+                .thermostat
+                .as_ref()
+                .map(|r| r.state(self.calendar.thermostat_entry())),
             growth: self.growth,
             floor_origin: self.floor_origin,
         }
@@ -257,30 +253,20 @@ impl Engine {
         // The queue files every disc under the event time in its record.
         let mut queue = EventQueue::new(n);
         queue.retune(bodies.as_slice(), cp.clock);
-        let scheduled = cp
-            .scheduled
-            .iter()
-            .map(|&(t, seq, tag)| {
-                let t = NotNan::new(t).map_err(|_| bad("a scheduled time is NaN".into()))?;
-                Ok(Reverse((t, seq, tag)))
-            })
-            .collect::<Result<_, EngineError>>()?;
+        let mut calendar = Calendar::starting_at(cp.next_seq);
+        for &(t, seq, tag) in &cp.scheduled {
+            if t.is_nan() {
+                return Err(bad("a scheduled time is NaN".into()));
+            }
+            calendar.insert(t, seq, Whose::Caller(tag));
+        }
         let limit = origin_limit(cp.sim_box.size, grids.first.width);
         let thermostat = match &cp.thermostat {
             Some(s) => Some(Box::new(thermostat::Running::from_state(s).map_err(bad)?)),
             None => None,
         };
-        let thermostat_events = cp
-            .scheduled
-            .iter()
-            .filter(|s| s.2 == crate::THERMOSTAT_TAG)
-            .count();
-        if thermostat_events != thermostat.is_some() as usize {
-            return Err(bad(format!(
-                "{thermostat_events} thermostat events scheduled with {} thermostat \
-                 (allowed: one event with a thermostat, none without)",
-                if thermostat.is_some() { "a" } else { "no" }
-            )));
+        if let Some((t, seq)) = cp.thermostat.and_then(|s| s.next) {
+            calendar.insert(t, seq, Whose::Thermostat);
         }
         Ok(Engine {
             sim_box: cp.sim_box,
@@ -289,8 +275,7 @@ impl Engine {
             last_collision: memory::collect(n, cp.last_collision),
             queue,
             grids,
-            scheduled,
-            next_seq: cp.next_seq,
+            calendar,
             params: cp.params,
             clock: cp.clock,
             epoch: cp.epoch,

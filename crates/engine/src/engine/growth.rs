@@ -314,14 +314,13 @@ impl Engine {
         self.schedule(t_end, STOP_TAG)?;
         let mut events: u32 = 0;
         while let Some(ev) = self.next_event_growing()? {
-            let tag = match ev {
+            let paused = match ev {
                 Event::Scheduled { tag: STOP_TAG, .. } => break,
-                Event::Scheduled { tag, .. } => tag,
-                _ => 0,
+                Event::Pause { .. } => true,
+                _ => false,
             };
             events = events.wrapping_add(1);
-            if (events.is_multiple_of(4096) || tag == super::PAUSE_TAG) && observe(self).is_break()
-            {
+            if (events.is_multiple_of(4096) || paused) && observe(self).is_break() {
                 return Ok(ControlFlow::Break(()));
             }
         }

@@ -21,6 +21,7 @@
 //! See docs/performance.md, "engine".
 
 mod body;
+mod calendar;
 mod checkpoint;
 mod clock;
 mod floor;
@@ -43,14 +44,12 @@ use crate::queue::{EventQueue, Time};
 use crate::state::State;
 use crate::NO_DISC;
 use body::{Aux, Body, Pending};
+use calendar::Calendar;
 use carom_core::vibrating_wall::Floor;
 use carom_core::{DVec2, Restitution, SimBox, Species};
 use clock::{origin_limit, reorder_interval};
 pub use growth::{Growth, GrowthEnd, GrowthState};
 use ordered_float::NotNan;
-pub use pause::PAUSE_TAG;
-use std::cmp::Reverse;
-use std::collections::BinaryHeap;
 
 /// Parameters of the dynamics.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -122,8 +121,8 @@ pub struct Engine {
     queue: EventQueue,
     /// The cell grids, one per size class.
     grids: Grids,
-    scheduled: BinaryHeap<Reverse<(Time, u64, u64)>>,
-    next_seq: u64,
+    /// The caller's scheduled events and the thermostat's (engine::calendar).
+    calendar: Calendar,
     params: EngineParams,
     /// The internal clock (time since `epoch`): every per-disc time, event time and
     /// the queue run on it, so that their rounding stays that of times since the
@@ -251,8 +250,7 @@ impl Engine {
             last_collision: memory::filled(n, f64::NEG_INFINITY),
             queue: EventQueue::new(n),
             grids,
-            scheduled: BinaryHeap::new(),
-            next_seq: 0,
+            calendar: Calendar::default(),
             params,
             clock: 0.0,
             epoch: state.time,

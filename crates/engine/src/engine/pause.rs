@@ -6,16 +6,12 @@
 //! could neither stop nor show progress. The engine counts that work in disc
 //! updates (one per Andersen redraw, N per driving kick or rescale) and, each
 //! time the count passes a multiple of [`PAUSE_WORK`], returns an
-//! [`Event::Scheduled`] with the reserved tag [`PAUSE_TAG`] at the current time.
+//! [`Event::Pause`] at the current time.
 //! A pause changes nothing: the next call goes on exactly where this one stopped.
 //! The count is not part of a checkpoint, since nothing depends on it.
 
 use super::Engine;
 use crate::event::Event;
-
-/// The tag of a pause ([`Engine::next_event`] handing control back); a caller may
-/// not schedule it and should simply call again.
-pub const PAUSE_TAG: u64 = u64::MAX - 2;
 
 /// Disc updates of unobservable work between pauses: about 0.1 s of work.
 pub(super) const PAUSE_WORK: u64 = 1 << 20;
@@ -29,11 +25,10 @@ impl Engine {
         before / PAUSE_WORK != self.quiet_work / PAUSE_WORK
     }
 
-    /// The pause event: the current time, tag [`PAUSE_TAG`].
+    /// The pause event, at the current time.
     pub(super) fn pause(&self) -> Option<Event> {
-        Some(Event::Scheduled {
+        Some(Event::Pause {
             time: self.reported,
-            tag: PAUSE_TAG,
         })
     }
 }

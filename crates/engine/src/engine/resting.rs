@@ -301,7 +301,7 @@ mod tests {
         while collisions < 10_000 {
             match e.next_event().unwrap().unwrap() {
                 Event::Pair(_) | Event::Wall(_) => collisions += 1,
-                Event::Scheduled { .. } => {}
+                Event::Scheduled { .. } | Event::Pause { .. } => {}
             }
             let d = (e.position(1) - e.position(0)).length();
             assert!(d > 1.0 - 1e-12, "overlap {d} at {}", e.now());

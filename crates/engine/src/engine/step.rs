@@ -1,23 +1,23 @@
 //! The event loop and the public calls that drive it.
 //!
 //! Each turn of the loop is dispatch only: upkeep (look-ahead tuning, the
-//! renumbering), then the earliest of three calendars — the growth's instants
-//! (rescales and end, physics.md §17), the scheduled events (the caller's, and
-//! the thermostat's, §16) and the discs' own events in the queue — handled by
-//! one function each. A disc's event is a pair collision (§2–§4), a wall hit,
+//! renumbering), then the earlier of the calendar's instants (`calendar`: the
+//! caller's scheduled events, the thermostat's, §16, the growth's rescales and
+//! end, §17) and the discs' own events in the queue, handled by one function
+//! each. A disc's event is a pair collision (§2–§4), a wall hit,
 //! a cell crossing, or a prediction found obsolete or a floor search resumed,
 //! recomputed; crossings and recomputations are not reported, and the loop
 //! turns until something observable happens. Compiled once per law of motion
 //! (engine::motion).
 
 use super::body::Pending;
+use super::calendar::{Due, Whose};
 use super::clock::reorder_interval;
 use super::motion::{Falling, Growing, Motion, Straight};
-use super::{Engine, PAUSE_TAG};
+use super::Engine;
 use crate::error::EngineError;
 use crate::event::Event;
 use crate::memory;
-use std::cmp::Reverse;
 
 /// What one turn of the loop found.
 enum Step {
@@ -27,19 +27,11 @@ enum Step {
     Continue,
 }
 
-/// An event before the discs' earliest.
-enum Due {
-    /// The growth's instant (internal time).
-    Growth(f64),
-    /// The earliest scheduled event: its time (the caller's), its internal
-    /// time and its tag.
-    Scheduled { ts: f64, internal: f64, tag: u64 },
-}
-
 impl Engine {
     /// Ask for an [`Event::Scheduled`] with `tag` at time `time` (≥ now). Events at the
     /// same time are delivered in the order they were scheduled, before any collision
-    /// at that time. The tag [`crate::THERMOSTAT_TAG`] is the thermostat's own.
+    /// at that time. Every tag is the caller's: the engine's own instants are
+    /// not tagged (engine::calendar).
     pub fn schedule(&mut self, time: f64, tag: u64) -> Result<(), EngineError> {
         if time.is_nan() || time < self.reported || time.is_infinite() {
             return Err(EngineError::ScheduleInPast {
@@ -47,21 +39,15 @@ impl Engine {
                 now: self.reported,
             });
         }
-        if tag == crate::THERMOSTAT_TAG || tag == PAUSE_TAG {
-            return Err(EngineError::BadThermostat(format!(
-                "tag {tag} is the engine's own (allowed: any tag but the thermostat's and \
-                 the pause's)"
-            )));
-        }
-        self.push_scheduled(time, tag);
+        self.calendar.push(time, Whose::Caller(tag));
         Ok(())
     }
 
     /// Process events until the next observable one and return it; `None` when
     /// nothing will ever happen again (all discs at rest and nothing scheduled).
     /// After long unobservable work (thermostat events, growth rescales) it returns
-    /// a pause, an [`Event::Scheduled`] with tag [`PAUSE_TAG`], so that the caller
-    /// can stop or report progress (`engine::pause`); just call again.
+    /// an [`Event::Pause`], so that the caller can stop or report progress
+    /// (`engine::pause`); just call again.
     ///
     /// Cell crossings are not observable, so in a system whose discs move but never
     /// collide again (a lone disc in a periodic box) this call returns only at the
@@ -95,9 +81,9 @@ impl Engine {
     }
 
     /// [`Engine::next_event`] with the discs moving by the law `M`
-    /// (engine::motion), compiled once per law: upkeep, then the earliest of the
-    /// internal calendar (growth instants), the scheduled events and the discs'
-    /// own events, each handled by its own function.
+    /// (engine::motion), compiled once per law: upkeep, then the earlier of the
+    /// calendar's instants (engine::calendar) and the discs' own events, each
+    /// handled by its own function.
     #[inline(always)]
     fn next_event_in<M: Motion>(&mut self) -> Result<Option<Event>, EngineError> {
         loop {
@@ -107,9 +93,11 @@ impl Engine {
             let t = t.into_inner();
             let step = match self.calendar_due::<M>(t) {
                 Some(Due::Growth(due)) => self.growth_step(due),
-                Some(Due::Scheduled { ts, internal, tag }) => {
-                    self.scheduled_step(ts, internal, tag)?
-                }
+                Some(Due::Entry {
+                    ts,
+                    internal,
+                    whose,
+                }) => self.entry_step(ts, internal, whose)?,
                 None => self.disc_step::<M>(t, who)?,
             };
             if let Step::Report(ev) = step {
@@ -153,28 +141,6 @@ impl Engine {
         }
     }
 
-    /// What comes before the discs' earliest event at internal time `t`, if
-    /// anything: a growth instant (after any scheduled event at its time), or
-    /// the earliest scheduled event (at or before `t`).
-    #[inline(always)]
-    fn calendar_due<M: Motion>(&self, t: f64) -> Option<Due> {
-        if let Some(due) = M::growth_due(self) {
-            let scheduled_first = self
-                .scheduled
-                .peek()
-                .is_some_and(|r| (r.0 .0.into_inner() - self.epoch).max(self.clock) <= due);
-            if due <= t && !scheduled_first {
-                return Some(Due::Growth(due));
-            }
-        }
-        let &Reverse((ts, _, tag)) = self.scheduled.peek()?;
-        // Scheduled times are the caller's; on the internal clock, never before
-        // now (rounding of the difference).
-        let ts = ts.into_inner();
-        let internal = (ts - self.epoch).max(self.clock);
-        (internal <= t).then_some(Due::Scheduled { ts, internal, tag })
-    }
-
     /// The growth's instant at internal time `due` (engine::growth).
     #[inline(always)]
     fn growth_step(&mut self, due: f64) -> Step {
@@ -186,24 +152,24 @@ impl Engine {
         }
     }
 
-    /// The scheduled event with `tag` at time `ts` (internal time `internal`):
-    /// the thermostat's is handled here, the caller's reported.
+    /// The calendar's entry at time `ts` (internal time `internal`): the
+    /// thermostat's is handled here, the caller's reported.
     #[inline(always)]
-    fn scheduled_step(&mut self, ts: f64, internal: f64, tag: u64) -> Result<Step, EngineError> {
-        self.scheduled.pop();
+    fn entry_step(&mut self, ts: f64, internal: f64, whose: Whose) -> Result<Step, EngineError> {
+        self.calendar.pop();
         self.move_clock(internal);
         self.reported = self.reported.max(ts);
-        if tag == crate::THERMOSTAT_TAG {
-            return Ok(if self.thermostat_event()? {
+        match whose {
+            Whose::Thermostat => Ok(if self.thermostat_event()? {
                 Step::Report(self.pause())
             } else {
                 Step::Continue
-            });
+            }),
+            Whose::Caller(tag) => Ok(Step::Report(Some(Event::Scheduled {
+                time: self.reported,
+                tag,
+            }))),
         }
-        Ok(Step::Report(Some(Event::Scheduled {
-            time: self.reported,
-            tag,
-        })))
     }
 
     /// Disc `who`'s pending event at internal time `t`: a pair collision (or a
@@ -260,7 +226,7 @@ impl Engine {
         while let Some(ev) = self.next_event()? {
             match ev {
                 Event::Scheduled { tag: STOP_TAG, .. } => break,
-                Event::Scheduled { .. } => {}
+                Event::Scheduled { .. } | Event::Pause { .. } => {}
                 _ => collisions += 1,
             }
         }
@@ -275,7 +241,7 @@ impl Engine {
         let mut done = 0;
         while done < n {
             match self.next_event()? {
-                Some(Event::Scheduled { .. }) => {}
+                Some(Event::Scheduled { .. } | Event::Pause { .. }) => {}
                 Some(_) => done += 1,
                 None => break,
             }

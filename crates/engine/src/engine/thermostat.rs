@@ -1,8 +1,8 @@
 //! The thermostat's events: Andersen redraws and driving kicks (physics.md §16).
 //!
-//! A thermostat event is one of the engine's scheduled events, with the reserved
-//! tag [`THERMOSTAT_TAG`], so it costs nothing while no thermostat is set: the
-//! event loop looks at the tag only when a scheduled event is due. At the event
+//! A thermostat event is an entry of the engine's calendar (engine::calendar),
+//! so it costs nothing while no thermostat is set: the event loop looks at whose
+//! an entry is only when one is due. At the event
 //! the clock stands at its time; each disc changed is brought there on its path,
 //! given its new velocity (the path origin moves so that r0 + v t still passes
 //! through its position now), its collision counter is bumped (its partners'
@@ -13,14 +13,14 @@
 //! mean, next kick Δt later. Random numbers come from the engine's own `Pcg64Mcg`,
 //! seeded once and stored in the checkpoint.
 
+use super::calendar::Whose;
 use super::Engine;
 use crate::error::EngineError;
-use crate::thermostat::{Thermostat, ThermostatState, ThermostatStats, THERMOSTAT_TAG};
+use crate::thermostat::{Thermostat, ThermostatState, ThermostatStats};
 use carom_core::DVec2;
 use rand::{RngExt, SeedableRng};
 use rand_distr::{Exp1, StandardNormal};
 use rand_pcg::Pcg64Mcg;
-use std::cmp::Reverse;
 
 /// Mixed into the run's seed so that the thermostat's stream is not the one the
 /// initial state was drawn from.
@@ -37,20 +37,27 @@ pub(super) struct Running {
 }
 
 impl Running {
-    /// The state a checkpoint stores.
-    pub(super) fn state(&self) -> ThermostatState {
+    /// The state a checkpoint stores, with the next event `next` (time,
+    /// sequence number) from the calendar.
+    pub(super) fn state(&self, next: Option<(f64, u64)>) -> ThermostatState {
         ThermostatState {
             thermostat: self.thermostat,
             rng: self.rng.state(),
             stats: self.stats,
             origin: self.origin,
+            next,
         }
     }
 
     /// The thermostat of a checkpoint's `state`.
     pub(super) fn from_state(s: &ThermostatState) -> Result<Running, String> {
         s.thermostat.validate()?;
-        for (name, x) in [("energy added", s.stats.energy_added), ("origin", s.origin)] {
+        let next = s.next.map_or(0.0, |n| n.0);
+        for (name, x) in [
+            ("energy added", s.stats.energy_added),
+            ("origin", s.origin),
+            ("next event time", next),
+        ] {
             if !x.is_finite() {
                 return Err(format!("thermostat {name} is {x}, not finite"));
             }
@@ -91,11 +98,7 @@ impl Engine {
                 ));
             }
         }
-        let old = std::mem::take(&mut self.scheduled);
-        self.scheduled = old
-            .into_iter()
-            .filter(|r| r.0 .2 != THERMOSTAT_TAG)
-            .collect();
+        self.calendar.drop_thermostat();
         self.thermostat = thermostat.map(|thermostat| {
             Box::new(Running {
                 thermostat,
@@ -147,10 +150,10 @@ impl Engine {
     #[cold]
     #[inline(never)]
     pub(super) fn thermostat_event(&mut self) -> Result<bool, EngineError> {
-        let Some(mut r) = self.thermostat.take() else {
-            // A checkpoint's stray tag without a thermostat: nothing to do.
-            return Ok(false);
-        };
+        let mut r = self
+            .thermostat
+            .take()
+            .expect("the thermostat's calendar entry goes with the thermostat");
         let n = self.len();
         // In a field a disc's stored path velocity runs ahead of its true velocity
         // by ŷ g t (engine/gravity.rs); the thermostat acts on true velocities.
@@ -202,7 +205,7 @@ impl Engine {
     fn schedule_thermostat(&mut self) {
         let t = self.thermostat_next();
         if t.is_finite() {
-            self.push_scheduled(t, THERMOSTAT_TAG);
+            self.calendar.push(t, Whose::Thermostat);
         }
     }
 
@@ -222,12 +225,5 @@ impl Engine {
         b.count = b.count.wrapping_add(1);
         self.keep_origin_near([i]);
         de
-    }
-
-    /// Put an event with `tag` at time `time` (≥ now, finite) among the scheduled ones.
-    pub(super) fn push_scheduled(&mut self, time: f64, tag: u64) {
-        self.scheduled
-            .push(Reverse((super::time_key(time), self.next_seq, tag)));
-        self.next_seq += 1;
     }
 }

@@ -15,6 +15,7 @@
 //!
 //! [`State`]: crate::State
 
+mod build;
 mod compressed;
 mod lattice;
 mod random;

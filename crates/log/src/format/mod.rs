@@ -83,9 +83,12 @@ pub const METADATA_SUMMARY: &str = "carom.summary";
 /// and a failed data-section CRC in a log whose chunks and both records hold is a
 /// warning; older files read as before. 2.4: `run_facts` holds the resolved
 /// dynamics too — thermostat, growth, floor ([`RunFacts`]) — each only when the
-/// run had it; older facts read without them. Readers accept 1.x (full records)
-/// and 2.x.
-pub const LOG_FORMAT_VERSION: &str = "2.4";
+/// run had it; older facts read without them. 2.5: every scheduled-event tag is
+/// the caller's; a `/checkpoint` with a thermostat stores its next event as the
+/// last scheduled entry of tag u64::MAX − 1 (layout unchanged; older checkpoints
+/// read by the same rule, see `checkpoint::calendar`). Readers accept 1.x (full
+/// records) and 2.x.
+pub const LOG_FORMAT_VERSION: &str = "2.5";
 
 /// Major versions of the log format this carom reads.
 pub const READABLE_MAJOR_VERSIONS: [&str; 2] = ["1", "2"];

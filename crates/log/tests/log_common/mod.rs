@@ -446,6 +446,7 @@ pub fn write_log(name: &str, plan: Plan) -> Written {
                 rec.w.observe_wall(&c).unwrap();
                 rec.collision(|o| CollisionRecord::from_wall(&c, o));
             }
+            Event::Pause { .. } => {}
             Event::Scheduled { time, tag } => {
                 let kk = &mut k[tag as usize];
                 *kk += 1;
