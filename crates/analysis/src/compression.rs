@@ -14,8 +14,7 @@ use std::path::Path;
 
 use carom_core::observables::packing_fraction;
 use carom_core::{SimBox, Species};
-use carom_engine::Growth;
-use carom_log::{GrowthEvent, GrowthPhase, LogMessage, LogReader};
+use carom_log::{Growth, GrowthEvent, GrowthPhase, LogMessage, LogReader};
 use serde::Serialize;
 
 use super::error::AnalysisError;

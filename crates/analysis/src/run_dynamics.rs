@@ -9,7 +9,7 @@
 
 use carom_core::vibrating_wall::Floor;
 use carom_core::Restitution;
-use carom_engine::Thermostat;
+use carom_log::Thermostat;
 
 use super::compression::CompressionReport;
 #[cfg(doc)]

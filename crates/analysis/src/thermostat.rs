@@ -12,7 +12,7 @@
 use carom_core::observables::packing_fraction;
 use carom_core::rates::henderson_contact_value;
 use carom_core::{Restitution, Species};
-use carom_engine::Thermostat;
+use carom_log::Thermostat;
 use serde::Serialize;
 
 use super::description::RunDescription;

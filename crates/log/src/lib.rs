@@ -27,6 +27,9 @@ pub use options::{
 pub use options_error::OptionsError;
 pub use schedule::{SchedulePoints, SnapshotSchedule, MAX_SCHEDULE_POINTS, MIN_FIRST_FRACTION};
 
+/// The engine's parameter types the run facts hold ([`RunFacts`]), so that a
+/// reader of logs needs no dependency on the engine.
+pub use carom_engine::{Growth, Thermostat};
 pub use format::{encode_scene, CH_SCENE, N_CHANNELS, SCENE_UPDATE_MSG, SPECIES_COLORS};
 pub use format::{
     log_time_ns, now_rfc3339, CdrError, Channel, CollisionBatch, CollisionRecord, DriverState,

@@ -18,7 +18,7 @@ use std::path::{Path, PathBuf};
 use std::sync::atomic::Ordering;
 use std::time::Instant;
 
-use carom_engine::{Engine, EngineError, Event, GrowthEnd, State, PAUSE_TAG};
+use carom_engine::{Engine, EngineError, Event, GrowthEnd, State};
 use carom_log::{LogOptions, LogWriter, Stop, StopReason};
 
 use crate::disk::DiskWatch;
@@ -179,6 +179,7 @@ impl<'a> Driver<'a> {
                     self.last_collision = c.time;
                     self.writer.observe_wall(&c)?;
                 }
+                Event::Pause { .. } => {}
                 Event::Scheduled { time, tag } => match Observation::decode(tag) {
                     Some(Observation::Snapshot(k)) => {
                         self.schedule_next_snapshot(k)?;
@@ -218,7 +219,7 @@ impl<'a> Driver<'a> {
             // A pause (the engine handing back control during long unobservable
             // work) marks no instant of the run: the growth's record waits for the
             // next event.
-            let paused = matches!(ev, Event::Scheduled { tag: PAUSE_TAG, .. });
+            let paused = matches!(ev, Event::Pause { .. });
             if self.growth_seen.is_some() && !paused {
                 self.growth_record()?;
             }
