@@ -9,7 +9,7 @@ use std::fs::File;
 use std::io::BufReader;
 use std::path::PathBuf;
 
-use carom_log::{CollisionBatch, LogMessage, LogReader, Snapshot};
+use carom_log::{scan, scan_indexed, CollisionBatch, LogMessage, LogReader, Snapshot};
 use numpy::IntoPyArray;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
@@ -87,6 +87,9 @@ impl Columns {
         for r in b.iter().filter(|r| r.time >= t0 && r.time <= t1) {
             self.ordinal.push(r.ordinal);
             self.batch.push(&r);
+            // The one field `push` leaves out: zero in a full record of a pair.
+            self.batch.impulse_x.push(r.impulse.x);
+            self.batch.impulse_y.push(r.impulse.y);
         }
     }
 }
@@ -105,11 +108,19 @@ impl Log {
         Ok(open(&self.path)?.run_map().clone())
     }
 
-    /// The run's summary (`carom.summary`), absent from a log cut short.
-    fn summary_metadata(&self) -> PyResult<Option<std::collections::BTreeMap<String, String>>> {
-        let r = open(&self.path)?;
-        let s = r.summary().map_err(errors::read)?;
-        Ok(s.map(|s| s.to_map()))
+    /// The run's summary (`carom.summary`), absent from a log cut short: from
+    /// the file's index, or a scan of the whole file where it has none.
+    fn summary_metadata(
+        &self,
+        py: Python<'_>,
+    ) -> PyResult<Option<std::collections::BTreeMap<String, String>>> {
+        let info = py
+            .detach(|| match scan_indexed(&self.path)? {
+                Some(info) => Ok(info),
+                None => scan(&self.path),
+            })
+            .map_err(errors::read)?;
+        Ok(info.summary.map(|s| s.to_map()))
     }
 
     /// The snapshots with t0 ≤ time ≤ t1, one dict of arrays at a time.
