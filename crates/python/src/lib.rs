@@ -14,6 +14,7 @@ mod analyze;
 mod arrays;
 mod errors;
 mod log;
+mod logged;
 mod simulation;
 
 use pyo3::prelude::*;

@@ -12,13 +12,15 @@
 
 use carom_config::{Config, ConfigError};
 use carom_engine::{Engine, Event};
-use carom_log::Stop;
+use carom_log::{RunSpec, Stop};
+use std::path::PathBuf;
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyString};
 
 use crate::arrays::Arrays;
 use crate::errors;
+use crate::logged;
 
 /// Events (collisions, scheduled and internal pauses) between two looks at the
 /// signals: about a millisecond of work at N = 10⁴.
@@ -32,8 +34,16 @@ pub struct Simulation {
     stop: Stop,
     /// The resolved configuration (JSON text, every default filled in).
     config_json: String,
+    /// What a logged run hands to carom-run (`logged.rs`).
+    spec: RunSpec,
+    /// The log whose final state the simulation holds, after a logged run.
+    log: Option<PathBuf>,
+    /// Whether the simulation has run (logged or not) since it was built.
+    ran: bool,
     /// The next unused tag of a scheduled event; each `run` takes two, so that an
-    /// interrupted run's stop is never mistaken for a later run's.
+    /// interrupted run's stop is never mistaken for a later run's. Counted from 1,
+    /// below carom-run's observation tags (from 2⁵⁶), which an engine restored
+    /// from a log's checkpoint still holds and `run` passes over.
     next_tag: u64,
 }
 
@@ -96,6 +106,32 @@ impl Simulation {
             .map_err(|e| PyValueError::new_err(e.to_string()))
     }
 
+    /// `run` with a log (`logged.rs`).
+    fn run_logged(
+        &mut self,
+        py: Python<'_>,
+        until: Option<f64>,
+        collisions: Option<u64>,
+        path: &std::path::Path,
+    ) -> PyResult<u64> {
+        let stop = match (until, collisions) {
+            (Some(t), None) => Stop::Time(t),
+            (None, Some(n)) => Stop::Collisions(self.collisions_now() + n),
+            (None, None) => self.stop,
+            _ => return Err(PyValueError::new_err("give until or collisions, not both")),
+        };
+        let start = logged::start(&self.spec, self.log.as_deref(), !self.ran, path)?;
+        let before = self.collisions_now();
+        let (engine, signal) = logged::run(py, start, stop, path, &self.config_json)?;
+        self.engine = engine;
+        self.ran = true;
+        self.log = Some(path.to_path_buf());
+        match signal {
+            Some(e) => Err(e),
+            None => Ok(self.collisions_now() - before),
+        }
+    }
+
     fn collisions_now(&self) -> u64 {
         let s = self.engine.stats();
         s.pair_collisions + s.wall_collisions
@@ -127,7 +163,10 @@ impl Simulation {
         Ok(Simulation {
             engine,
             stop: spec.stop,
-            config_json: spec.config_json,
+            config_json: spec.config_json.clone(),
+            spec,
+            log: None,
+            ran: false,
             next_tag: 1,
         })
     }
@@ -137,7 +176,10 @@ impl Simulation {
     /// `callback`, call `callback(state)` at now + k·every (k = 1, 2, …, up to
     /// the stop). Releases the GIL; Ctrl-C raises `KeyboardInterrupt` between
     /// two events. Returns the number of collisions run.
-    #[pyo3(signature = (until=None, collisions=None, every=None, callback=None))]
+    ///
+    /// With `log`, the run writes the log `carom run` writes (`logged.rs`): from
+    /// a simulation at its start, or continuing the log its last run wrote.
+    #[pyo3(signature = (until=None, collisions=None, every=None, callback=None, log=None))]
     fn run(
         &mut self,
         py: Python<'_>,
@@ -145,7 +187,18 @@ impl Simulation {
         collisions: Option<u64>,
         every: Option<f64>,
         callback: Option<Py<PyAny>>,
+        log: Option<PathBuf>,
     ) -> PyResult<u64> {
+        if let Some(path) = log {
+            if every.is_some() || callback.is_some() {
+                return Err(PyValueError::new_err(
+                    "a logged run takes no callback (read its snapshots with open_log)",
+                ));
+            }
+            return self.run_logged(py, until, collisions, &path);
+        }
+        self.ran = true;
+        self.log = None;
         let (until, mut left) = match (until, collisions) {
             (Some(_), Some(_)) => {
                 return Err(PyValueError::new_err(
