@@ -19,7 +19,14 @@ fn the_python_package_passes_its_pytest_suite() {
     };
     let root = Path::new(env!("CARGO_MANIFEST_DIR"));
     let out = Command::new(&py)
-        .args(["-m", "pytest", "crates/python/tests", "-q", "-p", "no:cacheprovider"])
+        .args([
+            "-m",
+            "pytest",
+            "crates/python/tests",
+            "-q",
+            "-p",
+            "no:cacheprovider",
+        ])
         .current_dir(root)
         .env("CAROM_BIN", env!("CARGO_BIN_EXE_carom"))
         .output()

@@ -34,10 +34,9 @@ pub enum Start<'a> {
 
 fn run_error(e: RunError, config_json: &str) -> PyErr {
     match e {
-        RunError::Init(init) => errors::config(carom_config::ConfigError::from_init_in(
-            init,
-            config_json,
-        )),
+        RunError::Init(init) => {
+            errors::config(carom_config::ConfigError::from_init_in(init, config_json))
+        }
         e @ RunError::Invalid { .. } => PyValueError::new_err(e.to_string()),
         e => errors::engine(e),
     }
@@ -110,9 +109,7 @@ pub fn run(
         }
     });
     result.map_err(|e| run_error(e, config_json))?;
-    let (cp, _, _) = py
-        .detach(|| last_checkpoint(&out))
-        .map_err(errors::read)?;
+    let (cp, _, _) = py.detach(|| last_checkpoint(&out)).map_err(errors::read)?;
     let engine = Engine::from_checkpoint(cp.engine).map_err(errors::engine)?;
     Ok((engine, signal))
 }

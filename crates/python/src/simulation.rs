@@ -13,10 +13,10 @@
 use carom_config::{Config, ConfigError};
 use carom_engine::{Engine, Event};
 use carom_log::{RunSpec, Stop};
-use std::path::PathBuf;
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyString};
+use std::path::PathBuf;
 
 use crate::arrays::Arrays;
 use crate::errors;
@@ -201,9 +201,7 @@ impl Simulation {
         self.log = None;
         let (until, mut left) = match (until, collisions) {
             (Some(_), Some(_)) => {
-                return Err(PyValueError::new_err(
-                    "give until or collisions, not both",
-                ))
+                return Err(PyValueError::new_err("give until or collisions, not both"))
             }
             (Some(t), None) => (Some(t), u64::MAX),
             (None, Some(n)) => (None, n),
