@@ -106,6 +106,18 @@ impl Simulation {
             .map_err(|e| PyValueError::new_err(e.to_string()))
     }
 
+    /// Where `run(until, collisions)` stops: at time `until`, after `collisions`
+    /// more collisions (a total since the start), or with neither at the
+    /// configuration's stop.
+    fn stop_at(&self, until: Option<f64>, collisions: Option<u64>) -> PyResult<Stop> {
+        Ok(match (until, collisions) {
+            (Some(t), None) => Stop::Time(t),
+            (None, Some(n)) => Stop::Collisions(self.collisions_now().saturating_add(n)),
+            (None, None) => self.stop,
+            _ => return Err(PyValueError::new_err("give until or collisions, not both")),
+        })
+    }
+
     /// `run` with a log (`logged.rs`).
     fn run_logged(
         &mut self,
@@ -114,12 +126,7 @@ impl Simulation {
         collisions: Option<u64>,
         path: &std::path::Path,
     ) -> PyResult<u64> {
-        let stop = match (until, collisions) {
-            (Some(t), None) => Stop::Time(t),
-            (None, Some(n)) => Stop::Collisions(self.collisions_now() + n),
-            (None, None) => self.stop,
-            _ => return Err(PyValueError::new_err("give until or collisions, not both")),
-        };
+        let stop = self.stop_at(until, collisions)?;
         let start = logged::start(&self.spec, self.log.as_deref(), !self.ran, path)?;
         let before = self.collisions_now();
         let (engine, signal) = logged::run(py, start, stop, path, &self.config_json)?;
@@ -199,16 +206,9 @@ impl Simulation {
         }
         self.ran = true;
         self.log = None;
-        let (until, mut left) = match (until, collisions) {
-            (Some(_), Some(_)) => {
-                return Err(PyValueError::new_err("give until or collisions, not both"))
-            }
-            (Some(t), None) => (Some(t), u64::MAX),
-            (None, Some(n)) => (None, n),
-            (None, None) => match self.stop {
-                Stop::Time(t) => (Some(t), u64::MAX),
-                Stop::Collisions(n) => (None, n.saturating_sub(self.collisions_now())),
-            },
+        let (until, mut left) = match self.stop_at(until, collisions)? {
+            Stop::Time(t) => (Some(t), u64::MAX),
+            Stop::Collisions(n) => (None, n.saturating_sub(self.collisions_now())),
         };
         let every = match (every, &callback) {
             (Some(dt), Some(_)) if dt.is_finite() && dt > 0.0 => Some(dt),
