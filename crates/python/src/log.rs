@@ -74,22 +74,79 @@ impl Snapshots {
     }
 }
 
-/// The collisions with t0 ≤ time ≤ t1, as columns (the names of
-/// `CollisionBatch`, with `ordinal`).
+/// The float64 columns of a collision batch, in the order of [`F64_NAMES`]
+/// (the impulse apart: a full record does not store a pair's).
+fn f64_columns(b: &CollisionBatch) -> [&[f64]; 15] {
+    [
+        &b.time,
+        &b.nx,
+        &b.ny,
+        &b.vix_before,
+        &b.viy_before,
+        &b.vjx_before,
+        &b.vjy_before,
+        &b.vix_after,
+        &b.viy_after,
+        &b.vjx_after,
+        &b.vjy_after,
+        &b.energy_lost,
+        &b.virial,
+        &b.impulse_x,
+        &b.impulse_y,
+    ]
+}
+
+/// The index of `impulse_x` in [`f64_columns`].
+const IMPULSE: usize = 13;
+
+/// The names of [`f64_columns`] in the dict (those of `CollisionBatch`).
+const F64_NAMES: [&str; 15] = [
+    "time",
+    "nx",
+    "ny",
+    "vix_before",
+    "viy_before",
+    "vjx_before",
+    "vjy_before",
+    "vix_after",
+    "viy_after",
+    "vjx_after",
+    "vjy_after",
+    "energy_lost",
+    "virial",
+    "impulse_x",
+    "impulse_y",
+];
+
+/// The collisions with t0 ≤ time ≤ t1, as columns.
 #[derive(Default)]
 struct Columns {
     ordinal: Vec<u64>,
-    batch: CollisionBatch,
+    kind: Vec<u8>,
+    i: Vec<u32>,
+    j: Vec<u32>,
+    f64s: [Vec<f64>; 15],
 }
 
 impl Columns {
+    /// Append the records of `b` with t0 ≤ time ≤ t1 (a run of the batch, whose
+    /// times are in order), column by column.
     fn take(&mut self, b: &CollisionBatch, t0: f64, t1: f64) {
-        for r in b.iter().filter(|r| r.time >= t0 && r.time <= t1) {
-            self.ordinal.push(r.ordinal);
-            self.batch.push(&r);
-            // The one field `push` leaves out: zero in a full record of a pair.
-            self.batch.impulse_x.push(r.impulse.x);
-            self.batch.impulse_y.push(r.impulse.y);
+        let lo = b.time.partition_point(|&t| t < t0);
+        let hi = b.time.partition_point(|&t| t <= t1).max(lo);
+        let ordinal = |k: usize| b.first_ordinal.wrapping_add(k as u64 * b.stride);
+        self.ordinal.extend((lo..hi).map(ordinal));
+        self.kind.extend_from_slice(&b.kind[lo..hi]);
+        self.i.extend_from_slice(&b.i[lo..hi]);
+        self.j.extend_from_slice(&b.j[lo..hi]);
+        let stored = b.impulse_x.len() == b.len();
+        for (k, (out, col)) in self.f64s.iter_mut().zip(f64_columns(b)).enumerate() {
+            if k < IMPULSE || stored {
+                out.extend_from_slice(&col[lo..hi]);
+            } else {
+                // Not stored: carom-log's rule for a full record's impulse.
+                out.extend((lo..hi).map(|r| b.get(r).impulse[k - IMPULSE]));
+            }
         }
     }
 }
@@ -176,30 +233,12 @@ impl Log {
                 Ok::<_, String>(c)
             })
             .map_err(errors::read)?;
-        let b = c.batch;
         let d = PyDict::new(py);
         d.set_item("ordinal", c.ordinal.into_pyarray(py))?;
-        d.set_item("kind", b.kind.into_pyarray(py))?;
-        d.set_item("time", b.time.into_pyarray(py))?;
-        d.set_item("i", b.i.into_pyarray(py))?;
-        d.set_item("j", b.j.into_pyarray(py))?;
-        let f64s = [
-            ("nx", b.nx),
-            ("ny", b.ny),
-            ("vix_before", b.vix_before),
-            ("viy_before", b.viy_before),
-            ("vjx_before", b.vjx_before),
-            ("vjy_before", b.vjy_before),
-            ("vix_after", b.vix_after),
-            ("viy_after", b.viy_after),
-            ("vjx_after", b.vjx_after),
-            ("vjy_after", b.vjy_after),
-            ("energy_lost", b.energy_lost),
-            ("virial", b.virial),
-            ("impulse_x", b.impulse_x),
-            ("impulse_y", b.impulse_y),
-        ];
-        for (name, v) in f64s {
+        d.set_item("kind", c.kind.into_pyarray(py))?;
+        d.set_item("i", c.i.into_pyarray(py))?;
+        d.set_item("j", c.j.into_pyarray(py))?;
+        for (name, v) in F64_NAMES.into_iter().zip(c.f64s) {
             d.set_item(name, v.into_pyarray(py))?;
         }
         Ok(d)
