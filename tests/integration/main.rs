@@ -58,6 +58,7 @@ mod mcap_repair;
 mod mcap_resume;
 mod mcap_roundtrip;
 mod mcap_scene;
+mod python;
 mod slurm;
 mod snapshot_schedule;
 mod sweep;

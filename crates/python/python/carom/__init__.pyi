@@ -1,0 +1,34 @@
+"""Type stubs of carom (python/carom/__init__.py)."""
+
+from os import PathLike
+from typing import Any, Iterator
+
+import numpy as np
+
+from ._carom import Simulation as Simulation
+
+__version__: str
+COLLISION_DTYPE: np.dtype
+
+class Log:
+    path: str
+    def __init__(self, path: str | PathLike[str]) -> None: ...
+    @property
+    def run(self) -> dict[str, Any]: ...
+    @property
+    def facts(self) -> dict[str, Any] | None: ...
+    @property
+    def summary(self) -> dict[str, Any] | None: ...
+    def snapshots(self, t0: float = ..., t1: float = ...) -> Iterator[dict[str, Any]]: ...
+    def thermo(self) -> dict[str, np.ndarray]: ...
+    def collisions(self, t0: float = ..., t1: float = ...) -> np.ndarray: ...
+
+def open_log(path: str | PathLike[str]) -> Log: ...
+def analyze(
+    path: str | PathLike[str],
+    *,
+    equilibrate: float | None = None,
+    every: float | None = None,
+    bins: int = 40,
+    structure: bool = True,
+) -> dict[str, Any]: ...
