@@ -122,7 +122,7 @@ fn thermostatted() -> Engine {
 
 /// The next `n` events of `a` and `b` (pauses left out) are the same.
 fn same_events(a: &mut Engine, b: &mut Engine, n: usize) {
-    let mut next = |e: &mut Engine| loop {
+    let next = |e: &mut Engine| loop {
         match e.next_event().unwrap().unwrap() {
             Event::Pause { .. } => {}
             ev => return ev,
