@@ -1,19 +1,16 @@
 //! Size classes: a cell grid for each class of similar disc sizes.
 //!
-//! One grid for every species needs cells as wide as the largest contact distance,
-//! so with a few much larger discs every scan walks many small discs per cell. The
-//! species with discs are therefore sorted by radius and may be split into classes
-//! of consecutive sizes, each with its own grid (cells at least the largest contact
-//! distance within the class wide). A disc crosses only the cells of its own grid
-//! and scans its 3 × 3 block there, and in every other class b's grid every cell
-//! meeting its own cell widened by a_i + a_max(b) (its largest contact distance
-//! with class b, plus a hair for rounding): if i and j meet at t, at i's last
-//! prediction both were already in their cells at t, at most σ_ij apart, so i's
-//! scan read j's cell. Whether to split is decided by a deterministic estimate of
-//! the scans' work per unit time (`work`), so a configuration always gets the same
-//! grids and trajectory; a class is split off only when every periodic axis is
-//! longer than each widened cell (one image per cell). See docs/performance.md,
-//! "size classes".
+//! One grid for all species needs cells as wide as the largest contact distance, so
+//! a few much larger discs make every scan walk many small ones. The species are
+//! sorted by radius and may be split into classes of consecutive sizes, each with
+//! its own grid. A disc crosses only its own grid's cells and scans its 3 × 3 block
+//! there, and in class b's grid every cell meeting its own widened by a_i + a_max(b)
+//! (plus a hair for rounding): if i and j meet at t, at i's last prediction both
+//! were in their cells at t, σ_ij = a_i + a_j apart, so i's scan read j's cell. A
+//! deterministic estimate of the scans' work (`work`) decides the split, so a
+//! configuration always gets the same grids; a class is split off only when every
+//! periodic axis is longer than each widened cell. See docs/performance.md, "size
+//! classes".
 
 use crate::cells::{CellGrid, Member};
 use crate::NO_DISC;

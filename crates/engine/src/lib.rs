@@ -1,31 +1,15 @@
 //! # carom-engine
 //!
-//! The exact event-driven engine for hard discs: discs fly straight between events,
-//! a calendar of predicted event times says what happens next, and each collision
-//! is resolved in closed form (physics.md §1–§4).
-//!
-//! * [`SystemSpec`] builds an initial [`State`] from a seed ([`Placement`],
-//!   [`Velocities`]);
-//! * [`Engine`] runs it with [`EngineParams`], handing out [`Event`]s
-//!   ([`PairCollision`], [`WallCollision`], scheduled observations) and keeping
-//!   running [`Stats`];
-//! * [`Checkpoint`] is the engine's complete state, for a bit-identical resume;
-//! * [`InvariantChecker`] checks conservation and overlaps, for tests.
-//!
-//! Data flows one way: a [`State`] goes in, [`Event`]s come out; the engine knows
-//! nothing about files.
-//!
-//! ```
-//! use carom_engine::{Engine, EngineParams, Event, SystemSpec};
-//!
-//! // 100 discs of diameter 1 at packing fraction 0.3 in a periodic box.
-//! let state = SystemSpec::periodic_fluid(100, 0.3, 7).build().unwrap();
-//! let mut engine = Engine::new(state, EngineParams::default()).unwrap();
-//! let energy = engine.kinetic_energy();
-//! let collisions = engine.run_until(2.0).unwrap();
-//! assert!(collisions > 0);
-//! assert!((engine.kinetic_energy() - energy).abs() < 1e-9 * energy);
-//! ```
+//! The exact event-driven engine for hard discs: between events each disc follows a
+//! closed-form path (straight, r(t) = r₀ + v t; falling; growing), a calendar of
+//! predicted event times says what happens next, and each collision, at the root of
+//! |Δr + Δv t| = σ, is resolved in closed form (physics.md §1–§4). [`SystemSpec`]
+//! builds an initial [`State`] from a seed; [`Engine`] runs it with
+//! [`EngineParams`], handing out [`Event`]s and keeping running [`Stats`] (an
+//! example is on [`Engine`]); [`Checkpoint`] is its complete state, for a
+//! bit-identical resume; [`InvariantChecker`] checks conservation and overlaps, for
+//! tests. Data flows one way: a [`State`] goes in, [`Event`]s come out; the engine
+//! knows nothing about files.
 
 #![deny(missing_docs)]
 

@@ -9,21 +9,22 @@
 //! heap. Inserting is O(1), popping O(log k) for k events per bucket (G. Paul,
 //! J. Comput. Phys. 221, 615 (2007)). Deletion is lazy: an entry is kept when its
 //! bucket is poured only if its disc's current time still falls there. The order
-//! is exactly lexicographic in (time, disc index); Δ only affects speed. Keys are
-//! [`NotNan<f64>`](ordered_float::NotNan). See docs/performance.md, "queue".
+//! is exactly lexicographic in (time, disc index); Δ only affects speed. The
+//! slots are in `slot`, the heap in `heap`, the look-ahead hints in `ahead`. See
+//! docs/performance.md, "queue".
+
+mod ahead;
+mod heap;
+mod slot;
 
 use crate::memory;
-use crate::NO_DISC;
+use heap::Item;
 use ordered_float::NotNan;
+pub use slot::SLOT_DISCS;
+use slot::{Slot, NO_CHUNK};
 
 /// Event time in the queue's key type (time unit of the simulation, never NaN).
 pub type Time = NotNan<f64>;
-
-/// "No chunk" at the end of a slot's chain or of the free list.
-const NO_CHUNK: u32 = u32::MAX;
-
-/// Discs held in one slot or chunk.
-pub const SLOT_DISCS: usize = 7;
 
 /// Where the queue finds each disc's current event time (time; +∞ for none).
 ///
@@ -53,52 +54,6 @@ impl EventTimes for [f64] {
     #[inline]
     fn prefetch(&self, i: u32) {
         memory::prefetch_at(self, i as usize);
-    }
-}
-
-/// An event of the heap or the overflow list: the disc and its time.
-#[derive(Debug, Clone, Copy, PartialEq)]
-struct Item {
-    /// Event time (time).
-    time: f64,
-    /// Disc index.
-    disc: u32,
-}
-
-/// A calendar slot, or a chunk of a slot's chain: up to [`SLOT_DISCS`] disc indices
-/// (filled from the front, [`NO_DISC`] after the last) and the next chunk.
-#[derive(Debug, Clone, Copy, PartialEq)]
-#[repr(C, align(32))]
-struct Slot {
-    /// Discs filed in this bucket (current or stale entries).
-    disc: [u32; SLOT_DISCS],
-    /// Next chunk of the chain (or of the free list), or [`NO_CHUNK`].
-    more: u32,
-}
-
-const _: () = assert!(std::mem::size_of::<Slot>() == 32);
-
-impl Slot {
-    const EMPTY: Slot = Slot {
-        disc: [NO_DISC; SLOT_DISCS],
-        more: NO_CHUNK,
-    };
-
-    /// Put `d` in the first free place; false if the slot is full.
-    #[inline]
-    fn add(&mut self, d: u32) -> bool {
-        let k = self.len();
-        if k < SLOT_DISCS {
-            self.disc[k] = d;
-        }
-        k < SLOT_DISCS
-    }
-
-    /// Number of discs held (counted without a branch per entry: they fill the
-    /// slot from the front).
-    #[inline]
-    fn len(&self) -> usize {
-        self.disc.iter().map(|&x| (x != NO_DISC) as usize).sum()
     }
 }
 
@@ -236,60 +191,6 @@ impl EventQueue {
         }
     }
 
-    /// Discs likely to have the events after the earliest: the two children of the
-    /// head of the current bucket's heap ([`NO_DISC`] where there are none). A hint for
-    /// fetching their records early; it says nothing certain about the order.
-    #[inline]
-    pub fn upcoming(&self) -> [u32; 2] {
-        let at = |k: usize| self.heap.get(k).map_or(NO_DISC, |item| item.disc);
-        [at(1), at(2)]
-    }
-
-    /// Whether the queue has moved on to another bucket since the last call (a hint
-    /// for when to look [`ahead`](Self::ahead) again).
-    #[inline]
-    pub fn moved_on(&mut self) -> bool {
-        std::mem::take(&mut self.moved)
-    }
-
-    /// Discs with events in the current bucket (stale items left out), in no
-    /// particular order. A hint for fetching their neighbours early.
-    #[inline]
-    pub fn in_current_bucket<'a, T: EventTimes + ?Sized>(
-        &'a self,
-        times: &'a T,
-    ) -> impl Iterator<Item = u32> + 'a {
-        self.heap
-            .iter()
-            .filter(|item| times.time(item.disc) == item.time)
-            .map(|item| item.disc)
-    }
-
-    /// Discs filed in the bucket `k` ≥ 1 places after the current one (the first
-    /// [`SLOT_DISCS`] of them, [`NO_DISC`] after the last; some may be stale). A hint
-    /// for fetching their records before they are needed.
-    #[inline]
-    pub fn ahead(&self, k: u64) -> &[u32; SLOT_DISCS] {
-        // Wrapping: near the end of the bucket numbers the slot named is any slot,
-        // which is harmless for a hint.
-        &self.slots[(self.cur.wrapping_add(k) & self.mask) as usize].disc
-    }
-
-    /// The discs of [`ahead(k)`](Self::ahead) whose current time is still in that
-    /// bucket (stale entries left out; this reads their times).
-    #[inline]
-    pub fn filed_ahead<'a, T: EventTimes + ?Sized>(
-        &'a self,
-        times: &'a T,
-        k: u64,
-    ) -> impl Iterator<Item = u32> + 'a {
-        self.ahead(k)
-            .iter()
-            .take_while(|&&d| d != NO_DISC)
-            .copied()
-            .filter(move |&d| self.bucket(times.time(d)) == self.cur.wrapping_add(k))
-    }
-
     /// Set the event time of disc `i` to `t`: stored in `times` and filed.
     #[inline]
     pub fn set<T: EventTimes + ?Sized>(&mut self, times: &mut T, i: u32, t: Time) {
@@ -358,51 +259,9 @@ impl EventQueue {
         }
     }
 
-    /// Put disc `d` into calendar slot `s`, or into its chain of chunks.
-    #[inline]
-    fn add_to_slot(&mut self, s: usize, d: u32) {
-        if self.slots[s].add(d) {
-            return;
-        }
-        let c = self.slots[s].more;
-        if c != NO_CHUNK && self.chunks[c as usize].add(d) {
-            return;
-        }
-        let mut chunk = Slot::EMPTY;
-        chunk.disc[0] = d;
-        chunk.more = c;
-        self.slots[s].more = self.chunk(chunk);
-    }
-
-    /// Chunks the pool may hold before the calendar is rebuilt; allocated at this
-    /// size once and never grown. A rebuild files at most N entries, which need at
-    /// most N/7 + 1 chunks, so a rebuild never fills the pool again.
-    fn chunk_limit_for(n: usize) -> usize {
-        n / 4 + 64
-    }
-
-    fn chunk_limit(&self) -> usize {
-        Self::chunk_limit_for(self.n)
-    }
-
     /// Entries the overflow list may hold before the calendar is rebuilt.
     fn overflow_limit(&self) -> usize {
         2 * self.n + 64
-    }
-
-    /// A chunk holding `chunk`, from the free list or the pool's end.
-    #[inline]
-    fn chunk(&mut self, chunk: Slot) -> u32 {
-        self.chunks_used += 1;
-        let k = self.free;
-        if k != NO_CHUNK {
-            self.free = self.chunks[k as usize].more;
-            self.chunks[k as usize] = chunk;
-            k
-        } else {
-            self.chunks.push(chunk);
-            (self.chunks.len() - 1) as u32
-        }
     }
 
     /// Move to the next bucket: pour its slot into the heap; at every full turn of
@@ -484,35 +343,6 @@ impl EventQueue {
         }
     }
 
-    /// Restore the heap order of the whole heap array (Floyd's construction).
-    fn heapify(&mut self) {
-        for pos in (0..self.heap.len() / 2).rev() {
-            let item = self.heap[pos];
-            self.sift_down(pos, item);
-        }
-    }
-
-    /// Put `item` at `pos` or below, moving smaller children up.
-    #[inline]
-    fn sift_down(&mut self, mut pos: usize, item: Item) {
-        let len = self.heap.len();
-        loop {
-            let mut child = 2 * pos + 1;
-            if child >= len {
-                break;
-            }
-            if child + 1 < len && Self::less(&self.heap[child + 1], &self.heap[child]) {
-                child += 1;
-            }
-            if !Self::less(&self.heap[child], &item) {
-                break;
-            }
-            self.heap[pos] = self.heap[child];
-            pos = child;
-        }
-        self.heap[pos] = item;
-    }
-
     /// Drop stale overflow entries and move those now within the calendar's reach
     /// into their slots.
     fn redistribute_overflow<T: EventTimes + ?Sized>(&mut self, times: &T) {
@@ -530,32 +360,6 @@ impl EventQueue {
                 continue;
             }
             k += 1;
-        }
-    }
-
-    #[inline]
-    fn less(a: &Item, b: &Item) -> bool {
-        a.time < b.time || (a.time == b.time && a.disc < b.disc)
-    }
-
-    fn heap_push(&mut self, item: Item) {
-        self.heap.push(item);
-        let mut pos = self.heap.len() - 1;
-        while pos > 0 {
-            let parent = (pos - 1) / 2;
-            if !Self::less(&item, &self.heap[parent]) {
-                break;
-            }
-            self.heap[pos] = self.heap[parent];
-            pos = parent;
-        }
-        self.heap[pos] = item;
-    }
-
-    fn heap_pop(&mut self) {
-        let last = self.heap.pop().expect("heap is not empty");
-        if !self.heap.is_empty() {
-            self.sift_down(0, last);
         }
     }
 }

@@ -1,18 +1,15 @@
 //! Uniform gravity g along −y in the engine (physics.md §15).
 //!
-//! A disc's record keeps the straight path p(t) = r0 + v t of body.rs, and its true
-//! motion is that path with the fall added: r(t) = p(t) − ŷ g t²/2, velocity
-//! v − ŷ g t, on the internal clock. Both discs of a pair fall alike, so their
-//! relative motion is the straight relative motion of their paths: pair
-//! predictions and collisions run on the paths unchanged (a collision changes
-//! relative velocities only, and the rules are Galilean invariant). Only what
-//! depends on a disc's own height or vertical velocity needs the fall: the
-//! wall and cell-edge times along y (roots of quadratics, `carom_core::gravity`),
-//! a wall's reflection, the positions and velocities handed out, and the
-//! restart of the clock. These are separate functions, entered by one test of
-//! g ≠ 0, so that the engine without a field does exactly what it did before. A
-//! disc resting on the floor does not fall: its record is its straight true path
-//! (engine::resting).
+//! A disc's record keeps the straight path p(t) = r0 + v t of body.rs; its true
+//! motion adds the fall, r(t) = p(t) − ŷ g t²/2 with velocity v − ŷ g t, on the
+//! internal clock. Both discs of a pair fall alike, so their relative motion is the
+//! straight one of their paths: pair predictions and collisions run on the paths
+//! unchanged (the rules are Galilean invariant). Only what depends on a disc's own
+//! height or vertical velocity needs the fall: wall and cell-edge times along y
+//! (roots of quadratics, `carom_core::gravity`), a wall's reflection, the positions
+//! and velocities handed out, and the clock's restart. These are separate
+//! functions, reached only when g ≠ 0 (most through the falling law of motion,
+//! engine::motion). A disc resting on the floor does not fall (engine::resting).
 
 use super::body::{Body, Face, Pending};
 use super::Engine;

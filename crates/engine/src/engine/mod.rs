@@ -1,24 +1,16 @@
 //! The event loop: the [`Engine`] type, its parameters and its public API.
 //!
-//! Each disc keeps its state as of its own last update ("delayed states",
-//! physics.md §1) as a straight path r(t) = r0 + v t on an internal clock, and owns
-//! exactly one pending event: the earliest of its next pair collision (contact time
-//! of physics.md §2), wall collision and cell crossing. The queue hands out the
-//! earliest; an event moves only the discs it touches. A pair prediction remembers
-//! the partner's collision counter, so one made obsolete by the partner's other
-//! collisions is recognised at the head of the queue and recomputed: the earliest
-//! true event is always queued, because of any pair the disc updated last scanned
-//! the other with both current paths.
-//!
-//! The engine is split by phase, one `impl` block per file: prediction and the
-//! neighbour scan (`predict`), resolution of collisions, wall hits and crossings
-//! (`resolve`), the clock and renumbering (`clock`), fetching ahead (`lookahead`),
-//! the checkpoint (`checkpoint`). How discs move between events is one seam,
-//! the law of motion (`motion`: straight, falling in a field with an optional
-//! vibrating floor, growing), chosen once per engine; the event loop is compiled
-//! once per law, so the straight loop is compiled as if the others did not exist.
-//! The laws' engine-side work is in `gravity`, `floor`, `resting` and `growth`.
-//! See docs/performance.md, "engine".
+//! Each disc keeps its state as of its own last update (physics.md §1), a path
+//! r(t) = r0 + v t on an internal clock, and owns one pending event, the earliest of
+//! its pair collision (|Δr + Δv t| = σ, §2), wall hit and cell crossing. A pair
+//! prediction remembers the partner's collision counter, so an obsolete one is
+//! recomputed at the head of the queue; the earliest true event is always queued, as
+//! of any pair the disc updated last scanned the other with both current paths.
+//! Files by phase: `step` (the loop, dispatch only), `predict`, `resolve`, `clock`,
+//! `lookahead`, `checkpoint`; `calendar`, the one calendar of internal events (the
+//! caller's scheduled events and the thermostat's); `motion`, the law of motion,
+//! chosen once and compiled into the loop (straight; falling: `gravity`, `floor`,
+//! `resting`; growing: `growth`). See docs/performance.md, "engine".
 
 mod body;
 mod calendar;
@@ -112,6 +104,18 @@ pub struct Stats {
 }
 
 /// The exact event-driven engine for hard discs.
+///
+/// ```
+/// use carom_engine::{Engine, EngineParams, SystemSpec};
+///
+/// // 100 discs of diameter 1 at packing fraction 0.3 in a periodic box.
+/// let state = SystemSpec::periodic_fluid(100, 0.3, 7).build().unwrap();
+/// let mut engine = Engine::new(state, EngineParams::default()).unwrap();
+/// let energy = engine.kinetic_energy();
+/// let collisions = engine.run_until(2.0).unwrap();
+/// assert!(collisions > 0);
+/// assert!((engine.kinetic_energy() - energy).abs() < 1e-9 * energy);
+/// ```
 #[derive(Debug, Clone)]
 pub struct Engine {
     sim_box: SimBox,

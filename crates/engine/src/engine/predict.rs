@@ -2,17 +2,15 @@
 //!
 //! A disc's next event is the earliest of its cell crossing, its wall collision
 //! (x + v t = a or L − a) and its pair collisions with the discs of its 3 × 3 block
-//! of cells (and, in a mixture with a grid per size class, the cells of the other
-//! grids within reach). A pair meets at the smaller root of |Δr + Δv t| = σ with
-//! b = Δr·Δv < 0 (physics.md §2). The earliest pair found is kept as the disc's
-//! *pair candidate* even while a crossing or wall comes first: a crossing changes
-//! no velocity, so after it only the three newly adjacent cells are scanned, and
-//! the candidate (its time computed again from the two unchanged paths) stands for
-//! the six cells seen before, unless its partner changed velocity since. The hot
-//! comparisons run without branches (`select_unpredictable`): which neighbour
-//! wins is a coin toss. Contact and boundary times are the law of motion's
-//! (engine::motion): straight lines here, a field's or growing discs' roots
-//! there. See docs/performance.md, "neighbour scan".
+//! (and of the cells within reach in other size classes' grids), each at the smaller
+//! root of |Δr + Δv t| = σ with Δr·Δv < 0 (physics.md §2). The earliest pair is kept
+//! as the *pair candidate* even while a crossing or wall comes first: a crossing
+//! changes no velocity, so after it only the three newly adjacent cells are scanned,
+//! and the candidate (its time recomputed from the unchanged paths) stands for the
+//! six seen before unless its partner changed velocity since. Hot comparisons are
+//! branch-free (which neighbour wins is a coin toss); contact and boundary times
+//! are the law of motion's (engine::motion). See docs/performance.md,
+//! "neighbour scan".
 
 use super::body::{Aux, Body, Face, Image, Pending};
 use super::motion::Motion;

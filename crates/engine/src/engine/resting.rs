@@ -1,18 +1,15 @@
 //! Discs resting on the floor in a field (physics.md §15, (15.9)–(15.10)).
 //!
-//! A disc that leaves the static floor with an upward velocity u whose apex
-//! a + u²/(2g) rounds to a (u = 0 above all: a disc put at rest on the floor) would
-//! hit it again at once for ever. It *rests* instead: the floor takes its whole
-//! vertical momentum, its record holds the straight path (x0 + v_x t, a) with
-//! v_y = 0 and no fall (the flag in [`super::body::Aux`]), and it slides at
-//! constant v_x, meeting side walls and crossing cells along x only. It leaves the
-//! floor only in a pair collision: a resting disc hit by a falling one is first
-//! turned back into a falling path at the floor (so that the pair's relative
-//! motion is straight again and the collision resolves as any other), and one
-//! not sent up is met by the floor at once, bounced or laid to rest again. Two
-//! resting discs fly straight relative to each other, as do two falling ones; a
-//! resting and a falling disc accelerate apart by g, and their contact time is
-//! the quartic (15.10) (`carom_core::gravity::contact_time_one_falling`).
+//! A disc leaving the static floor with an upward velocity u whose apex
+//! a + u²/(2g) rounds to a (u = 0 above all) would hit it again at once for ever. It
+//! *rests* instead: the floor takes its vertical momentum, its record holds the
+//! straight path (x0 + v_x t, a) with v_y = 0 and no fall (the flag in
+//! [`super::body::Aux`]), and it slides along x, meeting side walls and crossing
+//! cells along x only. Only a pair collision lifts it: it is first turned back into
+//! a falling path at the floor, so the pair's relative motion is straight and
+//! resolves as any other; if not sent up, the floor meets it at once. A resting and
+//! a falling disc accelerate apart by g: their contact time is the quartic (15.10)
+//! (`carom_core::gravity::contact_time_one_falling`).
 
 use super::body::Body;
 use super::Engine;

@@ -1,14 +1,14 @@
 //! The event loop and the public calls that drive it.
 //!
 //! Each turn of the loop is dispatch only: upkeep (look-ahead tuning, the
-//! renumbering), then the earlier of the calendar's instants (`calendar`: the
-//! caller's scheduled events, the thermostat's, §16, the growth's rescales and
-//! end, §17) and the discs' own events in the queue, handled by one function
-//! each. A disc's event is a pair collision (§2–§4), a wall hit,
-//! a cell crossing, or a prediction found obsolete or a floor search resumed,
-//! recomputed; crossings and recomputations are not reported, and the loop
-//! turns until something observable happens. Compiled once per law of motion
-//! (engine::motion).
+//! renumbering), then the earlier of the next internal instant and the discs' own
+//! events in the queue, handled by one function each. The caller's scheduled events
+//! and the thermostat's events (§16) share one calendar (engine/calendar.rs), which
+//! also weighs the growth's rescales and end (§17). A disc's event is a pair
+//! collision (§2–§4), a wall hit, a cell crossing, or a prediction found obsolete or
+//! a floor search resumed, recomputed; crossings and recomputations are not
+//! reported, and the loop turns until something observable happens. Compiled once
+//! per law of motion (engine::motion).
 
 use super::body::Pending;
 use super::calendar::{Due, Whose};

@@ -1,17 +1,14 @@
 //! Initial states: placement of the discs and their velocities, reproducible from a
 //! seed (a `rand_pcg` generator).
 //!
-//! A [`SystemSpec`] names the species, the box, the temperature, the seed and how
-//! to place the discs; [`SystemSpec::build`] validates it and returns a [`State`]
-//! with no overlaps. Lattice placement (`lattice`) picks the arrangement whose
-//! closest pair is farthest apart; random placement (`random`) inserts discs one by
-//! one, largest first, for low densities; relaxed placement (`relaxed`, with the
-//! minimizer in `relax`) removes the overlaps of random positions by minimizing a
-//! soft overlap energy, up to just below jamming; compressed placement
-//! (`compressed`) grows the discs of a dilute random start in the engine
-//! (physics.md §17). Velocities (`velocities`) are
-//! Maxwell–Boltzmann at kT or of one speed per species, shifted to zero momentum
-//! and scaled so that 2K/f = kT exactly (physics.md §5–§6).
+//! A [`SystemSpec`] names the species, the box, the temperature, the seed and the
+//! placement; [`SystemSpec::build`] validates it and returns a [`State`] with no
+//! overlaps. Placements: `lattice` (the arrangement whose closest pair is farthest
+//! apart), `random` (one by one, largest first; low densities), `relaxed` (a soft
+//! overlap energy minimized by `relax`, up to just below jamming), `compressed`
+//! (growing the discs of a dilute start in the engine, physics.md §17). Velocities
+//! (`velocities`): Maxwell–Boltzmann at kT or one speed per species, at zero
+//! momentum, scaled so that 2K/f = kT exactly (§5–§6).
 //!
 //! [`State`]: crate::State
 

@@ -82,7 +82,7 @@ pub enum Velocities {
     Explicit(Vec<DVec2>),
 }
 
-/// Everything needed to build an initial [`State`].
+/// Everything needed to build an initial [`State`](crate::State).
 #[derive(Debug, Clone, PartialEq)]
 pub struct SystemSpec {
     /// The species (count, radius, mass); discs are numbered species by species.

@@ -1,18 +1,14 @@
 //! A minimal encoder and decoder for little-endian OMG CDR (XCDR1, "CDR_LE"), the
 //! `cdr` message encoding of MCAP and ROS 2.
 //!
-//! Only what carom's messages use: integers, `float64`, strings, and sequences
-//! (`T[]`, a `uint32` length followed by the elements) and fixed arrays (`T[n]`) of
-//! them. Every buffer starts with the 4-byte encapsulation header `00 01 00 00`;
-//! every primitive is aligned to its own size, counted from the end of that header.
-//!
-//! carom's own bulk encoder appends whole arrays into a reused `Vec<u8>`; the
-//! `mcap_python` test checks its layout against Python's decoder. See
-//! docs/performance.md, "CDR codec".
-//!
-//! The decoder is defensive: every length is checked against the bytes that remain
-//! before anything is allocated, so corrupted input gives a [`CdrError`], never a
-//! panic or a huge allocation.
+//! Only what carom's messages use: integers, `float64`, strings, sequences (`T[]`,
+//! a `uint32` length then the elements) and fixed arrays (`T[n]`) of them. Every
+//! buffer starts with the encapsulation header `00 01 00 00`; every primitive is
+//! aligned to its own size, counted from the end of that header. The bulk encoder
+//! appends whole arrays into a reused `Vec<u8>` (the `mcap_python` test checks its
+//! layout against Python's decoder; docs/performance.md, "CDR codec"). The decoder
+//! checks every length against the bytes left before allocating, so corrupted input
+//! gives a [`CdrError`], never a panic or a huge allocation.
 
 use thiserror::Error;
 

@@ -1,18 +1,14 @@
 //! The resolved run as plain data ([`RunFacts`]), stored since log format 1.2 as
-//! the JSON value `run_facts` of the `carom.run` metadata: the species, the box
-//! and its boundaries, the pair collision rule, N, the collision logging stride
-//! and the area disc centres can reach (physics.md §5). A reader learns the
-//! system from here instead of re-running the configuration through the front end
-//! and the placement code. Logs of format ≤ 1.1 have no facts.
+//! the JSON value `run_facts` of the `carom.run` metadata, so that a reader learns
+//! the system without re-running the configuration front end or the placement.
 //!
-//! The JSON uses the configuration's words: `{"species": [{"count", "radius",
-//! "mass"}], "box": {"size": [Lx, Ly], "boundary": ["periodic" | "walls", …],
-//! "wall_restitution": [e_w or null, …]}, "collision": {"model", "coefficient",
-//! "tc"}, "n_discs", "collision_every" (null when collisions are not logged),
-//! "accessible_area", "gravity" (only when not 0), "thermostat", "growth",
-//! "floor" (each only when the run had it; format 2.4 on, `facts_dynamics`)}`;
-//! every number in shortest round-trip form. Facts of logs before 2.4 hold no
-//! dynamics: [`RunFacts::hold_dynamics`] says whether a log's do.
+//! The JSON uses the configuration's words (docs/log-format.md): `species`, `box`
+//! (size, boundaries, wall restitutions), `collision` (model, coefficient, t_c),
+//! `n_discs`, `collision_every` (null when collisions are not logged) and
+//! `accessible_area`, the area disc centres can reach (physics.md §5); then
+//! `gravity` (only when not 0), `thermostat`, `growth` and `floor` (each only when
+//! the run had it; format 2.4 on, [`RunFacts::hold_dynamics`]). Every number is in
+//! shortest round-trip form. Logs of format ≤ 1.1 have no facts.
 
 use super::facts_dynamics::{FloorJson, GrowthJson, ThermostatJson};
 use crate::options::LogOptions;

@@ -1,28 +1,15 @@
 //! Reading carom logs: streaming, in file order (which is time order), with memory
 //! bounded by one MCAP chunk (a few MiB) plus one message, whatever the file size.
+//!
 //! [`LogReader`] reads the `carom.run` metadata on opening, checks each carom
-//! channel against the format's table, and hands out raw or decoded messages
-//! (`iter`: every collision, one channel, or all events). `scan` and `indexed`
-//! summarise a whole file, `scan` by reading it and `indexed` from its index.
-//!
-//! A file cut short (a killed run) reads up to its last complete chunk and ends
-//! with [`LogEnd::Truncated`] (an error with [`ReadOptions::strict`]). Damage that
-//! loses messages is a [`ReadError::Corrupt`] error, after everything before it;
-//! damage outside the chunks once every message is read is [`LogEnd::Damaged`], a
-//! warning (`damage.rs` says when that is so). [`salvage`] reads around damaged
-//! chunks (for `carom repair`). Nothing here panics on bad input.
-//!
-//! ```no_run
-//! use carom_log::{LogEvent, LogReader};
-//! # fn main() -> Result<(), carom_log::ReadError> {
-//! let mut log = LogReader::open("run.mcap".as_ref())?;
-//! for e in log.events() {
-//!     if let LogEvent::Collision(c) = e? {
-//!         let _ = (c.time, c.i, c.j, c.vi_after);
-//!     }
-//! }
-//! # Ok(()) }
-//! ```
+//! channel against the format's table and hands out raw or decoded messages
+//! (`iter`); `scan` and `indexed` summarise a whole file, by reading it or from its
+//! index. A file cut short reads up to its last complete chunk and ends with
+//! [`LogEnd::Truncated`] (an error with [`ReadOptions::strict`]); damage that loses
+//! messages is a [`ReadError::Corrupt`] error, after everything before it; damage
+//! outside the chunks once every message is read is [`LogEnd::Damaged`], a warning
+//! (`damage`). [`salvage`] reads around damaged chunks (for `carom repair`).
+//! Nothing here panics on bad input.
 
 mod damage;
 mod definitions;
@@ -104,6 +91,18 @@ fn record_length_limit(len: u64) -> usize {
 }
 
 /// A streaming reader of one carom log.
+///
+/// ```no_run
+/// use carom_log::{LogEvent, LogReader};
+/// # fn main() -> Result<(), carom_log::ReadError> {
+/// let mut log = LogReader::open("run.mcap".as_ref())?;
+/// for e in log.events() {
+///     if let LogEvent::Collision(c) = e? {
+///         let _ = (c.time, c.i, c.j, c.vi_after);
+///     }
+/// }
+/// # Ok(()) }
+/// ```
 pub struct LogReader<R: Read + Seek = BufReader<File>> {
     source: R,
     label: String,
