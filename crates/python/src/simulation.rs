@@ -78,8 +78,8 @@ fn slice(engine: &mut Engine, tags: Tags, left: &mut u64) -> Result<Slice, Strin
             Some(Event::Pair(_) | Event::Wall(_)) => *left -= 1,
             Some(Event::Scheduled { tag, .. }) if tag == tags.stop => return Ok(Slice::Done),
             Some(Event::Scheduled { tag, .. }) if tag == tags.every => return Ok(Slice::Callback),
-            // A pause, the thermostat's, or an interrupted run's stop.
-            Some(Event::Scheduled { .. }) => {}
+            // A pause (long unobservable work), or an interrupted run's stop.
+            Some(Event::Scheduled { .. } | Event::Pause { .. }) => {}
         }
     }
     Ok(Slice::More)
