@@ -45,6 +45,17 @@ fn cooling(r: &Report) -> bool {
     !r.elastic && r.thermostat.is_none() && r.floor.is_none()
 }
 
+/// The "drift" line of a drifting observable: both halves with their errors, how
+/// many standard errors apart, then `tail`.
+fn drift_line(d: &carom_analysis::DriftReport, tail: &str) -> String {
+    format!(
+        "first half {}, second half {} ({:.1} SE apart){tail}",
+        report_text::pm(d.first_half, d.first_half_std_error),
+        report_text::pm(d.second_half, d.second_half_std_error),
+        d.difference_std_errors
+    )
+}
+
 impl ReadObserver for ReadDisplay {
     fn pass(&mut self, what: &'static str) {
         ReadDisplay::pass(self, what);

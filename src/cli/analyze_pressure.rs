@@ -5,7 +5,7 @@
 use carom_analysis::Report;
 
 use super::super::report_text::{pm, sig, sigmas, Text};
-use super::cooling;
+use super::{cooling, drift_line};
 
 /// Pressure, collision rate and Enskog's relation between them.
 pub(super) fn pressure_text(r: &Report, t: &mut Text) {
@@ -31,15 +31,7 @@ pub(super) fn pressure_text(r: &Report, t: &mut Text) {
                 ),
             );
             if let Some(d) = p.drift.as_ref().filter(|d| d.drifting) {
-                t.item(
-                    "drift",
-                    &format!(
-                        "first half {}, second half {} ({:.1} SE apart)",
-                        pm(d.first_half, d.first_half_std_error),
-                        pm(d.second_half, d.second_half_std_error),
-                        d.difference_std_errors
-                    ),
-                );
+                t.item("drift", &drift_line(d, ""));
                 let w = &r.window;
                 if cooling(r) {
                     t.note(
@@ -103,20 +95,12 @@ pub(super) fn pressure_text(r: &Report, t: &mut Text) {
         },
     );
     if let Some(d) = c.drift.as_ref().filter(|d| d.drifting) {
-        t.item(
-            "drift",
-            &format!(
-                "first half {}, second half {} ({:.1} SE apart){}",
-                pm(d.first_half, d.first_half_std_error),
-                pm(d.second_half, d.second_half_std_error),
-                d.difference_std_errors,
-                if cooling(r) {
-                    ": the gas is cooling"
-                } else {
-                    ": equilibrate longer"
-                }
-            ),
-        );
+        let tail = if cooling(r) {
+            ": the gas is cooling"
+        } else {
+            ": equilibrate longer"
+        };
+        t.item("drift", &drift_line(d, tail));
     }
     if let Some(e) = &r.enskog {
         t.section("Enskog's relation Z − 1 = (√π/4) ω τ0 (physics.md §7)");

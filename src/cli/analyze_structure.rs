@@ -6,7 +6,7 @@
 use carom_analysis::Report;
 
 use super::super::report_text::{pm, sig, Text};
-use super::cooling;
+use super::{cooling, drift_line};
 
 /// g(r), its contact values and the contact theorem.
 pub(super) fn pair_correlation_text(r: &Report, t: &mut Text) {
@@ -104,21 +104,12 @@ pub(super) fn structure_text(r: &Report, t: &mut Text) {
             ),
         );
         if let Some(d) = b.drift.as_ref().filter(|d| d.drifting) {
-            t.item(
-                "drift",
-                &format!(
-                    "first half {}, second half {} ({:.1} SE apart): the order is still \
-                     changing{}",
-                    pm(d.first_half, d.first_half_std_error),
-                    pm(d.second_half, d.second_half_std_error),
-                    d.difference_std_errors,
-                    if cooling(r) {
-                        " (a cooling gas never settles)"
-                    } else {
-                        "; equilibrate longer"
-                    }
-                ),
-            );
+            let tail = if cooling(r) {
+                ": the order is still changing (a cooling gas never settles)"
+            } else {
+                ": the order is still changing; equilibrate longer"
+            };
+            t.item("drift", &drift_line(d, tail));
         }
     }
     if let Some(g) = &r.orientational_correlation {
