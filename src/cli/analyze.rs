@@ -96,14 +96,7 @@ pub fn analyze(args: AnalyzeArgs) -> Result<ExitCode, CliError> {
         }
     }
     if args.json {
-        let mut v = serde_json::to_value(&report).expect("a Report serialises");
-        if let Some(o) = v.as_object_mut() {
-            o.insert(
-                "file".into(),
-                serde_json::Value::String(args.file.display().to_string()),
-            );
-            o.insert("log_complete".into(), serde_json::Value::Bool(complete));
-        }
+        let v = report.to_json(&args.file.display().to_string(), complete);
         super::emit(&format!("{v}\n"))?;
     } else {
         super::emit(&text(&report, &args, complete))?;

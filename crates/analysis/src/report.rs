@@ -139,6 +139,19 @@ pub struct WindowReport {
     pub snapshot_times: Vec<f64>,
 }
 
+impl Report {
+    /// The JSON object `carom analyze --json` prints: the report's fields with
+    /// `file` (the log as named) and `log_complete` (false for a log cut short).
+    pub fn to_json(&self, file: &str, complete: bool) -> serde_json::Value {
+        let mut v = serde_json::to_value(self).expect("a Report serialises");
+        if let Some(o) = v.as_object_mut() {
+            o.insert("file".into(), serde_json::Value::String(file.to_owned()));
+            o.insert("log_complete".into(), serde_json::Value::Bool(complete));
+        }
+        v
+    }
+}
+
 /// One quantity the report lacks.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct NotComputed {

@@ -56,13 +56,6 @@ pub fn analyze_json(
     let (report, complete) = py
         .detach(|| analyze_log_with(&path, opts, &derive_facts_for_old_log, &mut quiet))
         .map_err(errors::read)?;
-    let mut v = serde_json::to_value(&report).map_err(errors::engine)?;
-    if let Some(o) = v.as_object_mut() {
-        o.insert(
-            "file".into(),
-            serde_json::Value::String(path.display().to_string()),
-        );
-        o.insert("log_complete".into(), serde_json::Value::Bool(complete));
-    }
+    let v = report.to_json(&path.display().to_string(), complete);
     Ok((v.to_string(), quiet.warnings))
 }
