@@ -41,18 +41,24 @@ fn checkpoint_round_trips_bit_for_bit() {
         },
         engine: e.checkpoint(),
     };
+    let (bytes, back) = round_trip(&lc);
+    // PartialEq on f64 would accept -0.0 == 0.0; compare the encodings too.
+    let mut w2 = CdrWriter::new();
+    back.encode(&mut w2);
+    assert_eq!(bytes, w2.bytes());
+    // Truncations are clean errors.
+    for cut in [0, 3, 4, 10, 100, bytes.len() - 1] {
+        assert!(LogCheckpoint::decode(&bytes[..cut]).is_err());
+    }
+}
+
+/// `lc` encoded, and decoded back equal to it: (the bytes, the decoded checkpoint).
+fn round_trip(lc: &LogCheckpoint) -> (Vec<u8>, LogCheckpoint) {
     let mut w = CdrWriter::new();
     lc.encode(&mut w);
     let back = LogCheckpoint::decode(w.bytes()).unwrap();
-    // PartialEq on f64 would accept -0.0 == 0.0; compare the encodings too.
-    assert_eq!(back, lc);
-    let mut w2 = CdrWriter::new();
-    back.encode(&mut w2);
-    assert_eq!(w.bytes(), w2.bytes());
-    // Truncations are clean errors.
-    for cut in [0, 3, 4, 10, 100, w.bytes().len() - 1] {
-        assert!(LogCheckpoint::decode(&w.bytes()[..cut]).is_err());
-    }
+    assert_eq!(&back, lc);
+    (w.bytes().to_vec(), back)
 }
 
 /// A shaken bed's checkpoint (gravity, vibrating floor) round-trips with the
@@ -92,10 +98,7 @@ fn a_checkpoint_with_a_vibrating_floor_round_trips() {
         },
         engine: e.checkpoint(),
     };
-    let mut w = CdrWriter::new();
-    lc.encode(&mut w);
-    let back = LogCheckpoint::decode(w.bytes()).unwrap();
-    assert_eq!(back, lc);
+    let (_, back) = round_trip(&lc);
     let mut b = Engine::from_checkpoint(back.engine).unwrap();
     for _ in 0..2_000 {
         assert_eq!(e.next_event().unwrap(), b.next_event().unwrap());
@@ -146,10 +149,7 @@ fn a_thermostatted_checkpoint_round_trips_and_resumes() {
     let tags: Vec<u64> = lc.engine.scheduled.iter().map(|s| s.2).collect();
     assert_eq!(tags, [8, THERMOSTAT_ENTRY_TAG, 9]);
     assert_eq!(lc.engine.thermostat.unwrap().next.unwrap().0, 0.75);
-    let mut w = CdrWriter::new();
-    lc.encode(&mut w);
-    let back = LogCheckpoint::decode(w.bytes()).unwrap();
-    assert_eq!(back, lc);
+    let (_, back) = round_trip(&lc);
     let mut b = Engine::from_checkpoint(back.engine).unwrap();
     same_events(&mut a, &mut b, 3_000);
     assert_eq!(a.checkpoint(), b.checkpoint());
