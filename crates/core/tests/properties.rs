@@ -1,25 +1,9 @@
-//! Property tests (proptest) of the pure physics in `carom_core`.
-//!
-//! * Contact time: the cancellation-free vector form (`kinematics::contact_time`,
-//!   physics.md §2) against the seed's angular form (`contact_time_seed`, seed 000
-//!   Eq. 14–17). On random approaching pairs that meet, the two agree to 1e-9 relative;
-//!   misses, receding pairs, zero relative velocity and exactly grazing contacts
-//!   (D = 0, built from small dyadic numbers so that D is computed without rounding)
-//!   are classified the same way by both (both `None` or both `Some`).
-//! * Elastic resolution: the vector form (`collision::elastic`, physics.md §3) against
-//!   the seed's Eq. 8–13 (`elastic_seed`), fed positions at contact and earlier on the
-//!   approach; momentum and kinetic energy conserved to rounding; equal masses leave at
-//!   right angles in the frame where the partner was at rest (seed 001).
-//! * Inelastic resolution (physics.md §4): for both the centre-of-mass model (R) and
-//!   normal restitution (e), the model's closed-form energy loss equals the actual
-//!   kinetic-energy change, momentum is conserved, coefficient 1 is bit-identical to
-//!   `elastic`, R = 0 makes the discs move on together, and the normal model keeps
-//!   the tangential relative velocity while reversing and scaling the normal one.
-//!
-//! Tolerances are relative to the natural scale of each quantity (stated at each
-//! assertion): rounding of O(10) floating-point operations gives errors of O(1e-15)
-//! relative, so 1e-12 is "conserved to rounding" with a wide margin and still fails
-//! for any genuine formula error.
+//! Property tests (proptest) of the pure physics in `carom_core`: the contact time
+//! (vector form against the seed's angular form, see [`Pair`]), elastic resolution
+//! (vector form against the seed's Eq. 8–13, conservation laws, right angles for
+//! equal masses, see [`Collision`]) and both inelastic models (exact energy loss,
+//! momentum, coefficient 1 = elastic). Tolerances are relative to the natural scale
+//! of each quantity (see [`momentum_scale`]), plus a few hand-made regression cases.
 
 use carom_core::collision::{
     centre_of_mass_restitution, elastic, elastic_seed, normal_restitution, reduced_mass, resolve,
@@ -43,6 +27,13 @@ fn config() -> ProptestConfig {
 
 /// A random approaching pair that meets, described by its geometry so that the
 /// outcome class is known by construction.
+///
+/// Contact time: the cancellation-free vector form (`kinematics::contact_time`,
+/// physics.md §2) against the seed's angular form (`contact_time_seed`, seed 000
+/// Eq. 14–17). On random approaching pairs that meet, the two agree to 1e-9 relative;
+/// misses, receding pairs, zero relative velocity and exactly grazing contacts
+/// (D = 0, built from small dyadic numbers so that D is computed without rounding)
+/// are classified the same way by both (both `None` or both `Some`).
 #[derive(Debug, Clone, Copy)]
 struct Pair {
     r1: DVec2,
@@ -287,6 +278,11 @@ proptest! {
 
 /// A random collision: a pair that meets, the masses, and how far before contact the
 /// positions are taken (0 = at contact).
+///
+/// Elastic resolution: the vector form (`collision::elastic`, physics.md §3) against
+/// the seed's Eq. 8–13 (`elastic_seed`), fed positions at contact and earlier on the
+/// approach; momentum and kinetic energy conserved to rounding; equal masses leave at
+/// right angles in the frame where the partner was at rest (seed 001).
 #[derive(Debug, Clone, Copy)]
 struct Collision {
     pair: Pair,
@@ -365,6 +361,11 @@ fn kinetic(m1: f64, v1: DVec2, m2: f64, v2: DVec2) -> f64 {
 
 /// Σ m|v| over both discs, before and after: the scale that momentum rounding errors
 /// are measured against.
+///
+/// Tolerances are relative to the natural scale of each quantity (stated at each
+/// assertion): rounding of O(10) floating-point operations gives errors of O(1e-15)
+/// relative, so 1e-12 is "conserved to rounding" with a wide margin and still fails
+/// for any genuine formula error.
 fn momentum_scale(c: &Collision, v1n: DVec2, v2n: DVec2) -> f64 {
     c.m1 * (c.pair.v1.length() + v1n.length()) + c.m2 * (c.pair.v2.length() + v2n.length())
 }
@@ -451,6 +452,14 @@ proptest! {
     /// Both inelastic models: the closed-form loss equals K_before − K_after to 1e-12
     /// of K_before, momentum is conserved to 1e-12 Σ m|v|, and the velocities are
     /// exactly those the reported impulse gives: v_i + Δp_i/m_i, v_j − Δp_i/m_j.
+    ///
+    /// Inelastic resolution (physics.md §4), for both the centre-of-mass model (R) and
+    /// normal restitution (e): the model's closed-form energy loss equals the actual
+    /// kinetic-energy change, momentum is conserved, coefficient 1 is bit-identical to
+    /// `elastic` ([`coefficient_one_is_bit_identical_to_elastic`]), R = 0 makes the
+    /// discs move on together ([`centre_of_mass_model_scales_relative_velocity`]), and
+    /// the normal model keeps the tangential relative velocity while reversing and
+    /// scaling the normal one ([`normal_model_keeps_tangential_relative_velocity`]).
     #[test]
     fn inelastic_models_lose_exactly_their_formula(
         c in arb_collision(),

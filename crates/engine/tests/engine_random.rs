@@ -1,31 +1,11 @@
 //! Random systems: the engine keeps its invariants across the whole space of
 //! inputs, not only the handful of systems the other tests build.
 //!
-//! Each case draws, from a seeded generator (case k uses seed k, so a failure names
-//! a reproducible system): one to three species (radii 0.5–2, masses 0.1–10, up to
-//! 120 discs each), lattice placement at η = 0.05–0.65 or random placement at
-//! η = 0.02–0.25, aspect ratio 1/4–4, each axis periodic or walled (elastic or
-//! lossy walls), elastic pairs or either inelastic model with a coefficient in
-//! [0, 1), and the TC model off or on with t_c = 10⁻⁴–10⁻¹. It then runs up to
-//! 20 000 events and checks, at every event:
-//!
-//! * time never decreases, and the current time is the event's time;
-//! * a pair collision happens at contact, |r_i − r_j| = a_i + a_j (minimum image)
-//!   to 1e-9 relative, with the discs approaching before and not after (normal
-//!   relative velocity, to rounding), and momentum conserved;
-//! * a wall collision happens with the disc touching the wall, to 1e-9 of its
-//!   radius;
-//!
-//! and every 500 events, with the [`InvariantChecker`]: no overlap beyond 1e-10
-//! of the contact distance, energy conserved to 1e-12 in elastic runs, momentum
-//! along periodic axes to 1e-12.
-//!
-//! The only error allowed is the runaway report (`EngineError::Stalled`) of a
-//! dissipative run without the TC model, which is how inelastic collapse must end.
-//! With the TC model a dissipative run must go on: before the TC model covered wall
-//! collisions, 13 of 600 such random systems with lossy walls stalled.
-//!
-//! The same random systems also resume from a checkpoint bit-identically.
+//! Each case is drawn from a seeded generator (case k uses seed k, so a failure names
+//! a reproducible system; see [`draw`]), run with checks at every event and every 500
+//! events ([`run`], [`random_systems_keep_every_invariant`]); the same random systems
+//! also resume from a checkpoint bit-identically
+//! ([`random_systems_resume_bit_identically`]).
 
 mod engine_common;
 use carom_core::{Axis, Boundary, SimBox, Species, WallSide};
@@ -43,7 +23,12 @@ const CASES: u64 = 400;
 /// Events per case at most.
 const EVENTS: u64 = 20_000;
 
-/// A random system and its dynamics (see the module docs).
+/// A random system and its dynamics, drawn from a generator seeded with `case`: one
+/// to three species (radii 0.5–2, masses 0.1–10, up to 120 discs each), lattice
+/// placement at η = 0.05–0.65 or random placement at η = 0.02–0.25, aspect ratio
+/// 1/4–4, each axis periodic or walled (elastic or lossy walls), elastic pairs or
+/// either inelastic model with a coefficient in [0, 1), and the TC model off or on
+/// with t_c = 10⁻⁴–10⁻¹.
 fn draw(case: u64) -> (SystemSpec, EngineParams) {
     let mut g = Pcg64::seed_from_u64(case);
     let species: Vec<Species> = (0..g.random_range(1..=3usize))
@@ -109,6 +94,24 @@ fn dissipative(spec: &SystemSpec, params: &EngineParams) -> bool {
 
 /// Run case `case`; `Ok(true)` if it ran to its end, `Ok(false)` if it collapsed
 /// where that is allowed, `Err` with what went wrong otherwise.
+///
+/// Runs up to [`EVENTS`] events and checks, at every event:
+///
+/// * time never decreases, and the current time is the event's time;
+/// * a pair collision happens at contact, |r_i − r_j| = a_i + a_j (minimum image)
+///   to 1e-9 relative, with the discs approaching before and not after (normal
+///   relative velocity, to rounding), and momentum conserved;
+/// * a wall collision happens with the disc touching the wall, to 1e-9 of its
+///   radius;
+///
+/// and every 500 events, with the [`InvariantChecker`]: no overlap beyond 1e-10
+/// of the contact distance, energy conserved to 1e-12 in elastic runs, momentum
+/// along periodic axes to 1e-12.
+///
+/// The only error allowed is the runaway report (`EngineError::Stalled`) of a
+/// dissipative run without the TC model, which is how inelastic collapse must end.
+/// With the TC model a dissipative run must go on: before the TC model covered wall
+/// collisions, 13 of 600 such random systems with lossy walls stalled.
 fn run(case: u64) -> Result<bool, String> {
     let (spec, params) = draw(case);
     let Ok(state) = spec.build() else {
@@ -183,6 +186,7 @@ fn run(case: u64) -> Result<bool, String> {
     Ok(true)
 }
 
+/// [`CASES`] random systems ([`draw`]), each run and checked by [`run`].
 #[test]
 fn random_systems_keep_every_invariant() {
     let mut failures = Vec::new();

@@ -3,56 +3,13 @@
 //! axes and a channel (periodic x, walls y), several seeds, monodisperse and a binary
 //! mixture with different radii and masses.
 //!
-//! Why two kinds of comparison. Hard discs are chaotic: a perturbation grows by a
-//! factor of order ℓ/σ (mean free path over diameter) at every collision, so two
-//! independently integrated trajectories that start one ulp apart — and the engine
-//! (which moves each disc only at its own events and predicts from earlier states)
-//! rounds differently from any other integrator — separate visibly after a few dozen
-//! collisions per disc. Comparing two free-running trajectories over 10⁴ events would
-//! therefore test nothing but the Lyapunov exponent. Instead:
-//!
-//! (a) Oracle check, 10⁴ consecutive events per system. Before every event the
-//!     engine's exact state (`Engine::state()`, positions at `now()`) is handed to the
-//!     brute-force reference, which computes the time of every pair contact (all
-//!     periodic images with shifts −1, 0, +1 per periodic axis, which contains the
-//!     minimum image; boxes are ≥ 4 largest diameters wide, so the nearest image is
-//!     unambiguous) and every wall contact with the `carom_core` formulas. Then
-//!     `next_event()` must report an event the reference predicts, at the reference's
-//!     time within 1e-9 (1 + t) (absolute 1e-9 plus relative 1e-9), and that event
-//!     must be the reference's earliest: a different order is accepted only when the
-//!     two times are equal within 1e-12 (1 + t) (a genuine tie). The velocities the
-//!     engine reports before and after are also checked against `collision::resolve`
-//!     (or the wall rule) at the reference's contact normal, to 1e-9 of the velocity
-//!     scale. Along the way the engine's clock must never decrease.
-//!
-//! (b) Free-running comparison below the chaos horizon. An independent reference
-//!     integrator (advance every disc to the next event, resolve it with
-//!     `collision::resolve`, repeat) runs side by side with the engine from the same
-//!     initial state; the two must report the same events (unordered pairs, walls) in
-//!     the same order at times within 1e-9 (1 + t) for the first 200 events, and end
-//!     with positions and velocities within 1e-9. The systems are moderately dense
-//!     (η = 0.4–0.5, N = 60): a perturbation grows at each collision by a factor of
-//!     order ℓ/σ, so counted in events the horizon is shortest in *dilute* systems.
-//!     Measured with this reference: at η = 0.1 (N = 30–40) the runs first differ by
-//!     more than 1e-9 after ≈ 100–170 events, at η = 0.4–0.5 (N = 60) after ≈ 320–640
-//!     events; after 200 events they agree to ≈ 1e-13–2e-12 in event times. The test
-//!     also asserts the time difference stays below 1e-10, so a systematic error
-//!     cannot hide behind chaos. Exactly simultaneous events (lattice discs that start
-//!     touching a wall all hit it at t = 0) may come in either order; the reference
-//!     then follows the engine's choice among the tied events.
-//!
-//! (c) The oracle check for random dynamics (`oracle_random_dynamics`): 40 seeded
-//!     small systems with random boundaries (lossy walls too), pair rules and TC
-//!     model settings, 2000 events each; the reference also tracks each disc's last
-//!     collision to know which rule the TC model calls for.
-//!
-//! Tolerances: event times are sums t = t_prediction + Δt with |t| ≲ 10³ and rounding
-//! ≈ 1e-16 |t|; near-grazing contacts amplify the rounding of positions by
-//! σ/√(σ² − h²), which stays far below 1e-9 except in vanishingly rare cases. A
-//! contact time also moves by the rounding of positions over the approach speed
-//! ([`conditioning`]): negligible at ordinary speeds, but an inelastic rule leaves
-//! pairs moving together at relative speeds of 10⁻¹³, whose next contact rounding
-//! alone decides (one such pair was 2·10⁻³ off); that much is allowed on top.
+//! Hard discs are chaotic, so two free-running trajectories can only be compared
+//! below the chaos horizon. Hence (a) oracle checks ([`oracle_check`]): before every
+//! event the brute-force reference gets the engine's exact state and must agree on
+//! the next event, its time and the velocities; (b) a free-running comparison over
+//! the first 200 events ([`free_running_matches_reference_below_chaos_horizon`]);
+//! (c) oracle checks for random dynamics ([`oracle_random_dynamics`]). Tolerances
+//! and why: [`time_tol`], [`tie_tol`] and [`conditioning`].
 
 mod engine_common;
 use carom_core::boundary::{wall_time, Boundary, SimBox, WallSide};
@@ -167,6 +124,14 @@ fn earliest(p: &[Predicted]) -> Predicted {
 }
 
 /// Agreement of event times: 1e-9 absolute plus 1e-9 relative.
+///
+/// Tolerances: event times are sums t = t_prediction + Δt with |t| ≲ 10³ and rounding
+/// ≈ 1e-16 |t|; near-grazing contacts amplify the rounding of positions by
+/// σ/√(σ² − h²), which stays far below 1e-9 except in vanishingly rare cases. A
+/// contact time also moves by the rounding of positions over the approach speed
+/// ([`conditioning`]): negligible at ordinary speeds, but an inelastic rule leaves
+/// pairs moving together at relative speeds of 10⁻¹³, whose next contact rounding
+/// alone decides (one such pair was 2·10⁻³ off); that much is allowed on top.
 fn time_tol(t: f64) -> f64 {
     1e-9 * (1.0 + t.abs())
 }
@@ -295,6 +260,27 @@ struct OracleReport {
 }
 
 /// (a) The oracle check for `events` consecutive events of `system` (elastic).
+///
+/// Why oracle checks. Hard discs are chaotic: a perturbation grows by a factor of
+/// order ℓ/σ (mean free path over diameter) at every collision, so two independently
+/// integrated trajectories that start one ulp apart — and the engine (which moves
+/// each disc only at its own events and predicts from earlier states) rounds
+/// differently from any other integrator — separate visibly after a few dozen
+/// collisions per disc. Comparing two free-running trajectories over 10⁴ events would
+/// therefore test nothing but the Lyapunov exponent. Instead, 10⁴ consecutive events
+/// per system (see [`run_oracle`]): before every event the engine's exact state
+/// (`Engine::state()`, positions at `now()`) is handed to the brute-force reference,
+/// which computes the time of every pair contact (all periodic images with shifts
+/// −1, 0, +1 per periodic axis, which contains the minimum image; boxes are ≥ 4
+/// largest diameters wide, so the nearest image is unambiguous) and every wall
+/// contact with the `carom_core` formulas. Then `next_event()` must report an event
+/// the reference predicts, at the reference's time within 1e-9 (1 + t) (absolute 1e-9
+/// plus relative 1e-9, [`time_tol`]), and that event must be the reference's
+/// earliest: a different order is accepted only when the two times are equal within
+/// 1e-12 (1 + t) (a genuine tie, [`tie_tol`]). The velocities the engine reports
+/// before and after are also checked against `collision::resolve` (or the wall rule)
+/// at the reference's contact normal, to 1e-9 of the velocity scale. Along the way
+/// the engine's clock must never decrease.
 fn oracle_check(system: &System, events: usize) -> OracleReport {
     oracle(system.state(), EngineParams::default(), system.name, events)
 }
@@ -662,7 +648,8 @@ fn oracle_size_classes() {
 /// inelastic model with a random coefficient, and the TC model off or on with
 /// t_c = 10⁻³–10⁻¹), 2000 events each: every collision is the reference's next
 /// event, at its time, resolved by the rule the TC model calls for. Seeded: case k
-/// uses seed k.
+/// uses seed k. The reference also tracks each disc's last collision to know which
+/// rule the TC model calls for (random boundaries include lossy walls).
 #[test]
 fn oracle_random_dynamics() {
     use rand::{RngExt, SeedableRng};
@@ -849,8 +836,21 @@ fn free_run(system: &System, events: usize) -> (f64, f64) {
     (max_dt, max_dv)
 }
 
-/// (b) Free-running comparison for the first 200 events (see the file's top comment
-/// for why these moderately dense systems and why 200 events).
+/// (b) Free-running comparison below the chaos horizon. An independent reference
+/// integrator ([`Reference`]: advance every disc to the next event, resolve it with
+/// `collision::resolve`, repeat) runs side by side with the engine from the same
+/// initial state; the two must report the same events (unordered pairs, walls) in
+/// the same order at times within 1e-9 (1 + t) for the first 200 events, and end
+/// with positions and velocities within 1e-9. The systems are moderately dense
+/// (η = 0.4–0.5, N = 60): a perturbation grows at each collision by a factor of
+/// order ℓ/σ, so counted in events the horizon is shortest in *dilute* systems.
+/// Measured with this reference: at η = 0.1 (N = 30–40) the runs first differ by
+/// more than 1e-9 after ≈ 100–170 events, at η = 0.4–0.5 (N = 60) after ≈ 320–640
+/// events; after 200 events they agree to ≈ 1e-13–2e-12 in event times. The test
+/// also asserts the time difference stays below 1e-10, so a systematic error
+/// cannot hide behind chaos. Exactly simultaneous events (lattice discs that start
+/// touching a wall all hit it at t = 0) may come in either order; the reference
+/// then follows the engine's choice among the tied events.
 #[test]
 fn free_running_matches_reference_below_chaos_horizon() {
     let systems = [

@@ -1,37 +1,11 @@
 //! Inelastic dynamics (physics.md §4): both pair models, the TC model, collapse
 //! detection, and lossy walls.
 //!
-//! * Normal restitution e = 0.9 and the centre-of-mass model R = 0.9 (N = 400,
-//!   η = 0.25, periodic, monodisperse and a binary mixture; 50–100 collisions per
-//!   disc, over which the gas cools by a factor of 10³–10⁶ — much longer and it is
-//!   frozen and clustered, and the check becomes trivial): every pair event's `energy_lost` equals the model's closed
-//!   form computed here from the event's own velocities and normal, and equals the
-//!   pair's kinetic-energy change (1e-12 of the pair's energy); Σ of the events'
-//!   losses equals `stats().energy_lost`; E0 − Σ losses equals the engine's current
-//!   kinetic energy to 1e-9 of E0 (checked every 10⁴ collisions and at the end;
-//!   relative to E0 because the bookkeeping error is a sum of roundings of terms
-//!   of the size of the energies already subtracted); total momentum stays within
-//!   1e-12 of the initial Σ m|v| (the current Σ m|v| shrinks as the gas cools, so
-//!   the initial one is the scale of the accumulated rounding).
-//! * A dense e = 0.5 system (N = 500, η = 0.6) without the TC model collapses: the
-//!   engine returns `Err(EngineError::Stalled)` with the configured limit (10⁴ events
-//!   without time advancing) within a bounded number of calls, instead of hanging.
-//!   With the TC model (t_c = 10⁻⁴ τ0, about 10⁻³ of the initial mean free time) the
-//!   same system runs 2·10⁵ collisions with no overlap beyond 1e-10 of σ and an exact
-//!   energy budget.
-//! * Restitution 0 (both models) under the TC model: a pair left without normal
-//!   relative velocity, which rounding may leave slightly approaching, does not
-//!   meet again at the same instant (two discs, 200 variants, inside the box and across its periodic edge;
-//!   each of the two sides' views is needed); and N = 400 at η = 0.3 with
-//!   t_c = 10⁻³ runs to t = 20 without stalling or overlap, keeping momentum.
-//! * The TC model covers wall collisions: four discs wedged in a channel with
-//!   lossy walls (e_w = 0.012) and elastic pairs collapse without it (reported as
-//!   a stall), and with t_c = 10⁻³ run on, every wall hit elastic within t_c of the
-//!   disc's previous collision and lossy otherwise.
-//! * Walls with restitution e_w < 1 (walled box and channel, elastic pairs): every
-//!   wall hit reverses and scales the normal velocity by e_w, keeps the tangential
-//!   one, reports the impulse m (1 + e_w)|v_n| and dissipates exactly
-//!   ½ m (1 − e_w²) v_n², which is also the engine's kinetic-energy change.
+//! Covered: the exact energy budget and momentum of normal and centre-of-mass
+//! restitution ([`budget_run`]); a dense e = 0.5 system that collapses without the
+//! TC model (reported as a stall, not a hang) and runs with it; restitution 0 under
+//! the TC model; the TC model applied to wall collisions; and lossy walls
+//! ([`wall_run`]). Tolerances and why are on the tests and helpers.
 
 use carom_core::boundary::Boundary;
 use carom_core::collision::reduced_mass;
@@ -70,6 +44,16 @@ fn mass(e: &Engine, i: u32) -> f64 {
 
 /// Run `collisions` pair collisions with `rule`, checking the energy budget and
 /// momentum; returns (E0, E_end).
+///
+/// Every pair event's `energy_lost` equals the model's closed form computed here
+/// from the event's own velocities and normal, and equals the pair's kinetic-energy
+/// change (1e-12 of the pair's energy); Σ of the events' losses equals
+/// `stats().energy_lost`; E0 − Σ losses equals the engine's current kinetic energy
+/// to 1e-9 of E0 (checked every 10⁴ collisions and at the end; relative to E0
+/// because the bookkeeping error is a sum of roundings of terms of the size of the
+/// energies already subtracted); total momentum stays within 1e-12 of the initial
+/// Σ m|v| (the current Σ m|v| shrinks as the gas cools, so the initial one is the
+/// scale of the accumulated rounding).
 fn budget_run(state0: State, rule: Restitution, collisions: u64) -> (f64, f64) {
     let params = EngineParams {
         restitution: rule,
@@ -149,6 +133,10 @@ fn budget_run(state0: State, rule: Restitution, collisions: u64) -> (f64, f64) {
     (e0, e_end)
 }
 
+/// Normal restitution e = 0.9 (N = 400, η = 0.25, periodic, monodisperse and a binary
+/// mixture): the checks of [`budget_run`]. 50–100 collisions per disc, over which the
+/// gas cools by a factor of 10³–10⁶ — much longer and it is frozen and clustered,
+/// and the check becomes trivial.
 #[test]
 fn normal_restitution_energy_budget_and_momentum() {
     let (e0, e1) = budget_run(
@@ -161,6 +149,8 @@ fn normal_restitution_energy_budget_and_momentum() {
     assert!(e1 < e0);
 }
 
+/// The centre-of-mass model R = 0.9, same systems and run lengths as
+/// [`normal_restitution_energy_budget_and_momentum`]: the checks of [`budget_run`].
 #[test]
 fn centre_of_mass_restitution_energy_budget_and_momentum() {
     let (e0, e1) = budget_run(
@@ -186,7 +176,10 @@ fn dense_params(tc: f64) -> EngineParams {
     }
 }
 
-/// Without a cure, a dense e = 0.5 system collapses; the engine must say so.
+/// Without a cure, a dense e = 0.5 system collapses; the engine must say so. The
+/// dense system (N = 500, η = 0.6) without the TC model returns
+/// `Err(EngineError::Stalled)` with the configured limit (10⁴ events without time
+/// advancing) within a bounded number of calls, instead of hanging.
 #[test]
 fn dense_collapse_without_tc_is_reported_as_stalled() {
     let mut engine = Engine::new(
@@ -240,7 +233,9 @@ fn dense_collapse_without_tc_is_reported_as_stalled() {
 }
 
 /// With the TC model the same system runs on, without overlap and with an exact
-/// energy budget (TC collisions are elastic and lose nothing).
+/// energy budget (TC collisions are elastic and lose nothing): with t_c = 10⁻⁴ τ0
+/// (about 10⁻³ of the initial mean free time) it runs 2·10⁵ collisions with no
+/// overlap beyond 1e-10 of σ.
 #[test]
 fn dense_system_with_tc_model_runs_without_overlap() {
     let tc = 1e-4;
@@ -311,6 +306,10 @@ fn dense_system_with_tc_model_runs_without_overlap() {
     );
 }
 
+/// Walls with restitution e_w < 1 (walled box and channel, elastic pairs): every
+/// wall hit reverses and scales the normal velocity by e_w, keeps the tangential
+/// one, reports the impulse m (1 + e_w)|v_n| and dissipates exactly
+/// ½ m (1 − e_w²) v_n², which is also the engine's kinetic-energy change.
 fn wall_run(boundary: [Boundary; 2], seed: u64, events: u64) {
     let s = state(100, 0.2, boundary, seed);
     let mut engine = Engine::new(s, EngineParams::default()).expect("engine");
@@ -392,6 +391,7 @@ fn wall_run(boundary: [Boundary; 2], seed: u64, events: u64) {
     assert!(k < e0, "lossy walls must cool the gas");
 }
 
+/// Lossy walls, walled box and channel, elastic pairs: the checks of [`wall_run`].
 #[test]
 fn lossy_walls_dissipate_half_m_one_minus_e2_vn2() {
     wall_run([Boundary::Walls { restitution: 0.7 }; 2], 7, 20_000);
@@ -475,7 +475,7 @@ fn runaway_guard_counts_only_collisions_at_one_instant() {
 /// without normal relative velocity, which rounding may leave slightly
 /// approaching; they must not then meet again at the same instant (before, they
 /// did, and the TC model's elastic collision could not change their velocities by
-/// so little: a stall).
+/// so little: a stall). Each of the two sides' views is needed.
 #[test]
 fn a_pair_left_without_normal_velocity_does_not_meet_again_at_once() {
     let n = DVec2::new(0.6, 0.8);
@@ -540,6 +540,7 @@ fn a_pair_left_without_normal_velocity_does_not_meet_again_at_once() {
 /// was separated after a collision, N = 400 at η = 0.3 with e = 0 and t_c = 10⁻³
 /// stalled at t ≈ 0.53 (a pair left approaching by rounding met again at once, and
 /// the elastic TC collision could not change velocities by less than their ulp).
+/// It must run to t = 20 without stalling or overlap, keeping momentum.
 #[test]
 fn restitution_zero_with_the_tc_model_runs_without_stalling() {
     for rule in [Restitution::Normal(0.0), Restitution::CentreOfMass(0.0)] {
@@ -620,8 +621,10 @@ fn wedge(tc: f64) -> Engine {
 /// model the wedge collapses and the engine reports it; with it, the same start
 /// runs on, and every wall collision follows the rule: elastic within t_c of the
 /// disc's previous collision (pair or wall), with the wall's restitution otherwise.
-/// (Before wall collisions were covered, the wedge collapsed with the TC model on,
-/// and so did 13 of 600 random walled systems with inelastic walls and t_c > 0.)
+/// Four discs wedged in a channel with lossy walls (e_w = 0.012) and elastic pairs,
+/// t_c = 10⁻³. (Before wall collisions were covered, the wedge collapsed with the TC
+/// model on, and so did 13 of 600 random walled systems with inelastic walls and
+/// t_c > 0.)
 #[test]
 fn the_tc_model_covers_wall_collisions() {
     let mut without = wedge(0.0);

@@ -1,39 +1,13 @@
 //! Initial states built by `SystemSpec::build`: placement, velocities, seeds and the
 //! errors for impossible requests.
 //!
-//! * Lattice placement at packing fraction η = 0.72 in periodic boxes for every
-//!   N in 2..=300 and N ∈ {1000, 4096, 10007, 20000}, at aspect ratios L_x/L_y ∈
-//!   {1/4, 1/2, 1/√3, 1, 1.7, 3, 4}: every placed state is checked independently (own
-//!   cell grid, minimum image) for overlap (centre distance ≥ σ (1 − 1e-12), i.e. no
-//!   overlap beyond rounding of the positions), for every centre inside the box, and for
-//!   the requested η.
-//!   Where an edge is shorter than a diameter (N = 2 at aspect 3 and 4, N = 3 at
-//!   aspect 4, and the transposed 1/4 cases) no placement can exist — a disc would
-//!   overlap its own periodic image — and the build must be an `Err` naming the box
-//!   edge. A second test demands success wherever the test itself can exhibit a valid
-//!   arrangement (a sheared lattice, found by enumerating all lattices with M ≥ N
-//!   points on the torus; two discs on a diagonal of a small walled box).
-//! * Walled and channel (periodic x, walls y) boxes at moderate η (0.3 for every N,
-//!   0.5 for N ≥ 4); random placement at low density, and of a mixture of radius
-//!   ratio 4 at η = 0.3 (largest first).
-//! * Relaxed placement (random positions, overlaps minimized away): dense mixtures
-//!   out of the lattice's reach — the equimolar 1 : 1.4 glass former at η = 0.80
-//!   and 0.83, a three-species mixture, monodisperse discs, in periodic, walled and
-//!   channel boxes — with every pair at least 1.001 contact distances apart, the
-//!   species spread over the box, and an elastic run from the state keeping the
-//!   invariants; above jamming (η = 0.88) an error naming the packing fraction.
-//! * Maxwell–Boltzmann velocities: zero total momentum (to 1e-12 of Σ m|v|) and kinetic
-//!   temperature 2K/f equal to the requested kT to 1e-12 relative, with
-//!   f = 2N − (number of periodic axes) (physics.md §5) computed here; per-species
-//!   equipartition in a large binary mixture within 5 standard errors.
-//! * EqualSpeed: one speed per species, temperature exact.
-//! * Same seed → bit-identical state; different seed → different state.
-//! * Impossible requests are an `Err` (never a panic) whose message names the field:
-//!   non-positive, NaN or infinite radius and mass, zero discs, NaN/negative/infinite
-//!   temperature, η beyond reach (0.85 lattice, 0.6 random, ≥ close packing),
-//!   overlapping explicit positions (both discs named), positions outside the box,
-//!   wall restitution outside [0, 1], a box edge shorter than a diameter, bad box
-//!   sizes, wrong counts and non-finite explicit velocities.
+//! Covered: lattice placement at η = 0.72 in periodic boxes over many N and aspect
+//! ratios, and in walled and channel boxes; random placement at low density; relaxed
+//! placement of dense mixtures out of the lattice's reach; Maxwell–Boltzmann and
+//! EqualSpeed velocities (momentum, temperature, equipartition); reproducibility from
+//! the seed; and impossible requests, which must be an `Err` naming the field, never
+//! a panic. Every placed state is checked independently of the engine ([`validate`]);
+//! the details of each check are on the test functions.
 
 use carom_core::boundary::{Boundary, SimBox};
 use carom_core::{DVec2, Species};
@@ -163,7 +137,10 @@ fn closest_pair(s: &State) -> Option<(usize, usize, f64)> {
     best
 }
 
-/// Everything a valid initial state must satisfy.
+/// Everything a valid initial state must satisfy, checked independently of the
+/// engine (own cell grid, minimum image): no overlap (centre distance ≥ σ (1 − 1e-12),
+/// i.e. no overlap beyond rounding of the positions), every centre inside the box,
+/// and the requested η.
 fn validate(s: &State, spec: &SystemSpec, what: &str) {
     let n: usize = spec.species.iter().map(|sp| sp.count).sum();
     assert_eq!(s.len(), n, "{what}: disc count");
@@ -222,6 +199,13 @@ fn impossible_box(spec: &SystemSpec) -> bool {
     spec.sim_box.size.min_element() <= 2.0 * a_max
 }
 
+/// Impossible requests are an `Err` (never a panic) whose message names the field
+/// and says what is allowed. The tests using this cover: non-positive, NaN or
+/// infinite radius and mass, zero discs, NaN/negative/infinite temperature, η beyond
+/// reach (0.85 lattice, 0.6 random, ≥ close packing), overlapping explicit positions
+/// (both discs named), positions outside the box, wall restitution outside [0, 1], a
+/// box edge shorter than a diameter, bad box sizes, wrong counts and non-finite
+/// explicit velocities.
 fn assert_err_names(r: Result<State, InitError>, field: &str, what: &str) -> String {
     match r {
         Ok(_) => panic!("{what}: expected an error naming {field:?}, got Ok"),
@@ -240,6 +224,12 @@ fn assert_err_names(r: Result<State, InitError>, field: &str, what: &str) -> Str
     }
 }
 
+/// Lattice placement at packing fraction η = 0.72 in periodic boxes for every N in
+/// 2..=300 and N ∈ {1000, 4096, 10007, 20000}, at aspect ratios L_x/L_y ∈ {1/4, 1/2,
+/// 1/√3, 1, 1.7, 3, 4}: every placed state passes [`validate`]. Where an edge is
+/// shorter than a diameter (N = 2 at aspect 3 and 4, N = 3 at aspect 4, and the
+/// transposed 1/4 cases) no placement can exist — a disc would overlap its own
+/// periodic image — and the build must be an `Err` naming the box edge.
 #[test]
 fn lattice_reaches_072_in_periodic_boxes() {
     let mut refused = Vec::new();
@@ -486,7 +476,10 @@ fn sheared_lattice(n: usize, size: DVec2, diameter: f64) -> Option<Vec<DVec2>> {
     None
 }
 
-/// Wherever an arrangement provably exists, lattice placement must find one.
+/// Wherever an arrangement provably exists, lattice placement must find one: success
+/// is demanded wherever the test itself can exhibit a valid arrangement (a sheared
+/// lattice, found by enumerating all lattices with M ≥ N points on the torus; two
+/// discs on a diagonal of a small walled box).
 #[test]
 fn lattice_places_wherever_an_arrangement_exists() {
     let mut failures = Vec::new();
@@ -556,6 +549,8 @@ fn lattice_places_wherever_an_arrangement_exists() {
     );
 }
 
+/// Walled and channel (periodic x, walls y) boxes at moderate η: 0.3 for every N,
+/// 0.5 for N ≥ 4.
 #[test]
 fn lattice_in_walled_and_channel_boxes_at_moderate_density() {
     for kind in [Kind::Walls, Kind::Channel] {
@@ -617,6 +612,7 @@ fn lattice_output_is_valid_explicit_input() {
     );
 }
 
+/// Random placement at low density, in periodic, walled and channel boxes.
 #[test]
 fn random_placement_at_low_density() {
     for kind in [Kind::Periodic, Kind::Walls, Kind::Channel] {
@@ -672,13 +668,19 @@ fn random_placement_of_an_asymmetric_mixture() {
     }
 }
 
-/// f = 2N − (number of periodic axes), physics.md §5.
 /// The equimolar binary mixture of radii 0.5 and 0.7 (masses ∝ area), the usual
 /// glass former in 2D.
 fn glass(n_each: usize) -> Vec<Species> {
     vec![Species::reference(n_each), Species::new(n_each, 0.7, 1.96)]
 }
 
+/// Relaxed placement (random positions, overlaps minimized away): dense mixtures out
+/// of the lattice's reach — the equimolar 1 : 1.4 glass former at η = 0.80 and 0.83,
+/// a three-species mixture, monodisperse discs, in periodic, walled and channel boxes
+/// — with every pair at least 1.001 contact distances apart and the species spread
+/// over the box. (An elastic run from such a state keeping the invariants:
+/// [`the_engine_runs_from_a_relaxed_dense_mixture`]; above jamming:
+/// [`relaxed_placement_refuses_jammed_states_and_too_narrow_boxes`].)
 #[test]
 fn relaxed_placement_prepares_dense_mixtures() {
     let three = vec![
@@ -753,6 +755,8 @@ fn relaxed_placement_prepares_dense_mixtures() {
     }
 }
 
+/// An elastic run from a relaxed dense mixture (glass former at η = 0.80) keeps the
+/// invariants.
 #[test]
 fn the_engine_runs_from_a_relaxed_dense_mixture() {
     use carom_engine::{Engine, EngineParams, InvariantChecker};
@@ -769,6 +773,9 @@ fn the_engine_runs_from_a_relaxed_dense_mixture() {
     }
 }
 
+/// Above jamming (η = 0.88) relaxed placement gives up with an error naming the
+/// packing fraction; a periodic edge shorter than two contact distances is refused
+/// naming the edge.
 #[test]
 fn relaxed_placement_refuses_jammed_states_and_too_narrow_boxes() {
     let sp = SystemSpec {
@@ -812,6 +819,7 @@ fn relaxed_placement_refuses_jammed_states_and_too_narrow_boxes() {
     );
 }
 
+/// f = 2N − (number of periodic axes), physics.md §5, computed here.
 fn dof(s: &State) -> f64 {
     let periodic = s
         .sim_box
@@ -838,6 +846,10 @@ fn momentum(s: &State) -> (DVec2, f64) {
     (p, scale)
 }
 
+/// Maxwell–Boltzmann velocities: zero total momentum (to 1e-12 of Σ m|v|) and kinetic
+/// temperature 2K/f equal to the requested kT to 1e-12 relative, with
+/// f = 2N − (number of periodic axes) (physics.md §5) computed here ([`dof`]).
+/// Per-species equipartition: [`maxwell_boltzmann_equipartition_in_a_mixture`].
 #[test]
 fn maxwell_boltzmann_has_zero_momentum_and_exact_temperature() {
     for kind in [Kind::Periodic, Kind::Walls, Kind::Channel] {
@@ -907,6 +919,7 @@ fn maxwell_boltzmann_equipartition_in_a_mixture() {
     }
 }
 
+/// EqualSpeed: one speed per species, temperature exact.
 #[test]
 fn equal_speed_gives_one_speed_per_species() {
     for kind in [Kind::Periodic, Kind::Walls, Kind::Channel] {
@@ -965,6 +978,7 @@ fn bits(s: &State) -> Vec<u64> {
         .collect()
 }
 
+/// Same seed → bit-identical state; different seed → different state.
 #[test]
 fn same_seed_same_state_different_seed_different_state() {
     let variants = [
