@@ -416,3 +416,7 @@ impl Analyzer {
 #[cfg(test)]
 #[path = "analyzer_tests.rs"]
 mod tests;
+
+#[cfg(test)]
+#[path = "analyzer_finish_tests.rs"]
+mod finish_tests;

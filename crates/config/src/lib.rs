@@ -39,6 +39,8 @@ pub use schema::{config_schema, config_schema_json};
 #[cfg(test)]
 mod compression_tests;
 #[cfg(test)]
+mod error_tests;
+#[cfg(test)]
 mod gravity_tests;
 #[cfg(test)]
 mod schedule_tests;
