@@ -107,3 +107,32 @@ fn the_thermostats_next_event_is_not_among_the_callers() {
     assert_eq!(cp.thermostat.unwrap().next, Some((1.0, 1)));
     assert_eq!(cp.next_seq, 2);
 }
+
+/// `run_until`'s end is the engine's own entry: a caller's event with any tag
+/// (u64::MAX, which it once borrowed) before it does not end the run early, and
+/// nothing of the stop is left behind, neither in the calendar nor in a
+/// checkpoint. The run still ends at exactly `t_end`.
+#[test]
+fn run_until_borrows_no_tag() {
+    let mut e = fluid(100, 0.3, 4);
+    e.schedule(0.5, u64::MAX).unwrap();
+    e.schedule(3.0, u64::MAX).unwrap();
+    let collisions = e.run_until(2.0).unwrap();
+    assert_eq!(e.now(), 2.0);
+    assert!(collisions > 0);
+    let tags: Vec<u64> = e.checkpoint().scheduled.iter().map(|s| s.2).collect();
+    assert_eq!(tags, [u64::MAX], "only the caller's event at 3.0 is left");
+    // With a thermostat (pauses on the way) and growth-free: the same.
+    let mut d = fluid(100, 0.3, 4);
+    driven(&mut d);
+    d.schedule(0.5, u64::MAX).unwrap();
+    d.run_until(4.5).unwrap();
+    assert_eq!(d.now(), 4.5);
+    assert!(d.checkpoint().scheduled.is_empty());
+    // The next caller's event comes to the caller, not to a stale stop.
+    d.schedule(5.0, 11).unwrap();
+    assert_eq!(
+        delivered(&mut d, 1),
+        [(5.0, 11, d.thermostat_stats().events)]
+    );
+}

@@ -2,7 +2,8 @@
 //!
 //! Two kinds of entry share one heap ordered by (time, sequence number): the
 //! caller's scheduled events, whose tags are the caller's alone (any u64), and the
-//! engine's own, the thermostat's next event (physics.md §16). Both take their
+//! engine's own: the thermostat's next event (physics.md §16) and the end of a
+//! `run_until`. Both take their
 //! sequence number from one counter, so entries at the same time come out in the
 //! order they were made, whoever made them. The growth's instants (rescales and
 //! end, §17) are on the internal clock and stay in the growth's state; this file
@@ -22,6 +23,9 @@ pub(super) enum Whose {
     Caller(u64),
     /// The thermostat's next event.
     Thermostat,
+    /// The end of [`Engine::run_until`]: reported as a pause, removed when the
+    /// call returns (never in a checkpoint).
+    Stop,
 }
 
 /// The entries: (time as the caller reports it, sequence number, whose). The
@@ -77,9 +81,14 @@ impl Calendar {
         self.heap.pop();
     }
 
-    /// Remove the thermostat's entry, if any.
-    pub(super) fn drop_thermostat(&mut self) {
-        self.heap.retain(|r| r.0 .2 != Whose::Thermostat);
+    /// Remove `whose` entries (the thermostat's, a stop), if any.
+    pub(super) fn drop(&mut self, whose: Whose) {
+        self.heap.retain(|r| r.0 .2 != whose);
+    }
+
+    /// Whether an entry of `whose` is waiting.
+    pub(super) fn holds(&self, whose: Whose) -> bool {
+        self.heap.iter().any(|r| r.0 .2 == whose)
     }
 
     /// The caller's entries as (time, sequence number, tag), in the order they come.
@@ -89,7 +98,7 @@ impl Calendar {
             .iter()
             .filter_map(|r| match r.0 .2 {
                 Whose::Caller(tag) => Some((r.0 .0.into_inner(), r.0 .1, tag)),
-                Whose::Thermostat => None,
+                Whose::Thermostat | Whose::Stop => None,
             })
             .collect();
         v.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));

@@ -309,22 +309,26 @@ impl Engine {
         t_end: f64,
         observe: &mut dyn FnMut(&Engine) -> ControlFlow<()>,
     ) -> Result<ControlFlow<()>, EngineError> {
-        const STOP_TAG: u64 = u64::MAX;
         debug_assert!(self.params.growth.rate != 0.0);
-        self.schedule(t_end, STOP_TAG)?;
+        self.push_calendar(t_end, super::calendar::Whose::Stop)?;
         let mut events: u32 = 0;
-        while let Some(ev) = self.next_event_growing()? {
-            let paused = match ev {
-                Event::Scheduled { tag: STOP_TAG, .. } => break,
-                Event::Pause { .. } => true,
-                _ => false,
+        let ended = loop {
+            let ev = match self.next_event_growing() {
+                Ok(Some(ev)) => ev,
+                Ok(None) => break Ok(ControlFlow::Continue(())),
+                Err(e) => break Err(e),
             };
+            let paused = matches!(ev, Event::Pause { .. });
+            if paused && !self.stop_pending() {
+                break Ok(ControlFlow::Continue(()));
+            }
             events = events.wrapping_add(1);
             if (events.is_multiple_of(4096) || paused) && observe(self).is_break() {
-                return Ok(ControlFlow::Break(()));
+                break Ok(ControlFlow::Break(()));
             }
-        }
-        Ok(ControlFlow::Continue(()))
+        };
+        self.drop_stop();
+        ended
     }
 
     /// Stop growing now, keeping the size (and say why).

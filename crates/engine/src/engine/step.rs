@@ -33,14 +33,30 @@ impl Engine {
     /// at that time. Every tag is the caller's: the engine's own instants are
     /// not tagged (engine::calendar).
     pub fn schedule(&mut self, time: f64, tag: u64) -> Result<(), EngineError> {
+        self.push_calendar(time, Whose::Caller(tag))
+    }
+
+    /// An entry of the calendar at `time`, which must be finite and not past.
+    pub(super) fn push_calendar(&mut self, time: f64, whose: Whose) -> Result<(), EngineError> {
         if time.is_nan() || time < self.reported || time.is_infinite() {
             return Err(EngineError::ScheduleInPast {
                 time,
                 now: self.reported,
             });
         }
-        self.calendar.push(time, Whose::Caller(tag));
+        self.calendar.push(time, whose);
         Ok(())
+    }
+
+    /// Whether the stop of a `run_until` is still to come (after a pause: a
+    /// pause without it is the stop itself).
+    pub(super) fn stop_pending(&self) -> bool {
+        self.calendar.holds(Whose::Stop)
+    }
+
+    /// Forget a `run_until`'s stop (the call ends, early on an error).
+    pub(super) fn drop_stop(&mut self) {
+        self.calendar.drop(Whose::Stop);
     }
 
     /// Process events until the next observable one and return it; `None` when
@@ -169,6 +185,9 @@ impl Engine {
                 time: self.reported,
                 tag,
             }))),
+            Whose::Stop => Ok(Step::Report(Some(Event::Pause {
+                time: self.reported,
+            }))),
         }
     }
 
@@ -220,17 +239,19 @@ impl Engine {
     /// Run until time `t_end` (≥ now): the engine stops with every disc's state known
     /// at exactly `t_end`. Returns the number of collisions (pair + wall) processed.
     pub fn run_until(&mut self, t_end: f64) -> Result<u64, EngineError> {
-        const STOP_TAG: u64 = u64::MAX;
-        self.schedule(t_end, STOP_TAG)?;
+        self.push_calendar(t_end, Whose::Stop)?;
         let mut collisions = 0;
-        while let Some(ev) = self.next_event()? {
-            match ev {
-                Event::Scheduled { tag: STOP_TAG, .. } => break,
-                Event::Scheduled { .. } | Event::Pause { .. } => {}
-                _ => collisions += 1,
+        let ended = loop {
+            match self.next_event() {
+                Ok(Some(Event::Pause { .. })) if !self.stop_pending() => break Ok(collisions),
+                Ok(Some(Event::Scheduled { .. } | Event::Pause { .. })) => {}
+                Ok(Some(_)) => collisions += 1,
+                Ok(None) => break Ok(collisions),
+                Err(e) => break Err(e),
             }
-        }
-        Ok(collisions)
+        };
+        self.drop_stop();
+        ended
     }
 
     /// Run `n` collisions (pair + wall), skipping scheduled events. Stops early if

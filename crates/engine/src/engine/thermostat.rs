@@ -98,7 +98,7 @@ impl Engine {
                 ));
             }
         }
-        self.calendar.drop_thermostat();
+        self.calendar.drop(Whose::Thermostat);
         self.thermostat = thermostat.map(|thermostat| {
             Box::new(Running {
                 thermostat,
