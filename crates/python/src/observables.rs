@@ -77,7 +77,12 @@ fn stack(
 ) -> PyResult<Vec<Frame>> {
     let (x, y) = (x.as_array(), y.as_array());
     let v = v.map(|(vx, vy)| (vx.as_array(), vy.as_array()));
-    let rows = [Some(x.nrows()), Some(y.nrows()), v.map(|v| v.0.nrows()), v.map(|v| v.1.nrows())];
+    let rows = [
+        Some(x.nrows()),
+        Some(y.nrows()),
+        v.map(|v| v.0.nrows()),
+        v.map(|v| v.1.nrows()),
+    ];
     if rows.iter().flatten().any(|&r| r != times.len()) {
         return Err(PyValueError::new_err(format!(
             "times: {} frames, but the arrays have {rows:?} rows",
