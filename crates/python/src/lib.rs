@@ -15,12 +15,14 @@ mod arrays;
 mod errors;
 mod log;
 mod logged;
+mod observables;
 mod simulation;
 
 use pyo3::prelude::*;
 
 pub use analyze::analyze_json;
 pub use log::Log;
+pub use observables::{dynamics_json, local_psi6_pairs, structure_json};
 pub use simulation::Simulation;
 
 /// The module `carom._carom`.
@@ -29,6 +31,10 @@ fn _carom(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<Simulation>()?;
     m.add_class::<Log>()?;
     m.add_function(wrap_pyfunction!(analyze_json, m)?)?;
+    // The observables of plain arrays (observables.rs).
+    m.add_function(wrap_pyfunction!(structure_json, m)?)?;
+    m.add_function(wrap_pyfunction!(dynamics_json, m)?)?;
+    m.add_function(wrap_pyfunction!(local_psi6_pairs, m)?)?;
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
     Ok(())
 }

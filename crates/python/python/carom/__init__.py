@@ -27,6 +27,13 @@ from . import _carom
 from ._carom import Simulation
 
 __all__ = ["Simulation", "Log", "open_log", "analyze", "COLLISION_DTYPE"]
+
+# The observables of plain arrays (observables.py, docs/python.md).
+from .observables import (bond_order, msd, pair_correlation, psi6, structure,
+                          structure_factor)
+
+__all__ += ["structure", "pair_correlation", "bond_order", "structure_factor", "psi6",
+            "msd"]
 __version__ = _carom.__version__
 
 #: The fields of ``Log.collisions()``: one record per collision, in the names of

@@ -32,3 +32,11 @@ def analyze(
     bins: int = 40,
     structure: bool = True,
 ) -> dict[str, Any]: ...
+
+# The observables of plain arrays (observables.py).
+from .observables import bond_order as bond_order
+from .observables import msd as msd
+from .observables import pair_correlation as pair_correlation
+from .observables import psi6 as psi6
+from .observables import structure as structure
+from .observables import structure_factor as structure_factor

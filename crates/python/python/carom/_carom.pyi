@@ -60,3 +60,39 @@ def analyze_json(
     bins: int = 40,
     structure: bool = True,
 ) -> tuple[str, list[str]]: ...
+
+# The observables of plain arrays (observables.rs).
+def structure_json(
+    box_size: tuple[float, float],
+    periodic: tuple[bool, bool],
+    radius: list[float],
+    mass: list[float],
+    species: list[int],
+    times: list[float],
+    x: np.ndarray,
+    y: np.ndarray,
+    window: tuple[float, float],
+) -> str: ...
+def dynamics_json(
+    box_size: tuple[float, float],
+    periodic: tuple[bool, bool],
+    radius: list[float],
+    mass: list[float],
+    species: list[int],
+    times: list[float],
+    x: np.ndarray,
+    y: np.ndarray,
+    vx: np.ndarray,
+    vy: np.ndarray,
+    window: tuple[float, float],
+    snapshot_interval: float | None,
+    collision_rate: float | None,
+) -> str | None: ...
+def local_psi6_pairs(
+    box_size: tuple[float, float],
+    periodic: tuple[bool, bool],
+    x: np.ndarray,
+    y: np.ndarray,
+    estimator: str,
+    k: int,
+) -> np.ndarray: ...
