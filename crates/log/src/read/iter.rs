@@ -88,18 +88,53 @@ impl<R: Read + Seek> LogReader<R> {
         }
     }
 
+    /// The next `/collisions` batch, decoded into `out` (replayed if compact),
+    /// reusing its allocations: `Ok(false)` at the end, `out` then empty. The
+    /// fast way to read every collision: other messages are skipped undecoded,
+    /// except the snapshots and checkpoints a compact replay needs. A log without
+    /// a `/collisions` channel simply ends.
+    pub fn next_batch_into(&mut self, out: &mut CollisionBatch) -> Result<bool, ReadError> {
+        loop {
+            let Found::Message {
+                channel,
+                sequence,
+                log_time,
+                ..
+            } = self.advance()?
+            else {
+                out.clear();
+                return Ok(false);
+            };
+            if channel == CH_COLLISIONS {
+                return self.decode_batch(sequence, log_time, out).map(|()| true);
+            }
+            self.sync_replay(channel, sequence, log_time)?;
+        }
+    }
+
+    /// Decode the current record as a collision batch into `out` (replaying it
+    /// if compact).
+    fn decode_batch(
+        &mut self,
+        sequence: u32,
+        log_time: u64,
+        out: &mut CollisionBatch,
+    ) -> Result<(), ReadError> {
+        let data = &self.record[MESSAGE_HEADER_LEN.min(self.record.len())..];
+        let r = match &mut self.replay {
+            Some(replay) => replay.expand(data, out),
+            None => out.decode_into(data),
+        };
+        r.map_err(|e| self.decode_error(CH_COLLISIONS, sequence, log_time, e))
+    }
+
     /// Decode the current record as a collision batch into the reader's own batch
     /// (replaying it if compact).
     fn decode_batch_in_place(&mut self, sequence: u32, log_time: u64) -> Result<(), ReadError> {
-        let data = &self.record[MESSAGE_HEADER_LEN.min(self.record.len())..];
-        let r = match &mut self.replay {
-            Some(replay) => replay.expand(data, &mut self.batch),
-            None => self.batch.decode_into(data),
-        };
-        if let Err(e) = r {
-            return Err(self.decode_error(CH_COLLISIONS, sequence, log_time, e));
-        }
-        Ok(())
+        let mut batch = std::mem::take(&mut self.batch);
+        let r = self.decode_batch(sequence, log_time, &mut batch);
+        self.batch = batch;
+        r
     }
 
     /// Give the replay of compact records the velocities of the current record, a

@@ -67,6 +67,15 @@ pub struct RawMessage<'a> {
     pub data: &'a [u8],
 }
 
+impl RawMessage<'_> {
+    /// The simulated times (time) of the message's first and last record, read
+    /// from the message itself (a snapshot's or checkpoint's time twice; the
+    /// MCAP log time, whole nanoseconds, only for a message that cannot be read).
+    pub fn simulated_times(&self) -> (f64, f64) {
+        scan::simulated_times(self)
+    }
+}
+
 /// What [`LogReader::advance`] found.
 enum Found {
     Message {

@@ -25,27 +25,29 @@ import numpy as np
 
 from . import _carom
 from ._carom import Simulation
-
-__all__ = ["Simulation", "Log", "open_log", "analyze", "COLLISION_DTYPE"]
-
+from .ecosystem import to_freud, to_gsd_frame
 # The observables of plain arrays (observables.py, docs/python.md).
 from .observables import (bond_order, msd, pair_correlation, psi6, structure,
                           structure_factor)
 
-__all__ += ["structure", "pair_correlation", "bond_order", "structure_factor", "psi6",
-            "msd"]
+__all__ = ["Simulation", "Log", "open_log", "analyze", "COLLISION_DTYPE",
+           "to_gsd_frame", "to_freud", "structure", "pair_correlation", "bond_order",
+           "structure_factor", "psi6", "msd"]
 __version__ = _carom.__version__
 
 #: The fields of ``Log.collisions()``: one record per collision, in the names of
 #: docs/log-format.md (``/collisions``). ``kind`` is 0 for a pair, 1 for a wall
-#: (then ``j`` is 2**32 - 1 and the second disc's velocities are 0).
+#: (then ``j`` is 2**32 - 1 and the second disc's velocities are 0). Aligned
+#: (144 bytes a record): the Rust reader writes the records in this layout and
+#: numpy views them without a copy.
 COLLISION_DTYPE = np.dtype(
     [("ordinal", np.uint64), ("kind", np.uint8), ("time", np.float64),
      ("i", np.uint32), ("j", np.uint32), ("nx", np.float64), ("ny", np.float64)]
     + [(f"v{d}{a}_{w}", np.float64)
        for w in ("before", "after") for d in "ij" for a in "xy"]
     + [("energy_lost", np.float64), ("virial", np.float64),
-       ("impulse_x", np.float64), ("impulse_y", np.float64)]
+       ("impulse_x", np.float64), ("impulse_y", np.float64)],
+    align=True,
 )
 
 
@@ -96,11 +98,44 @@ class Log:
         ``mass`` with ``time`` and ``box`` (as ``Simulation.state``)."""
         return iter(self._log.snapshots(t0, t1))
 
-    def thermo(self) -> dict[str, np.ndarray]:
+    def snapshot_stack(self, t0: float = -math.inf, t1: float = math.inf, *,
+                       max_bytes: int | None = None) -> dict[str, np.ndarray]:
+        """The snapshots with t0 <= time <= t1 stacked: ``x``, ``y``, ``vx``,
+        ``vy``, ``radius`` (float64, frames x N), ``image`` (int32, frames x N x
+        2), ``time`` (frames), ``box`` (frames x 2), and ``species`` (int32) and
+        ``mass`` (float64), which do not change, of length N.
+
+        Before allocating, the frames are counted (a first pass over the log that
+        decodes nothing) and the stack's size, 48 bytes per disc and frame, is
+        checked against ``max_bytes`` -- by default half the memory available to
+        the process (carom-run's rule: MemAvailable, a cgroup or ``ulimit -v``
+        limit; skipped with ``CAROM_IGNORE_MEMORY_CHECK=1``). Too large raises
+        ``MemoryError`` with the size, the frames and N, and how many frames fit:
+        narrow t0 and t1, or iterate ``snapshots(t0, t1)``."""
+        return self._log.snapshot_stack(t0, t1, max_bytes)
+
+    def thermo(self, frame: bool = False) -> Any:
         """The ``/thermo`` records as a dict of numpy arrays, one per field
         (docs/log-format.md); counts are int64, the rest float64 (NaN where a
         record lacks the field, e.g. ``pressure`` before time has passed).
-        Text fields (``growth_event``) are object arrays."""
+        Text fields (``growth_event``) are object arrays.
+
+        ``frame=True`` gives a pandas DataFrame of the same columns instead (one
+        row per record); it needs pandas, and says so with ``ImportError`` when
+        pandas is not installed. The default, a dict, never needs pandas."""
+        arrays = self._thermo_arrays()
+        if not frame:
+            return arrays
+        try:
+            import pandas
+        except ImportError as e:
+            raise ImportError(
+                "Log.thermo(frame=True) needs pandas (pip install pandas); "
+                "Log.thermo() gives the same columns as a dict of numpy arrays") from e
+        return pandas.DataFrame(arrays)
+
+    def _thermo_arrays(self) -> dict[str, np.ndarray]:
+        """The ``/thermo`` records as a dict of numpy arrays (see ``thermo``)."""
         records = [json.loads(r) for r in self._log.thermo_json()]
         keys: list[str] = []
         for r in records:
@@ -120,12 +155,10 @@ class Log:
     def collisions(self, t0: float = -math.inf, t1: float = math.inf) -> np.ndarray:
         """The collisions with t0 <= time <= t1 as a numpy structured array of
         ``COLLISION_DTYPE``; the velocities of a compact log are replayed exactly
-        (the same numbers as a full log of the same run)."""
-        cols = self._log.collision_columns(t0, t1)
-        out = np.empty(len(cols["time"]), dtype=COLLISION_DTYPE)
-        for name in COLLISION_DTYPE.names:
-            out[name] = cols[name]
-        return out
+        (the same numbers as a full log of the same run). Read in Rust with the
+        GIL released, straight into the records' layout (no column copies)."""
+        words = self._log.collision_records(t0, t1)
+        return words.view(COLLISION_DTYPE)[:, 0]
 
 
 def open_log(path: str | os.PathLike[str]) -> Log:

@@ -1,11 +1,13 @@
 """Type stubs of carom (python/carom/__init__.py)."""
 
 from os import PathLike
-from typing import Any, Iterator
+from typing import Any, Iterator, Literal, overload
 
 import numpy as np
 
 from ._carom import Simulation as Simulation
+from .ecosystem import to_freud as to_freud
+from .ecosystem import to_gsd_frame as to_gsd_frame
 
 __version__: str
 COLLISION_DTYPE: np.dtype
@@ -20,7 +22,13 @@ class Log:
     @property
     def summary(self) -> dict[str, Any] | None: ...
     def snapshots(self, t0: float = ..., t1: float = ...) -> Iterator[dict[str, Any]]: ...
-    def thermo(self) -> dict[str, np.ndarray]: ...
+    def snapshot_stack(
+        self, t0: float = ..., t1: float = ..., *, max_bytes: int | None = None
+    ) -> dict[str, np.ndarray]: ...
+    @overload
+    def thermo(self, frame: Literal[False] = False) -> dict[str, np.ndarray]: ...
+    @overload
+    def thermo(self, frame: Literal[True]) -> Any: ...
     def collisions(self, t0: float = ..., t1: float = ...) -> np.ndarray: ...
 
 def open_log(path: str | PathLike[str]) -> Log: ...

@@ -1,18 +1,25 @@
 //! `carom.open_log(path)`: a carom log (MCAP) read with carom-log's reader into
 //! numpy arrays. Its run metadata as a dict of JSON texts (the run facts among
 //! them), its snapshots one at a time (the arrays of `arrays.rs`), its `/thermo`
-//! records as JSON, and its collisions as columns, with the velocities of compact
-//! records replayed exactly from the snapshots and checkpoints before them (the
-//! reader's replay; docs/log-format.md, compact collisions).
+//! records as JSON, its collisions as records of `carom.COLLISION_DTYPE`
+//! (`collisions.rs`), with the velocities of compact records replayed exactly from
+//! the snapshots and checkpoints before them (the reader's replay;
+//! docs/log-format.md, compact collisions), and its snapshots stacked into 2-D
+//! arrays after a memory check (`stack.rs`).
 
 use std::fs::File;
 use std::io::BufReader;
 use std::path::PathBuf;
 
-use carom_log::{scan, scan_indexed, CollisionBatch, LogMessage, LogReader, Snapshot};
-use numpy::IntoPyArray;
+use carom_log::{scan, scan_indexed, LogMessage, LogReader, Snapshot};
+use numpy::ndarray::Array2;
+use numpy::{IntoPyArray, PyArray2, PyArrayMethods};
+use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
+
+mod collisions;
+mod stack;
 
 use crate::arrays::Arrays;
 use crate::errors;
@@ -74,80 +81,19 @@ impl Snapshots {
     }
 }
 
-/// The float64 columns of a collision batch, in the order of [`F64_NAMES`]
-/// (the impulse apart: a full record does not store a pair's).
-fn f64_columns(b: &CollisionBatch) -> [&[f64]; 15] {
-    [
-        &b.time,
-        &b.nx,
-        &b.ny,
-        &b.vix_before,
-        &b.viy_before,
-        &b.vjx_before,
-        &b.vjy_before,
-        &b.vix_after,
-        &b.viy_after,
-        &b.vjx_after,
-        &b.vjy_after,
-        &b.energy_lost,
-        &b.virial,
-        &b.impulse_x,
-        &b.impulse_y,
-    ]
-}
-
-/// The index of `impulse_x` in [`f64_columns`].
-const IMPULSE: usize = 13;
-
-/// The names of [`f64_columns`] in the dict (those of `CollisionBatch`).
-const F64_NAMES: [&str; 15] = [
-    "time",
-    "nx",
-    "ny",
-    "vix_before",
-    "viy_before",
-    "vjx_before",
-    "vjy_before",
-    "vix_after",
-    "viy_after",
-    "vjx_after",
-    "vjy_after",
-    "energy_lost",
-    "virial",
-    "impulse_x",
-    "impulse_y",
-];
-
-/// The collisions with t0 ≤ time ≤ t1, as columns.
-#[derive(Default)]
-struct Columns {
-    ordinal: Vec<u64>,
-    kind: Vec<u8>,
-    i: Vec<u32>,
-    j: Vec<u32>,
-    f64s: [Vec<f64>; 15],
-}
-
-impl Columns {
-    /// Append the records of `b` with t0 ≤ time ≤ t1 (a run of the batch, whose
-    /// times are in order), column by column.
-    fn take(&mut self, b: &CollisionBatch, t0: f64, t1: f64) {
-        let lo = b.time.partition_point(|&t| t < t0);
-        let hi = b.time.partition_point(|&t| t <= t1).max(lo);
-        let ordinal = |k: usize| b.first_ordinal.wrapping_add(k as u64 * b.stride);
-        self.ordinal.extend((lo..hi).map(ordinal));
-        self.kind.extend_from_slice(&b.kind[lo..hi]);
-        self.i.extend_from_slice(&b.i[lo..hi]);
-        self.j.extend_from_slice(&b.j[lo..hi]);
-        let stored = b.impulse_x.len() == b.len();
-        for (k, (out, col)) in self.f64s.iter_mut().zip(f64_columns(b)).enumerate() {
-            if k < IMPULSE || stored {
-                out.extend_from_slice(&col[lo..hi]);
-            } else {
-                // Not stored: carom-log's rule for a full record's impulse.
-                out.extend((lo..hi).map(|r| b.get(r).impulse[k - IMPULSE]));
-            }
+impl Log {
+    /// The number of collisions the log's index says it holds, when t0 and t1
+    /// take them all (t0 ≤ 0, t1 = ∞) and the log is complete; else `None`.
+    fn whole_log_collisions(&self, py: Python<'_>, t0: f64, t1: f64) -> PyResult<Option<usize>> {
+        if t0 > 0.0 || t1 < f64::INFINITY {
+            return Ok(None);
         }
+        let info = py
+            .detach(|| scan_indexed(&self.path))
+            .map_err(errors::read)?;
+        Ok(info
+            .and_then(|i| i.summary)
+            .and_then(|s| usize::try_from(s.logged_collisions).ok()))
     }
 }
 
@@ -205,42 +151,53 @@ impl Log {
         .map_err(errors::read)
     }
 
-    /// The collisions with t0 ≤ time ≤ t1 as a dict of numpy columns: `ordinal`,
-    /// `kind` (0 pair, 1 wall), `time`, `i`, `j`, `nx`, `ny`, the velocities
-    /// before and after (`vix_before` … `vjy_after`), `energy_lost`, `virial`,
-    /// `impulse_x`, `impulse_y`.
+    /// The collisions with t0 ≤ time ≤ t1 as a uint64 array of one row per
+    /// record, its words laid out as `carom.COLLISION_DTYPE` (`collisions.rs`),
+    /// for Python to view as that dtype. Read with the GIL released. For the
+    /// whole of a complete log the array is allocated by numpy first (the count
+    /// is the summary's), which backs large arrays with huge pages: a quarter of
+    /// the time went to the kernel mapping 4 KiB pages of a growing `Vec`.
     #[pyo3(signature = (t0=f64::NEG_INFINITY, t1=f64::INFINITY))]
-    fn collision_columns<'py>(
+    fn collision_records<'py>(
         &self,
         py: Python<'py>,
         t0: f64,
         t1: f64,
-    ) -> PyResult<Bound<'py, PyDict>> {
-        let mut reader = open(&self.path)?;
-        let c = py
-            .detach(|| {
-                let mut c = Columns::default();
-                // Whole batches, replayed if compact (snapshots and checkpoints
-                // read on the way feed the replay).
-                while let Some(m) = reader.next_message().map_err(|e| e.to_string())? {
-                    if let LogMessage::Collisions(b) = m {
-                        if b.time.first().is_some_and(|&t| t > t1) {
-                            break;
-                        }
-                        c.take(&b, t0, t1);
-                    }
-                }
-                Ok::<_, String>(c)
-            })
-            .map_err(errors::read)?;
-        let d = PyDict::new(py);
-        d.set_item("ordinal", c.ordinal.into_pyarray(py))?;
-        d.set_item("kind", c.kind.into_pyarray(py))?;
-        d.set_item("i", c.i.into_pyarray(py))?;
-        d.set_item("j", c.j.into_pyarray(py))?;
-        for (name, v) in F64_NAMES.into_iter().zip(c.f64s) {
-            d.set_item(name, v.into_pyarray(py))?;
+    ) -> PyResult<Bound<'py, PyArray2<u64>>> {
+        if let Some(n) = self.whole_log_collisions(py, t0, t1)? {
+            let records = PyArray2::<u64>::zeros(py, [n, collisions::WORDS], false);
+            let mut rw = records.readwrite();
+            let out = rw.as_slice_mut()?;
+            let mut reader = open(&self.path)?;
+            let filled = py
+                .detach(|| collisions::fill_collision_words(&mut reader, t0, t1, out))
+                .map_err(errors::read)?;
+            if filled {
+                drop(rw);
+                return Ok(records);
+            }
         }
-        Ok(d)
+        let mut reader = open(&self.path)?;
+        let words = py
+            .detach(|| collisions::collision_words(&mut reader, t0, t1))
+            .map_err(errors::read)?;
+        let rows = words.len() / collisions::WORDS;
+        let records = Array2::from_shape_vec((rows, collisions::WORDS), words)
+            .map_err(|e| PyValueError::new_err(e.to_string()))?;
+        Ok(records.into_pyarray(py))
+    }
+
+    /// The snapshots with t0 ≤ time ≤ t1 stacked (frames × N), after the memory
+    /// check of `stack.rs` against `max_bytes` (default: half the memory
+    /// available).
+    #[pyo3(signature = (t0=f64::NEG_INFINITY, t1=f64::INFINITY, max_bytes=None))]
+    fn snapshot_stack<'py>(
+        &self,
+        py: Python<'py>,
+        t0: f64,
+        t1: f64,
+        max_bytes: Option<u64>,
+    ) -> PyResult<Bound<'py, PyDict>> {
+        stack::snapshot_stack(py, &self.path, t0, t1, max_bytes)
     }
 }
