@@ -27,7 +27,7 @@ mod state;
 mod thermostat;
 
 pub use checkpoint::Checkpoint;
-pub use engine::{Engine, EngineParams, Growth, GrowthEnd, GrowthState, Stats};
+pub use engine::{DiscNow, Engine, EngineParams, Growth, GrowthEnd, GrowthState, Stats};
 pub use error::{EngineError, InitError};
 pub use event::{Event, PairCollision, WallCollision};
 pub use init::{

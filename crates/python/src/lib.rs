@@ -13,6 +13,7 @@
 mod analyze;
 mod arrays;
 mod errors;
+mod from_arrays;
 mod log;
 mod logged;
 mod observables;

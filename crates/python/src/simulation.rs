@@ -11,15 +11,16 @@
 //! at exact times: a callback at t sees the state at t, not at the next collision.
 
 use carom_config::{Config, ConfigError};
-use carom_engine::{Engine, Event};
+use carom_engine::{Engine, Event, InitError, State};
 use carom_log::{RunSpec, Stop};
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyString};
 use std::path::PathBuf;
 
-use crate::arrays::Arrays;
+use crate::arrays::Columns;
 use crate::errors;
+use crate::from_arrays;
 use crate::logged;
 
 /// Events (collisions, scheduled and internal pauses) between two looks at the
@@ -45,6 +46,10 @@ pub struct Simulation {
     /// below carom-run's observation tags (from 2⁵⁶), which an engine restored
     /// from a log's checkpoint still holds and `run` passes over.
     next_tag: u64,
+    /// The user's index of each engine disc, when they differ: discs given by
+    /// `from_arrays` with unsorted species are grouped by species in the engine
+    /// (and in a log), as `placement.explicit` orders them.
+    user_of: Option<Vec<u32>>,
 }
 
 /// How a slice of the run ended.
@@ -85,7 +90,51 @@ fn slice(engine: &mut Engine, tags: Tags, left: &mut u64) -> Result<Slice, Strin
     Ok(Slice::More)
 }
 
+/// A configuration's text made into the command's run and its initial state
+/// (resolved, memory checked, discs placed), or the command's error; `init`
+/// names a builder's error in the caller's terms.
+fn prepare(
+    text: &str,
+    init: impl FnOnce(InitError, &str) -> ConfigError,
+) -> Result<(RunSpec, State), ConfigError> {
+    let spec = Config::from_json_with_sets(text, "configuration", &[])?.to_run_spec()?;
+    carom_run::check_memory(&spec)?;
+    let state = spec
+        .system
+        .build()
+        .map_err(|e| init(e, &spec.config_json))?;
+    Ok((spec, state))
+}
+
+/// A Python value (a dict, list, number or text) as JSON, through `json.dumps`.
+fn to_json(name: &str, v: &Bound<'_, PyAny>) -> PyResult<serde_json::Value> {
+    let text: String = v
+        .py()
+        .import("json")?
+        .call_method1("dumps", (v,))?
+        .extract()?;
+    serde_json::from_str(&text).map_err(|e| PyValueError::new_err(format!("{name}: {e}")))
+}
+
 impl Simulation {
+    /// A simulation of `spec` from its initial `state`; `user_of` as the field.
+    fn start(spec: RunSpec, state: State, user_of: Option<Vec<u32>>) -> PyResult<Self> {
+        let mut engine = Engine::new(state, spec.params).map_err(errors::config)?;
+        engine
+            .set_thermostat(spec.thermostat, spec.system.seed)
+            .map_err(errors::config)?;
+        Ok(Simulation {
+            engine,
+            stop: spec.stop,
+            config_json: spec.config_json.clone(),
+            spec,
+            log: None,
+            ran: false,
+            next_tag: 1,
+            user_of,
+        })
+    }
+
     /// The configuration as JSON text: a `str` as it is, anything else through
     /// `json.dumps`.
     fn config_text(config: Option<&Bound<'_, PyAny>>) -> PyResult<String> {
@@ -155,27 +204,105 @@ impl Simulation {
     #[pyo3(signature = (config=None))]
     fn new(config: Option<&Bound<'_, PyAny>>) -> PyResult<Self> {
         let text = Self::config_text(config)?;
-        let spec = Config::from_json_with_sets(&text, "configuration", &[])
-            .and_then(|c| c.to_run_spec())
-            .map_err(errors::config)?;
-        carom_run::check_memory(&spec).map_err(errors::config)?;
-        let state = spec
-            .system
-            .build()
-            .map_err(|e| errors::config(ConfigError::from_init_in(e, &spec.config_json)))?;
-        let mut engine = Engine::new(state, spec.params).map_err(errors::config)?;
-        engine
-            .set_thermostat(spec.thermostat, spec.system.seed)
-            .map_err(errors::config)?;
-        Ok(Simulation {
-            engine,
-            stop: spec.stop,
-            config_json: spec.config_json.clone(),
-            spec,
-            log: None,
-            ran: false,
-            next_tag: 1,
-        })
+        let (spec, state) = prepare(&text, ConfigError::from_init_in).map_err(errors::config)?;
+        Self::start(spec, state, None)
+    }
+
+    /// Build the system of arrays: disc i at (`x[i]`, `y[i]`) moving at
+    /// (`vx[i]`, `vy[i]`), in a box of size `box` = (L_x, L_y) with `boundaries`
+    /// (`"periodic"`, `"walls"`, or per axis `{"x": ..., "y": ...}`). Radii and
+    /// masses: `radius` and `mass` (a number for all discs or one per disc;
+    /// default 0.5 and 1), or `species` (an integer per disc) indexing
+    /// `species_radius` and `species_mass` (default 1). `collision` is the
+    /// configuration's `collision` dict, `wall_restitution` its
+    /// `box.wall_restitution`; any other field of the configuration (`seed`,
+    /// `stop`, `log`, `gravity`, `thermostat`, ...) is a keyword argument.
+    ///
+    /// The system is the one `carom run` builds from the configuration with
+    /// `placement.explicit` and `velocities.explicit` (`config_json` shows it),
+    /// with its checks; errors raise `ValueError` naming the argument and the
+    /// disc (`x[3]: value 11 lies outside the box ...`). Disc i of `state` is
+    /// disc i of the arrays; a log lists the discs species by species.
+    #[staticmethod]
+    #[pyo3(signature = (x, y, vx, vy, *, r#box, radius=None, mass=None, species=None,
+                        species_radius=None, species_mass=None, boundaries=None,
+                        wall_restitution=None, collision=None, **config))]
+    #[allow(clippy::too_many_arguments)]
+    fn from_arrays(
+        x: &Bound<'_, PyAny>,
+        y: &Bound<'_, PyAny>,
+        vx: &Bound<'_, PyAny>,
+        vy: &Bound<'_, PyAny>,
+        r#box: (f64, f64),
+        radius: Option<&Bound<'_, PyAny>>,
+        mass: Option<&Bound<'_, PyAny>>,
+        species: Option<&Bound<'_, PyAny>>,
+        species_radius: Option<&Bound<'_, PyAny>>,
+        species_mass: Option<&Bound<'_, PyAny>>,
+        boundaries: Option<&Bound<'_, PyAny>>,
+        wall_restitution: Option<f64>,
+        collision: Option<&Bound<'_, PyAny>>,
+        config: Option<&Bound<'_, PyDict>>,
+    ) -> PyResult<Self> {
+        use from_arrays::{floats, per_disc, Kinds};
+        let columns = [
+            floats("x", x)?,
+            floats("y", y)?,
+            floats("vx", vx)?,
+            floats("vy", vy)?,
+        ];
+        let kinds = match (species, species_radius) {
+            (Some(s), Some(r)) => {
+                if radius.is_some() || mass.is_some() {
+                    return Err(PyValueError::new_err(
+                        "radius, mass: give them per disc, or species with species_radius \
+                         (and species_mass), not both",
+                    ));
+                }
+                let radius = floats("species_radius", r)?;
+                let mass = match species_mass {
+                    Some(m) => floats("species_mass", m)?,
+                    None => vec![1.0; radius.len()],
+                };
+                let species = floats("species", s)?;
+                Kinds::Species {
+                    species,
+                    radius,
+                    mass,
+                }
+            }
+            (None, None) if species_mass.is_none() => Kinds::Discs {
+                radius: per_disc("radius", radius, 0.5)?,
+                mass: per_disc("mass", mass, 1.0)?,
+            },
+            _ => {
+                return Err(PyValueError::new_err(
+                    "species: species (an index per disc) and species_radius (a radius per \
+                     species) go together, species_mass optional",
+                ))
+            }
+        };
+        let mut sim_box = serde_json::Map::new();
+        sim_box.insert("size".into(), serde_json::json!([r#box.0, r#box.1]));
+        if let Some(b) = boundaries {
+            sim_box.insert("boundary".into(), to_json("boundaries", b)?);
+        }
+        if let Some(e) = wall_restitution {
+            sim_box.insert("wall_restitution".into(), e.into());
+        }
+        let mut rest = serde_json::Map::new();
+        if let Some(c) = collision {
+            rest.insert("collision".into(), to_json("collision", c)?);
+        }
+        for (k, v) in config.into_iter().flat_map(|c| c.iter()) {
+            let k: String = k.extract()?;
+            let v = to_json(&k, &v)?;
+            rest.insert(k, v);
+        }
+        let p = from_arrays::prepare(columns, kinds, sim_box, rest)?;
+        let (spec, state) = prepare(&p.text, |e, json| p.init_error(e, json))
+            .map_err(|e| errors::config(p.config_error(e)))?;
+        Self::start(spec, state, p.user_of)
     }
 
     /// Run until time `until`, or for `collisions` more collisions (pair +
@@ -277,20 +404,22 @@ impl Simulation {
     /// with `time` and `box`; disc i is the configuration's disc i.
     #[getter]
     fn state<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
-        let s = self.engine.state();
-        let radius: Vec<f64> = s.species.iter().map(|sp| sp.radius).collect();
-        let mass: Vec<f64> = s.species.iter().map(|sp| sp.mass).collect();
-        Arrays {
-            time: s.time,
-            box_size: s.sim_box.size,
-            species_radius: &radius,
-            species_mass: &mass,
-            species: &s.species_of,
-            positions: &s.positions,
-            velocities: &s.velocities,
-            images: &s.images,
-        }
-        .to_dict(py)
+        let e = &self.engine;
+        // The user's index of the engine's disc k.
+        let user = |k: usize| self.user_of.as_ref().map_or(k, |u| u[k] as usize);
+        let columns = Columns::zeros(py, e.len());
+        columns.write(|w| {
+            for d in e.discs_now() {
+                w.disc(user(d.index), d.position, d.velocity, d.image);
+            }
+            for (k, &s) in e.species_of().iter().enumerate() {
+                w.species[user(k)] = i32::from(s);
+            }
+        })?;
+        let species = e.species_now();
+        let radius: Vec<f64> = species.iter().map(|sp| sp.radius).collect();
+        let mass: Vec<f64> = species.iter().map(|sp| sp.mass).collect();
+        columns.into_dict(py, e.now(), e.sim_box().size, &radius, &mass)
     }
 
     /// Simulated time now.

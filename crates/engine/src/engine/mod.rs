@@ -103,6 +103,19 @@ pub struct Stats {
     pub floor_work: f64,
 }
 
+/// One disc now, as [`Engine::discs_now`] gives it.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct DiscNow {
+    /// The disc's index (its place in the configuration's order).
+    pub index: usize,
+    /// Centre position, wrapped into the box (length).
+    pub position: DVec2,
+    /// Velocity (length/time).
+    pub velocity: DVec2,
+    /// Periodic image: the unwrapped position is `position + image · box size`.
+    pub image: [i32; 2],
+}
+
 /// The exact event-driven engine for hard discs.
 ///
 /// ```
@@ -402,32 +415,54 @@ impl Engine {
     }
 
     /// [`Engine::state`] written into `out`, reusing its allocations (for callers
-    /// that take many snapshots). The records are read once each, in storage order,
-    /// and the positions and velocities written at the discs' own indices: at
-    /// large N, reading the records by disc index instead (two random reads per
-    /// disc) took most of a snapshot's time.
+    /// that take many snapshots).
     pub fn state_into(&self, out: &mut State) {
         let n = self.len();
         out.sim_box = self.sim_box;
-        out.species.clone_from(&self.species);
-        if self.params.growth.rate != 0.0 {
-            // The radii now (engine::growth).
-            let s = self.radius_scale();
-            for sp in &mut out.species {
-                sp.radius *= s;
-            }
-        }
+        out.species = self.species_now();
         out.species_of.clone_from(&self.species_of);
         out.positions.resize(n, DVec2::ZERO);
         out.velocities.resize(n, DVec2::ZERO);
         out.images.resize(n, [0; 2]);
         out.time = self.reported;
-        for (b, &i) in self.bodies.iter().zip(&self.label) {
-            let (p, i) = (self.true_position(b), i as usize);
-            out.positions[i] = self.sim_box.wrap(p);
-            out.velocities[i] = self.true_velocity(b);
-            out.images[i] = image_shift(&self.sim_box, p, out.positions[i], self.images[i]);
+        for d in self.discs_now() {
+            out.positions[d.index] = d.position;
+            out.velocities[d.index] = d.velocity;
+            out.images[d.index] = d.image;
         }
+    }
+
+    /// The species as they are now: their radii grown by the compression's scale
+    /// (engine::growth), otherwise as built.
+    pub fn species_now(&self) -> Vec<Species> {
+        let mut species = self.species.clone();
+        if self.params.growth.rate != 0.0 {
+            let s = self.radius_scale();
+            for sp in &mut species {
+                sp.radius *= s;
+            }
+        }
+        species
+    }
+
+    /// Every disc now, as [`Engine::state`] reports it (the rule is defined here
+    /// once): its position wrapped into the box, its velocity and its periodic
+    /// image. The discs come in storage order, not by index, each with its
+    /// index: a caller writes them into its own columns at `index`. Reading the
+    /// records once each in storage order and writing at the discs' indices is
+    /// the fast way at large N; reading the records by disc index instead (two
+    /// random reads per disc) took most of a snapshot's time.
+    pub fn discs_now(&self) -> impl Iterator<Item = DiscNow> + '_ {
+        self.bodies.iter().zip(&self.label).map(|(b, &i)| {
+            let (p, index) = (self.true_position(b), i as usize);
+            let position = self.sim_box.wrap(p);
+            DiscNow {
+                index,
+                position,
+                velocity: self.true_velocity(b),
+                image: image_shift(&self.sim_box, p, position, self.images[index]),
+            }
+        })
     }
 
     /// Heap bytes held by the engine (for the memory report).

@@ -13,6 +13,24 @@ class Simulation:
     """A hard-disc system in memory, built from the JSON configuration's fields."""
 
     def __init__(self, config: dict[str, Any] | str | None = None) -> None: ...
+    @staticmethod
+    def from_arrays(
+        x: Any,
+        y: Any,
+        vx: Any,
+        vy: Any,
+        *,
+        box: tuple[float, float],
+        radius: float | Any | None = None,
+        mass: float | Any | None = None,
+        species: Any | None = None,
+        species_radius: Any | None = None,
+        species_mass: Any | None = None,
+        boundaries: str | dict[str, str] | None = None,
+        wall_restitution: float | None = None,
+        collision: dict[str, Any] | None = None,
+        **config: Any,
+    ) -> Simulation: ...
     def run(
         self,
         until: float | None = None,
