@@ -119,6 +119,8 @@ impl ServerListener for Subscribed {
 
 /// A live server of a run: hand it to the run as its `Control::observer`.
 pub struct Live {
+    /// The channels' and the server's context (they hold it weakly).
+    _context: Arc<Context>,
     server: Option<WebSocketServerHandle>,
     channels: Arc<Channels>,
     handoff: Handoff,
@@ -159,6 +161,7 @@ impl Live {
             }
         });
         Ok(Live {
+            _context: ctx,
             server: Some(server),
             channels,
             handoff,
