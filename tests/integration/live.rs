@@ -10,7 +10,7 @@
 //! `CI` is set. (The collision rates with and without `--live` are measured
 //! outside the tests: docs/performance.md.)
 
-use std::io::{BufRead, BufReader};
+use std::io::{BufRead, BufReader, Read};
 use std::path::Path;
 use std::process::{Child, Command, ExitStatus, Stdio};
 use std::thread::JoinHandle;
@@ -131,25 +131,40 @@ fn a_client_sees_the_runs_exact_states_and_records_and_can_come_back() {
     let dir = scratch("watch");
     let text = config(400, 6_000.0, 100.0, 600.0);
     let run = LiveRun::start(&dir, &text, &["--live-rate", "40"]);
-    let client = Command::new("node")
+    let mut client = Command::new("node")
         .arg(node.join("live.mjs"))
         .args([&run.url, "watch", "25"])
         .stdout(Stdio::piped())
         .stderr(Stdio::piped())
         .spawn()
         .unwrap();
+    let read = |pipe: Option<Box<dyn Read + Send>>| {
+        std::thread::spawn(move || {
+            let mut s = String::new();
+            pipe.unwrap().read_to_string(&mut s).unwrap();
+            s
+        })
+    };
+    let stdout = read(client.stdout.take().map(|p| Box::new(p) as _));
+    let stderr = read(client.stderr.take().map(|p| Box::new(p) as _));
     let (status, said) = run.wait(Duration::from_secs(300));
     assert!(status.success(), "carom run --live: {status}\n{said}");
-    let mut client = client;
     // The server closes the connection at the end: the client ends by itself.
     let cs = wait_for(&mut client, Duration::from_secs(30), "the node client");
-    let out = client.wait_with_output().unwrap();
-    assert!(
-        cs.success(),
-        "live.mjs: {cs}\n{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    let got: Value = serde_json::from_slice(&out.stdout).expect("live.mjs prints JSON");
+    let (stdout, stderr) = (stdout.join().unwrap(), stderr.join().unwrap());
+    assert!(cs.success(), "live.mjs: {cs}\n{stderr}");
+    let got: Value = serde_json::from_str(&stdout).expect("live.mjs prints JSON");
+
+    // The channels, in Foxglove's schemas.
+    let channels = &got["channels"];
+    for (topic, encoding, schema) in [
+        ("/scene", "protobuf", "foxglove.SceneUpdate"),
+        ("/thermo", "json", "carom.Thermo"),
+        ("/progress", "json", "carom.Progress"),
+    ] {
+        assert_eq!(channels[topic]["encoding"], encoding, "{topic}");
+        assert_eq!(channels[topic]["schemaName"], schema, "{topic}");
+    }
 
     // A complete log.
     let log = dir.join("run.mcap");
@@ -211,12 +226,29 @@ fn a_client_sees_the_runs_exact_states_and_records_and_can_come_back() {
     assert!(!live.is_empty(), "no /thermo record came");
     for v in live {
         let th: Thermo = serde_json::from_value(v.clone()).unwrap();
-        assert!(logged.contains(&th), "a live /thermo record the log lacks: {v}");
+        assert!(
+            logged.contains(&th),
+            "a live /thermo record the log lacks: {v}"
+        );
+    }
+    // The layout in data/ plots fields of /thermo that the live records carry.
+    let layout = Path::new(env!("CARGO_MANIFEST_DIR")).join("data/foxglove/layout.json");
+    let layout = std::fs::read_to_string(layout).unwrap();
+    let running = live.last().unwrap();
+    for field in ["temperature", "pressure", "z", "collision_rate"] {
+        assert!(layout.contains(&format!("/thermo.{field}")), "{field}");
+        assert!(
+            running[field].is_number(),
+            "a live /thermo record lacks {field}"
+        );
     }
     // /progress: collisions never go back, the fraction stays in [0, 1].
     let progress = got["progress"].as_array().unwrap();
     assert!(!progress.is_empty());
-    let counts: Vec<u64> = progress.iter().map(|p| p["collisions"].as_u64().unwrap()).collect();
+    let counts: Vec<u64> = progress
+        .iter()
+        .map(|p| p["collisions"].as_u64().unwrap())
+        .collect();
     assert!(counts.windows(2).all(|w| w[0] <= w[1]), "{counts:?}");
     assert!(progress
         .iter()
@@ -251,7 +283,11 @@ fn a_client_that_never_reads_neither_holds_up_the_run_nor_fills_memory() {
         .current_dir(&plain)
         .output()
         .unwrap();
-    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
 
     let dir = scratch("stall");
     let mut run = LiveRun::start(&dir, &text, &["--live-rate", "50"]);
@@ -263,7 +299,9 @@ fn a_client_that_never_reads_neither_holds_up_the_run_nor_fills_memory() {
         .spawn()
         .unwrap();
     let mut subscribed = BufReader::new(client.stderr.take().unwrap()).lines();
-    assert!(subscribed.next().is_some_and(|l| l.unwrap().contains("not reading")));
+    assert!(subscribed
+        .next()
+        .is_some_and(|l| l.unwrap().contains("not reading")));
     let pid = run.child.id();
     let (first, mut peak) = (rss(pid).unwrap(), 0);
     while run.child.try_wait().unwrap().is_none() {
@@ -274,12 +312,21 @@ fn a_client_that_never_reads_neither_holds_up_the_run_nor_fills_memory() {
     let _ = client.kill();
     let _ = client.wait();
     assert!(status.success(), "{status}\n{said}");
-    assert!(matches!(scan(dir.join("run.mcap")).unwrap().end, LogEnd::Complete));
+    assert!(matches!(
+        scan(&dir.join("run.mcap")).unwrap().end,
+        LogEnd::Complete
+    ));
     let grown = peak.saturating_sub(first);
-    assert!(grown < 64 << 20, "RSS grew by {grown} bytes with a client that never reads");
+    assert!(
+        grown < 64 << 20,
+        "RSS grew by {grown} bytes with a client that never reads"
+    );
     // A guard against a run that waits for its client, not a measurement (that
     // is in docs/performance.md): the two runs take turns on a shared machine.
-    let (with, without) = (rate_of(&dir.join("run.mcap")), rate_of(&plain.join("run.mcap")));
+    let (with, without) = (
+        rate_of(&dir.join("run.mcap")),
+        rate_of(&plain.join("run.mcap")),
+    );
     assert!(
         with > 0.5 * without,
         "{with:.3e} collisions/s with a client that never reads, {without:.3e} without --live"

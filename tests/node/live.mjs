@@ -85,6 +85,9 @@ function frameOf(update) {
   };
 }
 
+// What the server advertised: topic → encoding and schema name.
+const advertised = {};
+
 // Connect, subscribe to every channel; `onMessage(topic, value)` for each message.
 function connect(onMessage, onClose) {
   // Foxglove's SDK (0.30) serves the protocol of this client under its new name
@@ -95,6 +98,7 @@ function connect(onMessage, onClose) {
   client.on("error", (e) => fail(`client error: ${e}`));
   client.on("advertise", (channels) => {
     for (const ch of channels) {
+      advertised[ch.topic] = { encoding: ch.encoding, schemaName: ch.schemaName };
       const id = client.subscribe(ch.id);
       subs.set(id, { topic: ch.topic, decode: mode === "stall" ? null : decoderOf(ch) });
     }
@@ -145,8 +149,8 @@ if (mode === "stall") {
       },
       () => {
         out.stamps_ok = stampsOk;
-        process.stdout.write(JSON.stringify(out));
-        process.exit(0);
+        out.channels = advertised;
+        process.stdout.write(JSON.stringify(out), () => process.exit(0));
       },
     );
   }

@@ -72,7 +72,8 @@ mod tests {
             stop: Stop::Time(14.0),
             log_bytes: 0,
         };
-        let r: serde_json::Value = serde_json::from_slice(&ProgressRecord::of(&p).to_json()).unwrap();
+        let r: serde_json::Value =
+            serde_json::from_slice(&ProgressRecord::of(&p).to_json()).unwrap();
         assert_eq!(r["eta_seconds"], 12.0);
         assert_eq!(r["collisions"], 1000);
         let start = ProgressRecord::of(&Progress { fraction: 0.0, ..p });
