@@ -9,6 +9,7 @@ mod analyze;
 mod collect;
 mod export;
 mod info;
+mod live;
 mod output;
 mod plot;
 mod reading;
@@ -103,6 +104,8 @@ pub struct RunArgs {
     /// with a finished log); it still stops when the disk is nearly full.
     #[arg(long)]
     pub ignore_disk_estimate: bool,
+    #[command(flatten)]
+    pub live: live::LiveArgs,
 }
 
 /// Arguments of `carom resume`.
@@ -136,6 +139,8 @@ pub struct ResumeArgs {
     /// room on its disk.
     #[arg(long)]
     pub ignore_disk_estimate: bool,
+    #[command(flatten)]
+    pub live: live::LiveArgs,
 }
 
 /// Arguments of `carom analyze`.

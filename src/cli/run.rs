@@ -13,7 +13,7 @@ use std::time::{Duration, Instant};
 use carom_config::{load_config, ConfigError};
 use carom_engine::{Placement, PlacementProgress};
 use carom_log::{ReadProgress, Stop, StopReason};
-use carom_run::{Control, Progress, ResumeOptions, ResumePass, RunError, RunSummary};
+use carom_run::{Control, Observer, Progress, ResumeOptions, ResumePass, RunError, RunSummary};
 
 use super::output::say;
 use super::reading::ReadDisplay;
@@ -182,6 +182,7 @@ pub fn run(args: RunArgs) -> Result<ExitCode, CliError> {
             force: args.force,
             quiet: args.quiet,
             ignore_disk_estimate: args.ignore_disk_estimate,
+            live: args.live,
         });
     }
     let spec = load_config(args.config.as_deref(), &args.set)?;
@@ -200,6 +201,7 @@ pub fn run(args: RunArgs) -> Result<ExitCode, CliError> {
             out.display()
         )));
     }
+    let mut live = args.live.start()?;
     install_ctrlc();
     let display = RefCell::new(Display::new(args.quiet, &out));
     let n: usize = spec.system.species.iter().map(|s| s.count).sum();
@@ -218,10 +220,12 @@ pub fn run(args: RunArgs) -> Result<ExitCode, CliError> {
     let control = Control {
         placing: Some(&mut placing),
         ignore_disk_estimate: args.ignore_disk_estimate,
+        observer: live.as_mut().map(|l| l as &mut dyn Observer),
         ..Control::new(&STOP, &mut progress)
     };
     let summary = carom_run::run(&spec, &out, control);
     display.borrow().finish();
+    drop(live);
     if summary.is_err() {
         // A run that failed before its log held a byte leaves no empty file behind
         // to block the next attempt (which would need --force).
@@ -255,6 +259,7 @@ pub fn resume(args: ResumeArgs) -> Result<ExitCode, CliError> {
             args.file.display()
         )));
     }
+    let mut live = args.live.start()?;
     install_ctrlc();
     let mut display = Display::new(args.quiet, &out);
     // Reading the input (the whole log, then most of it again to copy it) comes
@@ -289,9 +294,11 @@ pub fn resume(args: ResumeArgs) -> Result<ExitCode, CliError> {
         Control {
             reading: Some(&mut reading),
             ignore_disk_estimate: args.ignore_disk_estimate,
+            observer: live.as_mut().map(|l| l as &mut dyn Observer),
             ..Control::new(&STOP, &mut progress)
         },
     );
+    drop(live);
     end_reads();
     display.finish();
     // A resume builds no initial state, from no configuration.

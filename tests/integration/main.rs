@@ -51,6 +51,7 @@ mod hardening_procs;
 mod hardening_resting;
 mod hardening_stops;
 mod hardening_sweep;
+mod live;
 mod mcap_corruption;
 mod mcap_crash;
 mod mcap_python;

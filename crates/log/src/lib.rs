@@ -30,7 +30,10 @@ pub use schedule::{SchedulePoints, SnapshotSchedule, MAX_SCHEDULE_POINTS, MIN_FI
 /// The engine's parameter types the run facts hold ([`RunFacts`]), so that a
 /// reader of logs needs no dependency on the engine.
 pub use carom_engine::{Growth, Thermostat};
-pub use format::{encode_scene, CH_SCENE, N_CHANNELS, SCENE_UPDATE_MSG, SPECIES_COLORS};
+pub use format::{
+    box_outline, disc_size, encode_scene, scene_stamp, species_color, BOX_COLOR, BOX_LINE_PIXELS,
+    CH_SCENE, N_CHANNELS, SCENE_ENTITY, SCENE_FRAME, SCENE_UPDATE_MSG, SPECIES_COLORS,
+};
 pub use format::{
     log_time_ns, now_rfc3339, CdrError, Channel, CollisionBatch, CollisionRecord, DriverState,
     GrowthEvent, GrowthPhase, LogCheckpoint, MetadataError, RunFacts, RunMetadata, Snapshot,

@@ -3,14 +3,15 @@
 //! answer to "how much room is left on the log's disk", and how often to ask.
 //!
 //! The driver calls these about every [`Control::progress_interval`] of wall time;
-//! nothing here changes the trajectory.
+//! nothing here changes the trajectory. An [`Observer`] (a live viewer) is asked
+//! between events whether it wants a frame, and gets one at an exact instant.
 
 use std::sync::atomic::AtomicBool;
 use std::time::Duration;
 
-use carom_engine::PlacementProgress;
+use carom_engine::{Engine, PlacementProgress};
 use carom_log::ReadProgress;
-use carom_log::Stop;
+use carom_log::{Stop, Thermo};
 
 use super::disk::FreeSpace;
 #[cfg(doc)]
@@ -51,6 +52,23 @@ impl Progress {
     }
 }
 
+/// Who watches a run while it runs (a live viewer, `carom run --live`): frames of
+/// the exact state at instants it asks for, and every `/thermo` record. Nothing
+/// it does changes the trajectory; it must not block, since the run waits for it.
+pub trait Observer {
+    /// Whether a frame is wanted now. Asked between events, about every 1024
+    /// events (and after each pause), so it must be cheap; it decides the rate.
+    fn frame_due(&mut self) -> bool;
+    /// The frame asked for: the engine at an exact instant (scheduled at the
+    /// first time after the one at which [`Observer::frame_due`] said yes, so
+    /// that a run stopped at `engine.now()` has this very state), and the
+    /// progress then. Also called once at the end of the run, at the final state.
+    fn frame(&mut self, engine: &Engine, progress: &Progress);
+    /// Each `/thermo` record, as the log writes it, right after it is written
+    /// (none when the log has no `/thermo`).
+    fn thermo(&mut self, record: &Thermo);
+}
+
 /// How the caller steers a run: a stop flag (for Ctrl-C) and a progress callback.
 pub struct Control<'a> {
     /// When this becomes `true` the run stops at the next event and finishes its log
@@ -82,6 +100,8 @@ pub struct Control<'a> {
     /// stops with [`StopReason::DiskFull`] and a finished log as soon as the
     /// projection says so (`--ignore-disk-estimate` on the command line).
     pub ignore_disk_estimate: bool,
+    /// Who watches the run while it runs (a live viewer), if anyone.
+    pub observer: Option<&'a mut dyn Observer>,
 }
 
 /// What [`resume`] is doing with its input before the run goes on.
@@ -114,6 +134,7 @@ impl Default for Control<'_> {
             free_space: None,
             progress_interval: Duration::from_millis(200),
             ignore_disk_estimate: false,
+            observer: None,
         }
     }
 }
@@ -129,6 +150,7 @@ impl<'a> Control<'a> {
             free_space: None,
             progress_interval: Duration::from_millis(200),
             ignore_disk_estimate: false,
+            observer: None,
         }
     }
 }
@@ -143,6 +165,7 @@ impl std::fmt::Debug for Control<'_> {
             .field("reading", &self.reading.is_some())
             .field("progress_interval", &self.progress_interval)
             .field("ignore_disk_estimate", &self.ignore_disk_estimate)
+            .field("observer", &self.observer.is_some())
             .finish()
     }
 }

@@ -36,7 +36,7 @@ use carom_log::Stop;
 use carom_log::StopReason;
 
 pub use bytes::Bytes;
-pub use control::{Control, Progress, ResumePass};
+pub use control::{Control, Observer, Progress, ResumePass};
 pub use disk::{disk_low, far_too_small, free_space_for, FreeSpace, FAR_BEYOND_FREE};
 pub use error::RunError;
 pub use lock::{lock_log, LogLock};

@@ -2,8 +2,8 @@
 //! record, checkpoint and scene frame (due at start + k·interval; the k-th
 //! snapshot at carom-log's `SnapshotSchedule::time`, the same without a
 //! `log.snapshot_schedule`), the two phases
-//! of a stop, and the watchdog's check for a run without collisions
-//! (`watchdog.rs`). The engine carries a scheduled observation as an opaque `u64` tag
+//! of a stop, the watchdog's check for a run without collisions
+//! (`watchdog.rs`), and a frame for the caller's [`Observer`](crate::Observer). The engine carries a scheduled observation as an opaque `u64` tag
 //! (`Engine::schedule`), and checkpoints store those tags, so the encoding below
 //! is part of the log format: the kind in the top byte, the index k below. It is
 //! written and read here only.
@@ -17,6 +17,7 @@ const CHECKPOINT: u64 = 3;
 const STOP: u64 = 4;
 const SCENE: u64 = 5;
 const WATCHDOG: u64 = 6;
+const LIVE: u64 = 7;
 /// The index of a stop's second phase.
 const STOP_FINAL: u64 = 1;
 
@@ -38,6 +39,8 @@ pub(super) enum Observation {
     FinalStop,
     /// Check that a collision happened within the bound (`watchdog.rs`).
     Watchdog,
+    /// A frame for the caller's [`Observer`](crate::Observer) (a live viewer).
+    Live,
 }
 
 impl Observation {
@@ -51,6 +54,7 @@ impl Observation {
             Observation::Stop => (STOP, 0),
             Observation::FinalStop => (STOP, STOP_FINAL),
             Observation::Watchdog => (WATCHDOG, 0),
+            Observation::Live => (LIVE, 0),
         };
         kind << SHIFT | (k & INDEX)
     }
@@ -66,6 +70,7 @@ impl Observation {
             STOP if k == STOP_FINAL => Observation::FinalStop,
             STOP => Observation::Stop,
             WATCHDOG => Observation::Watchdog,
+            LIVE => Observation::Live,
             _ => return None,
         })
     }
@@ -90,13 +95,14 @@ mod tests {
             (Stop, 4 << 56),
             (FinalStop, 4 << 56 | 1),
             (Watchdog, 6 << 56),
+            (Live, 7 << 56),
         ];
         for (o, tag) in cases {
             assert_eq!(o.encode(), tag, "{o:?}");
             assert_eq!(Observation::decode(tag), Some(o));
         }
         assert_eq!(Observation::decode(0), None);
-        assert_eq!(Observation::decode(7 << 56), None);
+        assert_eq!(Observation::decode(8 << 56), None);
         // Any other index of a stop is its first phase, as before.
         assert_eq!(Observation::decode(4 << 56 | 9), Some(Stop));
         assert!(Stop.is_stop() && FinalStop.is_stop() && !Thermo(0).is_stop());

@@ -41,7 +41,10 @@ pub use compact::{
 };
 pub use facts::RunFacts;
 pub use metadata::{now_rfc3339, MetadataError, RunMetadata, StopReason, SummaryMetadata};
-pub use scene::{encode_scene, SCENE_UPDATE_MSG, SPECIES_COLORS};
+pub use scene::{
+    box_outline, disc_size, encode_scene, scene_stamp, species_color, BOX_COLOR, BOX_LINE_PIXELS,
+    SCENE_ENTITY, SCENE_FRAME, SCENE_UPDATE_MSG, SPECIES_COLORS,
+};
 pub use snapshot::{Snapshot, SNAPSHOT_MSG};
 pub use thermo::{GrowthEvent, GrowthPhase, Thermo, THERMO_JSON_SCHEMA};
 

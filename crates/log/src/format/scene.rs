@@ -11,6 +11,7 @@
 
 use super::cdr::CdrWriter;
 use super::log_time_ns;
+use carom_core::SimBox;
 use carom_engine::State;
 
 /// `ros2msg` text of the schema `foxglove_msgs/msg/SceneUpdate`: Foxglove's
@@ -176,10 +177,31 @@ const LINE_LOOP: u8 = 1;
 /// Bytes of one cylinder in CDR (16 `float64`, always 8-aligned here).
 pub const CYLINDER_BYTES: usize = 128;
 
+/// The size (x, y, z) of the cylinder of a disc of radius `r`: (d, d, d/10),
+/// d = 2r. The scene's geometry rules ([`disc_size`], [`species_color`],
+/// [`box_outline`], [`scene_stamp`]) are public so that a live viewer's frames
+/// (carom-live) draw exactly what the log's do.
+pub fn disc_size(r: f64) -> [f64; 3] {
+    let d = 2.0 * r;
+    [d, d, d * DISC_HEIGHT_RATIO]
+}
+
+/// The colour (RGB in [0, 1]) of species `s`: [`SPECIES_COLORS`], cycled.
+pub fn species_color(s: u16) -> [f64; 3] {
+    SPECIES_COLORS[s as usize % SPECIES_COLORS.len()]
+}
+
+/// The corners (x, y) of the box outline [0, Lx] × [0, Ly], counter-clockwise
+/// from the origin (a closed loop).
+pub fn box_outline(b: &SimBox) -> [(f64, f64); 4] {
+    let (lx, ly) = (b.size.x, b.size.y);
+    [(0.0, 0.0), (lx, 0.0), (lx, ly), (0.0, ly)]
+}
+
 /// `builtin_interfaces/Time` of simulated time `t`: the log time split into
 /// whole seconds and nanoseconds, saturating at the latest time it holds
 /// (2³¹ − 1 s and 999 999 999 ns, about 68 years of simulated seconds).
-fn stamp(t: f64) -> (i32, u32) {
+pub fn scene_stamp(t: f64) -> (i32, u32) {
     let ns = log_time_ns(t);
     match i32::try_from(ns / 1_000_000_000) {
         Ok(sec) => (sec, (ns % 1_000_000_000) as u32),
@@ -201,7 +223,7 @@ pub fn encode_scene(state: &State, w: &mut CdrWriter) {
     w.reserve(1024 + n * CYLINDER_BYTES);
     w.put(0u32); // deletions
     w.put(1u32); // entities
-    let (sec, nanosec) = stamp(state.time);
+    let (sec, nanosec) = scene_stamp(state.time);
     w.put(sec);
     w.put(nanosec);
     w.string(SCENE_FRAME);
@@ -217,10 +239,10 @@ pub fn encode_scene(state: &State, w: &mut CdrWriter) {
     }
     w.put(u32::try_from(n).expect("at most 2^32 - 1 discs"));
     for (p, &s) in state.positions.iter().zip(&state.species_of) {
-        let d = 2.0 * state.species[s as usize].radius;
-        let [r, g, b] = SPECIES_COLORS[s as usize % SPECIES_COLORS.len()];
+        let [dx, dy, h] = disc_size(state.species[s as usize].radius);
+        let [r, g, b] = species_color(s);
         pose(w, p.x, p.y, 0.0);
-        for v in [d, d, d * DISC_HEIGHT_RATIO, 1.0, 1.0, r, g, b, 1.0] {
+        for v in [dx, dy, h, 1.0, 1.0, r, g, b, 1.0] {
             w.put(v);
         }
     }
@@ -229,9 +251,8 @@ pub fn encode_scene(state: &State, w: &mut CdrWriter) {
     pose(w, 0.0, 0.0, 0.0);
     w.put(BOX_LINE_PIXELS);
     w.put(1u8); // scale_invariant
-    let (lx, ly) = (state.sim_box.size.x, state.sim_box.size.y);
     w.put(4u32);
-    for (x, y) in [(0.0, 0.0), (lx, 0.0), (lx, ly), (0.0, ly)] {
+    for (x, y) in box_outline(&state.sim_box) {
         for v in [x, y, 0.0] {
             w.put(v);
         }
@@ -408,10 +429,10 @@ mod tests {
 
     #[test]
     fn stamps_split_the_log_time_and_saturate() {
-        assert_eq!(stamp(0.0), (0, 0));
-        assert_eq!(stamp(1.5), (1, 500_000_000));
-        assert_eq!(stamp(1e12), (i32::MAX, 999_999_999));
-        assert_eq!(stamp(2147483647.0), (i32::MAX, 0));
+        assert_eq!(scene_stamp(0.0), (0, 0));
+        assert_eq!(scene_stamp(1.5), (1, 500_000_000));
+        assert_eq!(scene_stamp(1e12), (i32::MAX, 999_999_999));
+        assert_eq!(scene_stamp(2147483647.0), (i32::MAX, 0));
     }
 
     #[test]

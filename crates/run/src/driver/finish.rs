@@ -1,6 +1,7 @@
 //! The end of a run, whatever stopped it: a last `/thermo` record and
 //! `/checkpoint` at the final state (unless one was just written, or the engine
-//! failed), the `carom.summary` metadata, and the [`RunSummary`] the caller gets.
+//! failed), the final frame for the caller's observer, the `carom.summary`
+//! metadata, and the [`RunSummary`] the caller gets.
 
 use std::path::Path;
 
@@ -31,6 +32,9 @@ impl Driver<'_> {
             }
         }
         self.progress();
+        if failure.is_none() {
+            self.live_frame();
+        }
         let wall = self.started.elapsed().as_secs_f64();
         let s = *self.engine.stats();
         let this = self.collisions - self.start_collisions;

@@ -2,6 +2,8 @@
 //! collisions to the log writer, answers the observations it scheduled
 //! ([`Observation`], `observe`), looks at progress, the disk and the watchdog
 //! between events (`watch`), and ends the log cleanly whatever stops it (`finish`).
+//! A caller's [`Observer`](crate::Observer) gets frames at exact instants it asks
+//! for (`watch`) and every `/thermo` record (`observe`); it never changes the log.
 //!
 //! What a run writes, in order: the `carom.run` metadata; at the start time a
 //! `/snapshot`, a `/thermo` record, a `/checkpoint` and a `/scene` frame (each when
@@ -59,6 +61,8 @@ pub(crate) struct Driver<'a> {
     /// last seen, to tell when a rescale or the end of growth has passed (`None`
     /// otherwise).
     growth_seen: Option<(i64, GrowthEnd)>,
+    /// Whether a frame for the caller's observer is scheduled and not yet taken.
+    live_pending: bool,
     /// The rename of the new log over an older one, done after the first
     /// checkpoint (`replace.rs`), and the log's path, which it changes.
     pub(crate) replace_at_start: Option<Replace>,
@@ -97,6 +101,7 @@ impl<'a> Driver<'a> {
             last_collision: engine_now,
             quiet_detail: None,
             growth_seen: None,
+            live_pending: false,
             replace_at_start: None,
             path,
         }
@@ -213,6 +218,7 @@ impl<'a> Driver<'a> {
                     Some(Observation::Watchdog) if self.quiet_too_long(time)? => {
                         reason = Some(StopReason::NoCollision);
                     }
+                    Some(Observation::Live) => self.live_frame(),
                     _ => {}
                 },
             }
@@ -238,6 +244,9 @@ impl<'a> Driver<'a> {
                 }
                 if reason.is_none() && self.disk_low(timed) {
                     reason = Some(StopReason::DiskFull);
+                }
+                if reason.is_none() {
+                    self.ask_for_frame(stop_time)?;
                 }
             }
         }

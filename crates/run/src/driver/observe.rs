@@ -124,6 +124,7 @@ impl Driver<'_> {
         let th = thermo(&self.engine, self.run_start_time);
         self.writer.write_thermo(&th)?;
         self.last_thermo_at = Some((self.engine.now(), self.collisions));
+        self.thermo_observed(&th);
         Ok(())
     }
 
@@ -142,7 +143,15 @@ impl Driver<'_> {
             _ => GrowthEvent::End,
         });
         self.writer.write_thermo(&th)?;
+        self.thermo_observed(&th);
         Ok(())
+    }
+
+    /// Hand a `/thermo` record just written to the caller's observer.
+    fn thermo_observed(&mut self, th: &carom_log::Thermo) {
+        if let Some(o) = self.control.observer.as_mut() {
+            o.thermo(th);
+        }
     }
 
     pub(super) fn write_checkpoint(&mut self) -> Result<(), RunError> {

@@ -1,7 +1,11 @@
 //! What the run looks at between events: its progress (reported through
 //! [`Control`](crate::Control)), the room on the log's disk (stop in time to
 //! finish the log, or at once when the log would far outgrow the disk) and the
-//! watchdog (stop when no collision has happened within its bound, `watchdog.rs`).
+//! watchdog (stop when no collision has happened within its bound, `watchdog.rs`);
+//! and the caller's [`Observer`](crate::Observer): when it wants a frame, one is
+//! scheduled at the first time after now (`f64::next_up`), so that the frame is
+//! the exact state at that instant, the state a run stopped there has, and not a
+//! state just after a collision; the instant never passes the stop.
 
 use std::time::Instant;
 
@@ -35,7 +39,18 @@ impl Driver<'_> {
         Ok(false)
     }
 
+    /// The progress now, reported to the caller's progress callback.
     pub(super) fn progress(&mut self) -> Progress {
+        let p = self.progress_now();
+        if let Some(cb) = self.control.progress.as_mut() {
+            cb(&p);
+        }
+        self.last_progress = Instant::now();
+        p
+    }
+
+    /// The progress now.
+    fn progress_now(&self) -> Progress {
         let wall = self.started.elapsed().as_secs_f64();
         let done = self.collisions - self.start_collisions;
         let fraction = match self.stop {
@@ -55,7 +70,7 @@ impl Driver<'_> {
                 }
             }
         };
-        let p = Progress {
+        Progress {
             sim_time: self.engine.now(),
             collisions: self.collisions,
             collisions_per_second: if wall > 0.0 { done as f64 / wall } else { 0.0 },
@@ -63,12 +78,35 @@ impl Driver<'_> {
             fraction,
             stop: self.stop,
             log_bytes: self.log_bytes(),
-        };
-        if let Some(cb) = self.control.progress.as_mut() {
-            cb(&p);
         }
-        self.last_progress = Instant::now();
-        p
+    }
+
+    /// If the caller's observer wants a frame and none is pending, schedule one
+    /// at the first time after now, unless that is past `stop_time`.
+    pub(super) fn ask_for_frame(&mut self, stop_time: f64) -> Result<(), RunError> {
+        if self.live_pending {
+            return Ok(());
+        }
+        let Some(o) = self.control.observer.as_mut() else {
+            return Ok(());
+        };
+        let t = self.engine.now().next_up();
+        if t > stop_time || !o.frame_due() {
+            return Ok(());
+        }
+        self.schedule(t, Observation::Live)?;
+        self.live_pending = true;
+        Ok(())
+    }
+
+    /// Hand the state now to the caller's observer (the frame it asked for, or
+    /// the final state).
+    pub(super) fn live_frame(&mut self) {
+        self.live_pending = false;
+        let p = self.progress_now();
+        if let Some(o) = self.control.observer.as_mut() {
+            o.frame(&self.engine, &p);
+        }
     }
 
     /// Whether the log, projected to the stop from its growth so far, needs far
