@@ -108,6 +108,9 @@ fn engine_of(config: &str) -> Engine {
 }
 
 /// The positions of `s` as two arrays of bits.
+/// The bits of every x and of every y of a frame, compared exactly.
+type Positions = (Vec<u64>, Vec<u64>);
+
 fn bits(x: impl Iterator<Item = f64>) -> Vec<u64> {
     x.map(f64::to_bits).collect()
 }
@@ -180,7 +183,7 @@ fn a_client_sees_the_runs_exact_states_and_records_and_can_come_back() {
     assert_eq!(frames.len(), 25);
     assert!(!again.is_empty(), "the reconnected client got no frame");
     assert_eq!(got["stamps_ok"], true, "a frame's log time is not its time");
-    let mut exact: Vec<(f64, (Vec<u64>, Vec<u64>), &str)> = Vec::new();
+    let mut exact: Vec<(f64, Positions, &str)> = Vec::new();
     let mut last = -1.0;
     for f in frames.iter().chain(again) {
         let t = f["time"].as_f64().unwrap();
