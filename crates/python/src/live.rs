@@ -125,6 +125,11 @@ impl Serving {
         same_addr && options.frame_rate == self.options.frame_rate
     }
 
+    /// The most frames per wall second.
+    pub fn frame_rate(&self) -> f64 {
+        self.options.frame_rate
+    }
+
     /// `ws://HOST:PORT`.
     pub fn url(&self) -> String {
         self.live.url()
@@ -259,8 +264,8 @@ impl<'a> Watch<'a> {
         self.failed = true;
     }
 
-    /// The end of the run: a last `/thermo` record and frame at the final state
-    /// (none after a failure of the engine).
+    /// The end of the run: a last `/thermo` record and, if one is due, a frame
+    /// at the final state (neither after a failure of the engine).
     pub fn finish(&mut self, engine: &Engine) {
         if self.failed {
             return;
@@ -268,7 +273,11 @@ impl<'a> Watch<'a> {
         if self.serving.thermo_interval.is_some() {
             self.thermo(engine);
         }
-        self.frame(engine);
+        // The last frame too keeps to the rate: a loop of short runs would
+        // otherwise send one per run.
+        if self.serving.live.frame_due() {
+            self.frame(engine);
+        }
     }
 
     /// Send the frame of the state now.

@@ -337,9 +337,10 @@ impl Simulation {
             Some(s) if s.serves(&options) => {}
             Some(s) => {
                 return Err(PyValueError::new_err(format!(
-                    "live: this simulation serves {} already (at its own frame rate); \
-                     call stop_live() first to serve elsewhere or at another rate",
-                    s.url()
+                    "live: this simulation serves {} already, at {} frames/s; call \
+                     stop_live() first to serve at another address or rate",
+                    s.url(),
+                    s.frame_rate()
                 )))
             }
             None => self.live = Some(self.start_serving(options)?),
