@@ -58,7 +58,9 @@ pub fn asked(live: Option<&Bound<'_, PyAny>>, rate: Option<f64>) -> PyResult<Ask
     };
     let addr = match live {
         None => None,
-        Some(v) if v.is_instance_of::<PyBool>() => v.extract::<bool>()?.then(|| DEFAULT_ADDR.into()),
+        Some(v) if v.is_instance_of::<PyBool>() => {
+            v.extract::<bool>()?.then(|| DEFAULT_ADDR.into())
+        }
         Some(v) if v.is_instance_of::<PyInt>() => {
             let port: i64 = v.extract()?;
             if !(0..=65535).contains(&port) {

@@ -240,7 +240,9 @@ impl Simulation {
         let stop = self.stop_at(until, collisions)?;
         let start = logged::start(&self.spec, self.log.as_deref(), !self.ran, path)?;
         let before = self.collisions_now();
-        let observer = served.then_some(()).and(self.live.as_mut().map(Serving::observer));
+        let observer = served
+            .then_some(())
+            .and(self.live.as_mut().map(Serving::observer));
         let (engine, signal) = logged::run(py, start, stop, path, &self.config_json, observer)?;
         self.engine = engine;
         if let Some(s) = self.live.as_mut().filter(|_| served) {
@@ -273,7 +275,9 @@ impl Simulation {
         stop: Stop,
     ) -> PyResult<()> {
         let mut watch = match serving {
-            Some(s) => Some(Watch::start(s, &mut self.engine, stop, tags.live).map_err(errors::engine)?),
+            Some(s) => {
+                Some(Watch::start(s, &mut self.engine, stop, tags.live).map_err(errors::engine)?)
+            }
             None => None,
         };
         let ran = self.events(py, tags, left, every, callback, watch.as_mut());
@@ -549,7 +553,15 @@ impl Simulation {
         };
         // The server is the run's while it runs, and the simulation's again after.
         let mut serving = if served { self.live.take() } else { None };
-        let ran = self.watched(py, tags, &mut left, &every, callback, serving.as_mut(), stop);
+        let ran = self.watched(
+            py,
+            tags,
+            &mut left,
+            &every,
+            callback,
+            serving.as_mut(),
+            stop,
+        );
         if serving.is_some() {
             self.live = serving;
         }
