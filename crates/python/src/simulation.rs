@@ -240,9 +240,7 @@ impl Simulation {
         let stop = self.stop_at(until, collisions)?;
         let start = logged::start(&self.spec, self.log.as_deref(), !self.ran, path)?;
         let before = self.collisions_now();
-        let observer = served
-            .then_some(())
-            .and(self.live.as_mut().map(Serving::observer));
+        let observer = self.live.as_mut().filter(|_| served).map(Serving::observer);
         let (engine, signal) = logged::run(py, start, stop, path, &self.config_json, observer)?;
         self.engine = engine;
         if let Some(s) = self.live.as_mut().filter(|_| served) {
