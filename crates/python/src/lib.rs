@@ -14,6 +14,7 @@ mod analyze;
 mod arrays;
 mod errors;
 mod from_arrays;
+mod live;
 mod log;
 mod logged;
 mod observables;

@@ -8,14 +8,18 @@
 //! Ctrl-C: the run's progress callback (every [`LOOK`]) takes the GIL to look at
 //! the signals; a signal raises the run's stop flag, the run finishes its log
 //! (`stop_reason = interrupted`, resumable), and `KeyboardInterrupt` follows.
+//!
+//! Live: the simulation's server is the run's `Control::observer`, as for
+//! `carom run --live`.
 
 use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::Duration;
 
 use carom_engine::Engine;
+use carom_live::Live;
 use carom_log::{last_checkpoint, RunSpec, Stop};
-use carom_run::{Control, Progress, ResumeOptions, RunError};
+use carom_run::{Control, Observer, Progress, ResumeOptions, RunError};
 use pyo3::exceptions::{PyFileExistsError, PyValueError};
 use pyo3::prelude::*;
 
@@ -69,15 +73,16 @@ pub fn start<'a>(
     Ok(Start::Fresh(spec))
 }
 
-/// Run to `stop` writing `path`; returns the engine at the log's final
-/// checkpoint, with the `KeyboardInterrupt` to raise if a signal stopped the run
-/// (the log is finished either way).
+/// Run to `stop` writing `path`, served to `live` if given; returns the engine at
+/// the log's final checkpoint, with the `KeyboardInterrupt` to raise if a signal
+/// stopped the run (the log is finished either way).
 pub fn run(
     py: Python<'_>,
     start: Start<'_>,
     stop: Stop,
     path: &Path,
     config_json: &str,
+    live: Option<&mut Live>,
 ) -> PyResult<(Engine, Option<PyErr>)> {
     let flag = AtomicBool::new(false);
     let mut signal: Option<PyErr> = None;
@@ -93,6 +98,7 @@ pub fn run(
         };
         let control = Control {
             progress_interval: LOOK,
+            observer: live.map(|l| l as &mut dyn Observer),
             ..Control::new(&flag, &mut look)
         };
         match start {

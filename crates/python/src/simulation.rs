@@ -9,23 +9,28 @@
 //! raises `KeyboardInterrupt` between two events (the state is consistent and
 //! the run can go on). Stops and callbacks are scheduled events of the engine,
 //! at exact times: a callback at t sees the state at t, not at the next collision.
+//! With `live`, the run is served to a viewer as `carom run --live` serves it
+//! (`live.rs`); without, the loop does no more than before.
 
 use carom_config::{Config, ConfigError};
 use carom_engine::{Engine, Event, InitError, State};
+use carom_live::LiveOptions;
 use carom_log::{RunSpec, Stop};
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
-use pyo3::types::{PyDict, PyString};
+use pyo3::types::{PyBool, PyDict, PyString};
 use std::path::PathBuf;
 
 use crate::arrays::Columns;
 use crate::errors;
 use crate::from_arrays;
+use crate::live::{self, Asked, Serving, Watch, LOOK_EVERY};
 use crate::logged;
 
 /// Events (collisions, scheduled and internal pauses) between two looks at the
-/// signals: about a millisecond of work at N = 10⁴.
-const SLICE: u32 = 20_000;
+/// signals, in chunks of [`LOOK_EVERY`] (after each, a live run looks whether a
+/// frame is due): about a millisecond of work at N = 10⁴.
+const SLICE: u32 = 20 * LOOK_EVERY;
 
 /// A hard-disc system in memory, built from the JSON configuration's fields.
 #[pyclass(module = "carom._carom")]
@@ -41,7 +46,7 @@ pub struct Simulation {
     log: Option<PathBuf>,
     /// Whether the simulation has run (logged or not) since it was built.
     ran: bool,
-    /// The next unused tag of a scheduled event; each `run` takes two, so that an
+    /// The next unused tag of a scheduled event; each `run` takes four, so that an
     /// interrupted run's stop is never mistaken for a later run's. Counted from 1,
     /// below carom-run's observation tags (from 2⁵⁶), which an engine restored
     /// from a log's checkpoint still holds and `run` passes over.
@@ -50,6 +55,10 @@ pub struct Simulation {
     /// `from_arrays` with unsorted species are grouped by species in the engine
     /// (and in a log), as `placement.explicit` orders them.
     user_of: Option<Vec<u32>>,
+    /// The simulation's start time (t₀ of its `/thermo` series when served live).
+    start_time: f64,
+    /// The live server, while the simulation serves (`live.rs`).
+    live: Option<Serving>,
 }
 
 /// How a slice of the run ended.
@@ -64,27 +73,77 @@ enum Slice {
     Exhausted,
 }
 
-/// The tags of one `run`: its stop and its callbacks.
+/// The tags of one `run`: its stop, its callbacks, and its live frames and
+/// `/thermo` records.
 #[derive(Clone, Copy)]
 struct Tags {
     stop: u64,
     every: u64,
+    live: [u64; 2],
 }
 
+/// The callback times of a run: t0 + k·dt (k = 1, 2, …), with a stop at `until`.
+struct Every {
+    t0: f64,
+    dt: Option<f64>,
+    until: Option<f64>,
+}
+
+impl Every {
+    /// Callback k's time, if the run calls back.
+    fn at(&self, k: u64) -> Option<f64> {
+        self.dt.map(|dt| self.t0 + k as f64 * dt)
+    }
+
+    /// Callback k's time, if it comes before the stop time (one at the stop
+    /// itself is called after the stop's event).
+    fn due(&self, k: u64) -> Option<f64> {
+        self.at(k).filter(|&t| self.until.is_none_or(|u| t < u))
+    }
+}
+
+/// Tags each `run` takes.
+const TAGS_PER_RUN: u64 = 4;
+
 /// Process events until the stop, a callback, the end of the slice or the end of
-/// all events; `left` counts the collisions still wanted.
-fn slice(engine: &mut Engine, tags: Tags, left: &mut u64) -> Result<Slice, String> {
-    for _ in 0..SLICE {
-        if *left == 0 {
-            return Ok(Slice::Done);
+/// all events; `left` counts the collisions still wanted. A live `watch` gets its
+/// scheduled events, and a look after every [`LOOK_EVERY`] events.
+fn slice(
+    engine: &mut Engine,
+    tags: Tags,
+    left: &mut u64,
+    mut watch: Option<&mut Watch<'_>>,
+) -> Result<Slice, String> {
+    for _ in 0..SLICE / LOOK_EVERY {
+        for _ in 0..LOOK_EVERY {
+            if *left == 0 {
+                return Ok(Slice::Done);
+            }
+            let event = engine.next_event().map_err(|e| {
+                if let Some(w) = watch.as_deref_mut() {
+                    w.fail();
+                }
+                e.to_string()
+            })?;
+            match event {
+                None => return Ok(Slice::Exhausted),
+                Some(Event::Pair(_) | Event::Wall(_)) => *left -= 1,
+                Some(Event::Scheduled { tag, .. }) if tag == tags.stop => return Ok(Slice::Done),
+                Some(Event::Scheduled { tag, .. }) if tag == tags.every => {
+                    return Ok(Slice::Callback)
+                }
+                // A live frame or record, or an interrupted run's stop.
+                Some(Event::Scheduled { tag, .. }) => {
+                    if let Some(w) = watch.as_deref_mut() {
+                        w.scheduled(engine, tag).map_err(|e| e.to_string())?;
+                    }
+                }
+                // A pause: long unobservable work.
+                Some(Event::Pause { .. }) => {}
+            }
         }
-        match engine.next_event().map_err(|e| e.to_string())? {
-            None => return Ok(Slice::Exhausted),
-            Some(Event::Pair(_) | Event::Wall(_)) => *left -= 1,
-            Some(Event::Scheduled { tag, .. }) if tag == tags.stop => return Ok(Slice::Done),
-            Some(Event::Scheduled { tag, .. }) if tag == tags.every => return Ok(Slice::Callback),
-            // A pause (long unobservable work), or an interrupted run's stop.
-            Some(Event::Scheduled { .. } | Event::Pause { .. }) => {}
+        if let Some(w) = watch.as_deref_mut() {
+            w.look(engine).map_err(|e| e.to_string())?;
         }
     }
     Ok(Slice::More)
@@ -124,6 +183,8 @@ impl Simulation {
             .set_thermostat(spec.thermostat, spec.system.seed)
             .map_err(errors::config)?;
         Ok(Simulation {
+            start_time: engine.now(),
+            live: None,
             engine,
             stop: spec.stop,
             config_json: spec.config_json.clone(),
@@ -174,12 +235,17 @@ impl Simulation {
         until: Option<f64>,
         collisions: Option<u64>,
         path: &std::path::Path,
+        served: bool,
     ) -> PyResult<u64> {
         let stop = self.stop_at(until, collisions)?;
         let start = logged::start(&self.spec, self.log.as_deref(), !self.ran, path)?;
         let before = self.collisions_now();
-        let (engine, signal) = logged::run(py, start, stop, path, &self.config_json)?;
+        let observer = self.live.as_mut().filter(|_| served).map(Serving::observer);
+        let (engine, signal) = logged::run(py, start, stop, path, &self.config_json, observer)?;
         self.engine = engine;
+        if let Some(s) = self.live.as_mut().filter(|_| served) {
+            s.logged(&self.engine);
+        }
         self.ran = true;
         self.log = Some(path.to_path_buf());
         match signal {
@@ -191,6 +257,102 @@ impl Simulation {
     fn collisions_now(&self) -> u64 {
         let s = self.engine.stats();
         s.pair_collisions + s.wall_collisions
+    }
+
+    /// The events of an unlogged run, watched live if `serving`: its frames,
+    /// records, and a last frame at the end (unless the engine failed).
+    #[allow(clippy::too_many_arguments)]
+    fn watched(
+        &mut self,
+        py: Python<'_>,
+        tags: Tags,
+        left: &mut u64,
+        every: &Every,
+        callback: Option<Py<PyAny>>,
+        serving: Option<&mut Serving>,
+        stop: Stop,
+    ) -> PyResult<()> {
+        let mut watch = match serving {
+            Some(s) => {
+                Some(Watch::start(s, &mut self.engine, stop, tags.live).map_err(errors::engine)?)
+            }
+            None => None,
+        };
+        let ran = self.events(py, tags, left, every, callback, watch.as_mut());
+        if let Some(w) = watch.as_mut() {
+            w.finish(&self.engine);
+        }
+        ran
+    }
+
+    /// Run the events, slice by slice, calling back at the times of `every`.
+    fn events(
+        &mut self,
+        py: Python<'_>,
+        tags: Tags,
+        left: &mut u64,
+        every: &Every,
+        callback: Option<Py<PyAny>>,
+        mut watch: Option<&mut Watch<'_>>,
+    ) -> PyResult<()> {
+        // Callback k is due at t0 + k·every; `k` is the next one's.
+        let mut k = 1;
+        loop {
+            let engine = &mut self.engine;
+            let w = watch.as_deref_mut();
+            let ended = py.detach(|| slice(engine, tags, left, w));
+            match ended.map_err(errors::engine)? {
+                Slice::Done => {
+                    // A callback due at the stop time itself comes last.
+                    if let (Some(cb), Some(t), Some(u)) = (&callback, every.at(k), every.until) {
+                        if t <= u && *left > 0 {
+                            cb.call1(py, (self.state(py)?,))?;
+                        }
+                    }
+                    return Ok(());
+                }
+                Slice::Callback => {
+                    if let Some(cb) = &callback {
+                        cb.call1(py, (self.state(py)?,))?;
+                    }
+                    k += 1;
+                    if let Some(t) = every.due(k) {
+                        self.schedule(t, tags.every)?;
+                    }
+                }
+                Slice::More => {}
+                Slice::Exhausted => return Ok(()),
+            }
+            py.check_signals()?;
+        }
+    }
+
+    /// Serve as `asked` (starting the server, or keeping the one serving);
+    /// whether this run is served.
+    fn serve(&mut self, asked: Asked) -> PyResult<bool> {
+        let options = match asked {
+            Asked::Off => return Ok(false),
+            Asked::AsBefore => return Ok(self.live.is_some()),
+            Asked::At(o) => o,
+        };
+        match &self.live {
+            Some(s) if s.serves(&options) => {}
+            Some(s) => {
+                return Err(PyValueError::new_err(format!(
+                    "live: this simulation serves {} already, at {} frames/s; call \
+                     stop_live() first to serve at another address or rate",
+                    s.url(),
+                    s.frame_rate()
+                )))
+            }
+            None => self.live = Some(self.start_serving(options)?),
+        }
+        Ok(true)
+    }
+
+    /// A live server at `options` for this simulation.
+    fn start_serving(&self, options: LiveOptions) -> PyResult<Serving> {
+        Serving::start(options, self.spec.log.thermo_interval, self.start_time)
     }
 }
 
@@ -313,7 +475,16 @@ impl Simulation {
     ///
     /// With `log`, the run writes the log `carom run` writes (`logged.rs`): from
     /// a simulation at its start, or continuing the log its last run wrote.
-    #[pyo3(signature = (until=None, collisions=None, every=None, callback=None, log=None))]
+    ///
+    /// With `live` (`True`: 127.0.0.1:8765; a port, 0 for any free one; or
+    /// `"HOST:PORT"`), the run is served to Foxglove or Lichtblick as `carom run
+    /// --live` serves it (`/scene`, `/thermo`, `/progress`), at most `live_rate`
+    /// frames a second (default 10). The server stays up for later runs (which
+    /// are served too unless `live=False`) until `stop_live()`; `live_url` says
+    /// where.
+    #[pyo3(signature = (until=None, collisions=None, every=None, callback=None, log=None,
+                        live=None, live_rate=None))]
+    #[allow(clippy::too_many_arguments)]
     fn run(
         &mut self,
         py: Python<'_>,
@@ -322,14 +493,17 @@ impl Simulation {
         every: Option<f64>,
         callback: Option<Py<PyAny>>,
         log: Option<PathBuf>,
+        live: Option<&Bound<'_, PyAny>>,
+        live_rate: Option<f64>,
     ) -> PyResult<u64> {
+        let served = self.serve(live::asked(live, live_rate)?)?;
         if let Some(path) = log {
             if every.is_some() || callback.is_some() {
                 return Err(PyValueError::new_err(
                     "a logged run takes no callback (read its snapshots with open_log)",
                 ));
             }
-            return self.run_logged(py, until, collisions, &path);
+            return self.run_logged(py, until, collisions, &path, served);
         }
         self.ran = true;
         self.log = None;
@@ -350,8 +524,9 @@ impl Simulation {
         let tags = Tags {
             stop: self.next_tag,
             every: self.next_tag + 1,
+            live: [self.next_tag + 2, self.next_tag + 3],
         };
-        self.next_tag += 2;
+        self.next_tag += TAGS_PER_RUN;
         let start = self.collisions_now();
         let t0 = self.engine.now();
         if let Some(t) = until {
@@ -362,40 +537,33 @@ impl Simulation {
             }
             self.schedule(t, tags.stop)?;
         }
-        // Callback k is due at t0 + k·every; `k` is the next one's.
-        let due = |k: u64| every.map(|dt| t0 + k as f64 * dt);
-        let mut k = 1;
-        let in_run = |t: f64| until.is_none_or(|u| t < u);
-        if let Some(t) = due(k).filter(|&t| in_run(t)) {
+        let every = Every {
+            t0,
+            dt: every,
+            until,
+        };
+        if let Some(t) = every.due(1) {
             self.schedule(t, tags.every)?;
         }
-        loop {
-            let engine = &mut self.engine;
-            let ended = py.detach(|| slice(engine, tags, &mut left));
-            match ended.map_err(errors::engine)? {
-                Slice::Done => {
-                    // A callback due at the stop time itself comes last.
-                    if let (Some(cb), Some(t), Some(u)) = (&callback, due(k), until) {
-                        if t <= u && left > 0 {
-                            cb.call1(py, (self.state(py)?,))?;
-                        }
-                    }
-                    break;
-                }
-                Slice::Callback => {
-                    if let Some(cb) = &callback {
-                        cb.call1(py, (self.state(py)?,))?;
-                    }
-                    k += 1;
-                    if let Some(t) = due(k).filter(|&t| in_run(t)) {
-                        self.schedule(t, tags.every)?;
-                    }
-                }
-                Slice::More => {}
-                Slice::Exhausted => break,
-            }
-            py.check_signals()?;
+        let stop = match until {
+            Some(t) => Stop::Time(t),
+            None => Stop::Collisions(start.saturating_add(left)),
+        };
+        // The server is the run's while it runs, and the simulation's again after.
+        let mut serving = if served { self.live.take() } else { None };
+        let ran = self.watched(
+            py,
+            tags,
+            &mut left,
+            &every,
+            callback,
+            serving.as_mut(),
+            stop,
+        );
+        if serving.is_some() {
+            self.live = serving;
         }
+        ran?;
         Ok(self.collisions_now() - start)
     }
 
@@ -462,6 +630,43 @@ impl Simulation {
     #[getter]
     fn energy_lost(&self) -> f64 {
         self.engine.stats().energy_lost
+    }
+
+    /// Serve the simulation live at `live` (as `run`'s `live`: `True` for
+    /// 127.0.0.1:8765, a port, 0 for any free one, or `"HOST:PORT"`), at most
+    /// `rate` frames a second (default 10), from now on: later runs are served
+    /// (unless `live=False`) until `stop_live()`. Returns the URL a viewer opens,
+    /// `ws://HOST:PORT`. A simulation already serving there keeps its server.
+    #[pyo3(signature = (live=None, rate=None))]
+    fn start_live<'py>(
+        &mut self,
+        py: Python<'py>,
+        live: Option<&Bound<'py, PyAny>>,
+        rate: Option<f64>,
+    ) -> PyResult<String> {
+        let default = PyBool::new(py, true).to_owned().into_any();
+        let asked = live::asked(Some(live.unwrap_or(&default)), rate)?;
+        if !matches!(asked, Asked::At(_)) {
+            return Err(PyValueError::new_err(
+                "live: start_live serves somewhere; give True, a port or \"HOST:PORT\"",
+            ));
+        }
+        self.serve(asked)?;
+        Ok(self.live.as_ref().map(Serving::url).unwrap_or_default())
+    }
+
+    /// Stop serving live: connected viewers get the last frame and are
+    /// disconnected. Nothing happens when the simulation does not serve.
+    fn stop_live(&mut self, py: Python<'_>) {
+        if let Some(s) = self.live.take() {
+            py.detach(|| s.finish());
+        }
+    }
+
+    /// Where the simulation serves live, `ws://HOST:PORT` (`None` when it does not).
+    #[getter]
+    fn live_url(&self) -> Option<String> {
+        self.live.as_ref().map(Serving::url)
     }
 
     /// Number of discs N.

@@ -44,6 +44,7 @@ pub use memory::{check_memory, memory_available, memory_needed, IGNORE_MEMORY_CH
 pub use repair::{repair, Repaired};
 pub use resume::{resume, same_file};
 pub use start::run;
+pub use thermo::thermo;
 pub use watchdog::MEAN_FREE_TIMES;
 
 /// What a finished run did.

@@ -18,8 +18,9 @@ use carom_engine::{Engine, GrowthEnd};
 use carom_log::{GrowthPhase, Thermo};
 
 /// The `/thermo` record of `engine` now, with rates and pressures averaged since
-/// `run_start_time` (none at that time, nor without thermal motion).
-pub(super) fn thermo(engine: &Engine, run_start_time: f64) -> Thermo {
+/// `run_start_time` (none at that time, nor without thermal motion): the record a
+/// log writes, and the one a live viewer of a run without a log gets.
+pub fn thermo(engine: &Engine, run_start_time: f64) -> Thermo {
     let n = engine.len();
     let (sim_box, species) = (engine.sim_box(), engine.species());
     let k_energy = engine.kinetic_energy();
