@@ -302,25 +302,13 @@ impl<'a> Watch<'a> {
     /// The run's progress now: the fraction done by its stop, as the command
     /// reports it.
     fn progress(&self, engine: &Engine) -> Progress {
-        let wall = self.started.elapsed().as_secs_f64();
-        let n = collisions(engine);
-        let fraction = match self.stop {
-            Stop::Time(t) if t > self.t0 => ((engine.now() - self.t0) / (t - self.t0)).min(1.0),
-            Stop::Collisions(c) if c > 0 => (n as f64 / c as f64).min(1.0),
-            _ => 1.0,
-        };
-        Progress {
-            sim_time: engine.now(),
-            collisions: n,
-            collisions_per_second: if wall > 0.0 {
-                (n - self.start_collisions) as f64 / wall
-            } else {
-                0.0
-            },
-            wall_seconds: wall,
-            fraction: fraction.max(0.0),
-            stop: self.stop,
-            log_bytes: 0,
-        }
+        Progress::new(
+            self.stop,
+            self.t0,
+            engine.now(),
+            [self.start_collisions, collisions(engine)],
+            self.started.elapsed().as_secs_f64(),
+            0,
+        )
     }
 }

@@ -41,6 +41,41 @@ pub struct Progress {
 }
 
 impl Progress {
+    /// The progress of a run towards `stop` that began at `run_start_time` with
+    /// `start_collisions` collisions behind it (those of a resumed log) and has
+    /// now reached time `now` and `collisions`, after `wall_seconds` of wall time:
+    /// the fraction done by the stop criterion, and this process's rate.
+    pub fn new(
+        stop: Stop,
+        run_start_time: f64,
+        now: f64,
+        [start_collisions, collisions]: [u64; 2],
+        wall_seconds: f64,
+        log_bytes: u64,
+    ) -> Progress {
+        let fraction = match stop {
+            Stop::Time(t) if t - run_start_time > 0.0 => {
+                ((now - run_start_time) / (t - run_start_time)).clamp(0.0, 1.0)
+            }
+            Stop::Collisions(c) if c > 0 => (collisions as f64 / c as f64).min(1.0),
+            _ => 1.0,
+        };
+        let done = collisions - start_collisions;
+        Progress {
+            sim_time: now,
+            collisions,
+            collisions_per_second: if wall_seconds > 0.0 {
+                done as f64 / wall_seconds
+            } else {
+                0.0
+            },
+            wall_seconds,
+            fraction,
+            stop,
+            log_bytes,
+        }
+    }
+
     /// The size (bytes) the log would reach at the stop if it kept growing at the
     /// rate it has so far, once that rate says something: from 1 % of the run, or
     /// from 64 MB written (the first snapshot and checkpoint, written at the start,

@@ -9,8 +9,6 @@
 
 use std::time::Instant;
 
-use carom_log::Stop;
-
 use crate::disk::{far_too_small, finish_reserve, free_bytes};
 use crate::observation::Observation;
 use crate::watchdog;
@@ -51,34 +49,14 @@ impl Driver<'_> {
 
     /// The progress now.
     fn progress_now(&self) -> Progress {
-        let wall = self.started.elapsed().as_secs_f64();
-        let done = self.collisions - self.start_collisions;
-        let fraction = match self.stop {
-            Stop::Time(t) => {
-                let span = t - self.run_start_time;
-                if span > 0.0 {
-                    ((self.engine.now() - self.run_start_time) / span).clamp(0.0, 1.0)
-                } else {
-                    1.0
-                }
-            }
-            Stop::Collisions(c) => {
-                if c > 0 {
-                    (self.collisions as f64 / c as f64).min(1.0)
-                } else {
-                    1.0
-                }
-            }
-        };
-        Progress {
-            sim_time: self.engine.now(),
-            collisions: self.collisions,
-            collisions_per_second: if wall > 0.0 { done as f64 / wall } else { 0.0 },
-            wall_seconds: wall,
-            fraction,
-            stop: self.stop,
-            log_bytes: self.log_bytes(),
-        }
+        Progress::new(
+            self.stop,
+            self.run_start_time,
+            self.engine.now(),
+            [self.start_collisions, self.collisions],
+            self.started.elapsed().as_secs_f64(),
+            self.log_bytes(),
+        )
     }
 
     /// If the caller's observer wants a frame and none is pending, schedule one
