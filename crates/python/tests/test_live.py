@@ -16,7 +16,9 @@ import os
 import shutil
 import socket
 import subprocess
+import threading
 import time
+import _thread
 
 import numpy as np
 import pytest
@@ -181,6 +183,22 @@ def test_the_server_stays_up_across_runs_and_closes_with_the_simulation():
     url = other.start_live(0)
     del other
     gc.collect()
+    assert refused(url)
+
+
+def test_ctrl_c_during_a_served_run_keeps_the_server_and_the_state():
+    sim = carom.Simulation(FLUID)
+    url = sim.start_live(0)
+    threading.Timer(0.5, _thread.interrupt_main).start()
+    with pytest.raises(KeyboardInterrupt):
+        sim.run(until=1e9)
+    t, energy = sim.time, sim.kinetic_energy
+    assert 0 < t < 1e9
+    assert sim.live_url == url and not refused(url)
+    sim.run(until=t + 1.0)
+    assert sim.time == t + 1.0
+    assert sim.kinetic_energy == pytest.approx(energy, rel=1e-12)
+    sim.stop_live()
     assert refused(url)
 
 
