@@ -1,14 +1,19 @@
 """carom: exact event-driven molecular dynamics of hard discs, from Python.
 
-Three entry points, each backed by the same Rust code as the ``carom`` command:
+Backed by the same Rust code as the ``carom`` command:
 
-* ``Simulation(config)`` -- a run in memory, from a dict with the fields of the
-  JSON configuration (docs/configuration.md); ``run(until=...)``,
-  ``run(collisions=...)``, ``state`` as numpy arrays. The same configuration and
-  seed give the command's trajectory bit for bit.
+* ``Simulation(config)`` or ``Simulation.from_arrays(x, y, vx, vy, box=...)`` --
+  a run in memory; ``run(until=...)``, ``run(collisions=...)``, callbacks at
+  exact times, ``log=`` (the command's log), ``live=`` (served to Foxglove);
+  ``state`` as numpy arrays. The same configuration and seed give the command's
+  trajectory bit for bit.
 * ``open_log(path)`` -- a carom log (MCAP) as numpy arrays: run facts,
-  snapshots, ``/thermo`` records and collisions (compact records replayed).
+  snapshots (one at a time or stacked), ``/thermo`` records and collisions
+  (compact records replayed).
 * ``analyze(path, **options)`` -- the report of ``carom analyze --json`` as a dict.
+* ``structure``, ``pair_correlation``, ``bond_order``, ``structure_factor``,
+  ``psi6``, ``msd`` -- the observables on plain arrays, any code's frames.
+* ``to_gsd_frame``, ``to_freud`` -- a state for HOOMD's GSD and for freud.
 
 See docs/python.md.
 """

@@ -8,6 +8,13 @@ import numpy as np
 from ._carom import Simulation as Simulation
 from .ecosystem import to_freud as to_freud
 from .ecosystem import to_gsd_frame as to_gsd_frame
+# The observables of plain arrays (observables.py: typed in the module itself).
+from .observables import bond_order as bond_order
+from .observables import msd as msd
+from .observables import pair_correlation as pair_correlation
+from .observables import psi6 as psi6
+from .observables import structure as structure
+from .observables import structure_factor as structure_factor
 
 __version__: str
 COLLISION_DTYPE: np.dtype
@@ -40,11 +47,3 @@ def analyze(
     bins: int = 40,
     structure: bool = True,
 ) -> dict[str, Any]: ...
-
-# The observables of plain arrays (observables.py).
-from .observables import bond_order as bond_order
-from .observables import msd as msd
-from .observables import pair_correlation as pair_correlation
-from .observables import psi6 as psi6
-from .observables import structure as structure
-from .observables import structure_factor as structure_factor
