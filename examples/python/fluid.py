@@ -1,7 +1,7 @@
 """A hard-disc fluid from Python: run it, check its speeds against Maxwell–Boltzmann
 and its g(r) against freud's.
 
-    python examples/python/fluid.py                 # N = 4000, η = 0.6, about a minute
+    python examples/python/fluid.py                 # N = 4000, η = 0.6, a few seconds
     python examples/python/fluid.py --n 1000 --duration 10 --out /tmp/fluid
 
 It runs a periodic fluid with `carom.Simulation` and logs it (`fluid.mcap`, the
@@ -133,10 +133,11 @@ def pair_correlation(log: carom.Log, report: dict, path: pathlib.Path) -> None:
     ax.set_ylabel(r"$g(r)$")
     ax.set_xlim(0.8 * pair["sigma"], min(r_max, 5 * pair["sigma"]))
     ax.legend(frameon=False)
-    ax.set_title(f"pair correlation, t in [{t_eq:g}, {t_end:g}]", fontsize=10)
+    ax.set_title(f"pair correlation of N = {report['n']} discs at η = "
+                 f"{report['packing_fraction']:.3g}, t in [{t_eq:g}, {t_end:g}]", fontsize=10)
     dx.axhline(0, color="k", lw=0.5)
     dx.plot(r[used], z, "k.", ms=2)
-    dx.set_ylabel(r"$\Delta g / \sigma_g$")
+    dx.set_ylabel(r"$(g_\mathrm{freud} - g)/\sigma_g$")
     dx.set_xlabel(r"$r$ [$\sigma$]")
     fig.savefig(path, dpi=150)
     plt.close(fig)
