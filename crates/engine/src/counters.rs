@@ -37,7 +37,9 @@ pub enum Count {
     FiledCell,
     /// Predictions that filed a wall collision (or nothing).
     FiledOther,
-    /// Event times filed straight into the current bucket's heap.
+    /// Event times filed straight into the current bucket's heap. The three
+    /// filings count refilings too (overflow entries brought into the calendar,
+    /// rebuilds), not only the predictions' new times.
     QueueIntoHeap,
     /// Event times filed into a calendar slot ahead.
     QueueIntoSlot,
@@ -90,4 +92,36 @@ pub fn add(what: Count, n: u64) {
 /// The counts so far on this thread, indexed like [`ALL`].
 pub fn counts() -> [u64; KINDS] {
     TALLY.with(|t| t.each_ref().map(Cell::get))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::{counts, Count};
+    use crate::{Engine, EngineParams, SystemSpec};
+
+    /// Every prediction files exactly one event, which the queue files in one of
+    /// its three places (besides a few refilings), and a scan tests at least the discs of the cells it
+    /// walks that are not empty: the counts add up as the loop says they must.
+    #[test]
+    fn the_counts_add_up() {
+        let state = SystemSpec::periodic_fluid(400, 0.7, 3).build().unwrap();
+        let mut e = Engine::new(state, EngineParams::default()).unwrap();
+        e.run_collisions(2000).unwrap();
+        let k0 = counts();
+        let done = e.run_collisions(20_000).unwrap();
+        let k = counts();
+        let d = |c: Count| k[c as usize] - k0[c as usize];
+        assert_eq!(done, 20_000);
+        let predictions = d(Count::FullPredictions) + d(Count::StripPredictions);
+        let filed = d(Count::FiledPair) + d(Count::FiledCell) + d(Count::FiledOther);
+        assert_eq!(filed, predictions);
+        let queued =
+            d(Count::QueueIntoHeap) + d(Count::QueueIntoSlot) + d(Count::QueueIntoOverflow);
+        // Refilings (overflow entries coming within reach, rebuilds) come on top.
+        assert!(queued >= predictions && queued < predictions + predictions / 10);
+        // Two full predictions per pair collision, more for obsolete candidates.
+        assert!(d(Count::FullPredictions) >= 2 * done);
+        assert!(d(Count::PairTests) >= d(Count::CellsWalked) - d(Count::CellsEmpty));
+        assert!(d(Count::PairMeets) <= d(Count::PairTests));
+    }
 }
