@@ -2,7 +2,8 @@
 //! Equilibrates 5 collisions per disc, then runs COLLISIONS more and prints event
 //! counts per collision (for use under `valgrind --tool=cachegrind` or `perf`).
 //! An optional fourth argument `on` or `off` forces fetching ahead on or off
-//! (default: the engine's own choice for N).
+//! (default: the engine's own choice for N). Built with `--features counters`, it
+//! also prints the operations per pair collision (carom_engine::counters).
 use carom_engine::{Engine, EngineParams, SystemSpec};
 
 mod common;
@@ -20,6 +21,8 @@ fn main() {
         _ => {}
     }
     e.run_collisions(5 * n as u64).unwrap();
+    #[cfg(feature = "counters")]
+    let k0 = carom_engine::counters::counts();
     let s0 = *e.stats();
     let (t, cpu) = (std::time::Instant::now(), cpu_seconds());
     e.run_collisions(count).unwrap();
@@ -33,6 +36,11 @@ fn main() {
         (s.cell_crossings - s0.cell_crossings) as f64 / c,
         (s.stale_events - s0.stale_events) as f64 / c
     );
+    #[cfg(feature = "counters")]
+    for (k, (_, name)) in carom_engine::counters::ALL.iter().enumerate() {
+        let per = (carom_engine::counters::counts()[k] - k0[k]) as f64 / c;
+        println!("per collision: {name:<30} {per:8.3}");
+    }
     let state = e.state();
     let h = common::state_hash(&state);
     println!(

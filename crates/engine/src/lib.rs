@@ -13,9 +13,23 @@
 
 #![deny(missing_docs)]
 
+/// Count one operation (or `$n`) of kind `$what` (`counters::Count`) with the
+/// feature `counters`; nothing at all without it.
+macro_rules! count {
+    ($what:ident) => {
+        count!($what, 1)
+    };
+    ($what:ident, $n:expr) => {{
+        #[cfg(feature = "counters")]
+        $crate::counters::add($crate::counters::Count::$what, ($n) as u64);
+    }};
+}
+
 mod cells;
 mod checkpoint;
 mod classes;
+#[cfg(feature = "counters")]
+pub mod counters;
 mod engine;
 mod error;
 mod event;

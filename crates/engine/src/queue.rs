@@ -181,6 +181,7 @@ impl EventQueue {
                 if times.time(top.disc) == top.time {
                     return (NotNan::new(top.time).expect("no NaN in queue"), top.disc);
                 }
+                count!(QueueHeapStale);
                 self.heap_pop();
                 continue;
             }
@@ -236,8 +237,10 @@ impl EventQueue {
     fn file(&mut self, i: u32, time: f64) {
         let b = self.bucket(time);
         if b <= self.cur {
+            count!(QueueIntoHeap);
             self.heap_push(Item { time, disc: i });
         } else if b - self.cur <= self.mask {
+            count!(QueueIntoSlot);
             let s = (b & self.mask) as usize;
             memory::prefetch(&self.slots[s]);
             self.pending[self.pending_len] = (s as u32, i);
@@ -247,6 +250,7 @@ impl EventQueue {
                 self.flush();
             }
         } else {
+            count!(QueueIntoOverflow);
             self.overflow.push(Item { time, disc: i });
         }
     }
@@ -276,6 +280,7 @@ impl EventQueue {
             return;
         }
         self.cur = self.cur.saturating_add(1);
+        count!(QueueBuckets);
         if self.cur & self.mask == 0 {
             self.redistribute_overflow(times);
             if 2 * self.overflow.len() > self.finite {
@@ -337,6 +342,8 @@ impl EventQueue {
             // branch (whether an entry is stale is a coin toss): every entry is
             // appended, and a stale one is cut off again.
             let keep = self.bucket(time) == self.cur;
+            count!(QueuePouredKept, keep);
+            count!(QueuePouredDropped, !keep);
             self.heap.push(Item { time, disc: d });
             let len = self.heap.len() - 1 + keep as usize;
             self.heap.truncate(len);

@@ -79,6 +79,9 @@ fn test_pair<M: Motion>(
     let dr = bj.at(now) - me.ri;
     let sigma = me.radius + species[bj.species as usize].radius;
     let dt = M::pair_time(me.bi, me.ri, bj, dr, sigma, now, law);
+    count!(PairTests);
+    count!(PairApproaching, dr.dot(bj.v - me.bi.v) < 0.0);
+    count!(PairMeets, dt.is_finite());
     // Kept without a branch: whether a neighbour beats the best so far is a coin
     // toss for the branch predictor.
     let hit = dt < found.best;
@@ -105,6 +108,8 @@ impl<M: Motion> Block<'_, M> {
     #[inline(always)]
     fn scan_cell(&self, me: &Scanner, first: u32, image: Image, found: &mut Found) {
         let mut j = first;
+        count!(CellsWalked);
+        count!(CellsEmpty, first == NO_DISC);
         while j != NO_DISC {
             let bj = &self.bodies[j as usize];
             test_pair::<M>(me, self.species, j, bj, self.now, self.law, image, found);
@@ -118,6 +123,7 @@ impl Engine {
     /// cell crossing or wall collision, or its earliest pair collision with a disc
     /// of its 3 × 3 block of cells (which becomes its pair candidate).
     pub(super) fn predict<M: Motion>(&mut self, i: usize) {
+        count!(FullPredictions);
         let now = self.clock;
         let bi = self.bodies[i];
         let ri = bi.at(now);
@@ -145,6 +151,9 @@ impl Engine {
         // often); with no partner, the count read is of a disc in memory and unused.
         let partner_count = self.bodies[(found.partner as usize).min(self.bodies.len() - 1)].count;
         let pair = found.best < boundary;
+        count!(FiledPair, pair);
+        count!(FiledCell, !pair && kind == Pending::Cell);
+        count!(FiledOther, !pair && kind != Pending::Cell);
         let b = &mut self.bodies[i];
         b.partner = found.partner;
         b.partner_count =
@@ -197,6 +206,7 @@ impl Engine {
                 &mut candidate,
             );
         }
+        count!(StripPredictions);
         let o = if up { 1 } else { -1 };
         let (xs, ys) = if k == 0 {
             ([o, o], [-1, 1])
