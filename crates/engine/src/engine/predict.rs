@@ -63,7 +63,8 @@ struct Scanner<'a> {
 ///
 /// Disc i itself needs no test of its own: its relative velocity is exactly zero,
 /// so b = 0 and it never meets (whichever image is seen); growing, it is skipped
-/// by its zero separation.
+/// by its zero separation. A full scan of an interior block passes it over
+/// ([`Block::scan_own_cell`]); elsewhere it is tested and never wins.
 #[inline(always)]
 #[allow(clippy::too_many_arguments)]
 fn test_pair<M: Motion>(
@@ -114,6 +115,34 @@ impl<M: Motion> Block<'_, M> {
             let bj = &self.bodies[j as usize];
             test_pair::<M>(me, self.species, j, bj, self.now, self.law, image, found);
             j = bj.link.next;
+        }
+    }
+
+    /// [`Self::scan_cell`] for the scanning disc's own cell, whose list starts at
+    /// `first` and holds disc `i` (`me.bi`): the same discs in the same order, so
+    /// ties go to the same partner, with disc `i` itself passed over (its test
+    /// never meets). Its test would take the contact solve's branch for
+    /// overlapping pairs (c ≤ 0), at a random place in every block: skipped, that
+    /// branch is almost never taken (docs/performance.md, "the self-test").
+    #[inline(always)]
+    fn scan_own_cell(&self, me: &Scanner, first: u32, i: u32, found: &mut Found) {
+        let mut j = first;
+        while j != i && j != NO_DISC {
+            let bj = &self.bodies[j as usize];
+            test_pair::<M>(
+                me,
+                self.species,
+                j,
+                bj,
+                self.now,
+                self.law,
+                Image::SAME,
+                found,
+            );
+            j = bj.link.next;
+        }
+        if j == i {
+            self.scan_cell(me, me.bi.link.next, Image::SAME, found);
         }
     }
 }
@@ -257,8 +286,13 @@ impl Engine {
                     head[first + 2 * nx + 1],
                     head[first + 2 * nx + 2],
                 ];
-                for h in heads {
-                    block.scan_cell(&me, h, Image::SAME, found);
+                // The middle cell is disc i's own.
+                for h in &heads[..4] {
+                    block.scan_cell(&me, *h, Image::SAME, found);
+                }
+                block.scan_own_cell(&me, heads[4], i as u32, found);
+                for h in &heads[5..] {
+                    block.scan_cell(&me, *h, Image::SAME, found);
                 }
             } else {
                 // A strip: a column (x crossing) or a row (y crossing) of three.
