@@ -3,7 +3,9 @@
 //! ([`Observation`], `observe`), looks at progress, the disk and the watchdog
 //! between events (`watch`), and ends the log cleanly whatever stops it (`finish`).
 //! A caller's [`Observer`](crate::Observer) gets frames at exact instants it asks
-//! for (`watch`) and every `/thermo` record (`observe`); it never changes the log.
+//! for (`watch`) and every `/thermo` record (`observe`); the trajectory and the
+//! records are those of a run without it (a checkpoint written while a frame is
+//! due lists that frame's instant, which a resume without an observer passes over).
 //!
 //! What a run writes, in order: the `carom.run` metadata; at the start time a
 //! `/snapshot`, a `/thermo` record, a `/checkpoint` and a `/scene` frame (each when
