@@ -240,8 +240,7 @@ impl<'a> Watch<'a> {
         if self.frame_pending {
             return Ok(());
         }
-        let t = engine.now().next_up();
-        if t <= self.stop_time && self.serving.live.frame_due() {
+        if let Some(t) = self.serving.live.frame_time(engine.now(), self.stop_time) {
             engine.schedule(t, self.frame_tag)?;
             self.frame_pending = true;
         }

@@ -94,6 +94,13 @@ pub trait Observer {
     /// Whether a frame is wanted now. Asked between events, about every 1024
     /// events (and after each pause), so it must be cheap; it decides the rate.
     fn frame_due(&mut self) -> bool;
+    /// The instant at which to take a frame asked for at `now`: the first time
+    /// after `now` (so that no event lies between), unless that is past
+    /// `stop_time` or no frame is due. The rule of every front end's frames.
+    fn frame_time(&mut self, now: f64, stop_time: f64) -> Option<f64> {
+        let t = now.next_up();
+        (t <= stop_time && self.frame_due()).then_some(t)
+    }
     /// The frame asked for: the engine at an exact instant (scheduled at the
     /// first time after the one at which [`Observer::frame_due`] said yes, so
     /// that a run stopped at `engine.now()` has this very state), and the

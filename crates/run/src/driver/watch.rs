@@ -68,10 +68,9 @@ impl Driver<'_> {
         let Some(o) = self.control.observer.as_mut() else {
             return Ok(());
         };
-        let t = self.engine.now().next_up();
-        if t > stop_time || !o.frame_due() {
+        let Some(t) = o.frame_time(self.engine.now(), stop_time) else {
             return Ok(());
-        }
+        };
         self.schedule(t, Observation::Live)?;
         self.live_pending = true;
         Ok(())
