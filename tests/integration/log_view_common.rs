@@ -201,6 +201,7 @@ pub fn checkpoint(cp: &LogCheckpoint) -> Value {
     } = cp;
     // Alphabetical: the order does not matter, only that every field is named.
     let carom_engine::Checkpoint {
+        lists: _,
         cell,
         cell_head,
         cell_next,
@@ -238,6 +239,7 @@ pub fn checkpoint(cp: &LogCheckpoint) -> Value {
         gravity,
         growth: gp,
         floor,
+        neighbours: _,
     } = params;
     let carom_engine::Stats {
         pair_collisions,

@@ -100,4 +100,21 @@ pub struct Checkpoint {
     /// (physics.md §18; 0 without a floor, and in checkpoints written before carom
     /// had it).
     pub floor_origin: f64,
+    /// The neighbour lists, when the run is on them (`None` on the cell path, and
+    /// in checkpoints written before carom had lists: such a run resumes on cells).
+    pub lists: Option<ListsCheckpoint>,
+}
+
+/// What a [`Checkpoint`] keeps of the neighbour lists: the skin and each disc's
+/// list centre. The lists themselves are a function of the centres and are
+/// rebuilt on resume; the cell lists of the [`Checkpoint`] are then those of the
+/// grid of list centres.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ListsCheckpoint {
+    /// The skin s (length): a disc's list is renewed when it has moved s from its
+    /// list centre.
+    pub skin: f64,
+    /// Each disc's list centre, its position (in the box) at its last list update
+    /// (length), in the engine's internal order like the other per-disc arrays.
+    pub centres: Vec<DVec2>,
 }

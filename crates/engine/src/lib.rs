@@ -35,12 +35,13 @@ mod error;
 mod event;
 mod init;
 mod invariants;
+mod lists;
 mod memory;
 mod queue;
 mod state;
 mod thermostat;
 
-pub use checkpoint::Checkpoint;
+pub use checkpoint::{Checkpoint, ListsCheckpoint};
 pub use engine::{DiscNow, Engine, EngineParams, Growth, GrowthEnd, GrowthState, Stats};
 pub use error::{EngineError, InitError};
 pub use event::{Event, PairCollision, WallCollision};
@@ -49,6 +50,7 @@ pub use init::{
     Velocities, COMPRESSED_MAX_REDUCED_PRESSURE,
 };
 pub use invariants::{InvariantChecker, Violation};
+pub use lists::Neighbours;
 pub use state::State;
 pub use thermostat::{Thermostat, ThermostatState, ThermostatStats};
 

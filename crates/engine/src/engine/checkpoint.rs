@@ -88,6 +88,7 @@ impl Engine {
                 .map(|r| r.state(self.calendar.thermostat_entry())),
             growth: self.growth,
             floor_origin: self.floor_origin,
+            lists: None,
         }
     }
 

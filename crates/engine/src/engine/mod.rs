@@ -31,6 +31,7 @@ mod thermostat;
 use crate::cells::Link;
 use crate::classes::Grids;
 use crate::error::EngineError;
+use crate::lists::{Lists, Neighbours};
 use crate::memory;
 use crate::queue::{EventQueue, Time};
 use crate::state::State;
@@ -65,6 +66,10 @@ pub struct EngineParams {
     /// A bottom wall that oscillates, h(t) = A (1 − cos ω t) (physics.md §18); none
     /// by default. Requires hard walls along y; not with growing discs.
     pub floor: Option<Floor>,
+    /// How discs find their possible partners: cells, neighbour lists, or the
+    /// engine's choice (the default; see [`Engine::neighbour_lists`]). Both give the
+    /// same events up to rounding.
+    pub neighbours: Neighbours,
 }
 
 impl Default for EngineParams {
@@ -76,6 +81,7 @@ impl Default for EngineParams {
             gravity: 0.0,
             growth: Growth::default(),
             floor: None,
+            neighbours: Neighbours::Auto,
         }
     }
 }

@@ -256,6 +256,7 @@ impl LogCheckpoint {
                 thermostat,
                 growth,
                 floor_origin,
+                lists: None,
             },
         })
     }
