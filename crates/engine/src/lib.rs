@@ -50,7 +50,7 @@ pub use init::{
     Velocities, COMPRESSED_MAX_REDUCED_PRESSURE,
 };
 pub use invariants::{InvariantChecker, Violation};
-pub use lists::Neighbours;
+pub use lists::{Neighbours, LISTS_FROM_PACKING};
 pub use state::State;
 pub use thermostat::{Thermostat, ThermostatState, ThermostatStats};
 

@@ -48,6 +48,11 @@ impl Neighbours {
     }
 }
 
+/// The packing fraction from which [`Neighbours::Auto`] chooses lists (where
+/// Smallenburg's counts and carom's measured rates cross; docs/performance.md,
+/// "neighbour lists").
+pub const LISTS_FROM_PACKING: f64 = 0.6;
+
 /// The most members a list holds. A list that would hold more sends the engine
 /// back to the cell path for the rest of the run (deterministically).
 pub(crate) const CAPACITY: usize = 11;

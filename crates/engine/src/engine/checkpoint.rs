@@ -295,6 +295,7 @@ impl Engine {
             growth: cp.growth,
             floor_origin: cp.floor_origin,
             quiet_work: 0,
+            lists: None,
         })
     }
 }

@@ -32,6 +32,8 @@ use crate::cells::Link;
 use crate::classes::Grids;
 use crate::error::EngineError;
 use crate::lists::{Lists, Neighbours};
+#[allow(unused_imports)]
+use crate::lists::LISTS_FROM_PACKING;
 use crate::memory;
 use crate::queue::{EventQueue, Time};
 use crate::state::State;
@@ -187,6 +189,9 @@ pub struct Engine {
     floor_origin: f64,
     /// Disc updates of unobservable work so far (`engine::pause`).
     quiet_work: u64,
+    /// The neighbour lists, when the engine runs on them (engine::listed); `None`
+    /// on the cell path.
+    lists: Option<Lists>,
 }
 
 #[inline]
@@ -284,6 +289,7 @@ impl Engine {
             growth: GrowthState::start(&params.growth),
             floor_origin: state.time,
             quiet_work: 0,
+            lists: None,
         };
         engine.reorder();
         for i in 0..n {
@@ -353,6 +359,17 @@ impl Engine {
     /// has a grid per size class).
     pub fn cells(&self) -> [u32; 2] {
         self.grids.first.n
+    }
+
+    /// Whether the engine runs on neighbour lists (with a skin, physics.md §2)
+    /// rather than on the cell grid. [`Neighbours::Auto`] chooses lists for equal
+    /// discs (or a mixture one grid serves) flying straight, without a field,
+    /// growth or vibrating floor, at packing fractions from
+    /// [`LISTS_FROM_PACKING`] in a box at least three list cells wide on each periodic
+    /// axis; the choice is made once, from the configuration, never by timing. A
+    /// list that overflows sends the run back to cells for good.
+    pub fn neighbour_lists(&self) -> bool {
+        self.lists.is_some()
     }
 
     /// Number of cell grids: one per size class.
