@@ -77,6 +77,34 @@ pub fn contact_time_or_inf(dr: DVec2, dv: DVec2, sigma: f64) -> f64 {
     std::hint::select_unpredictable(meets, t, f64::INFINITY)
 }
 
+/// Time from now until a disc at `d` from a fixed point (d = r − c, length),
+/// moving with velocity `v`, is `s` from it: the positive root of |d + v t| = s
+/// (physics.md (2.7)), the instant a disc leaves its neighbour-list skin.
+///
+/// With β = d·v, γ = |d|² − s² and D = β² − |v|² γ, for γ < 0 (inside) the root is
+/// (−β + √D)/|v|² when β < 0 and −γ/(β + √D) when β ≥ 0, each without
+/// cancellation. A disc at or beyond the circle (γ ≥ 0, by rounding) leaves now,
+/// 0; a disc at rest never, +∞. Never NaN for finite input.
+#[inline]
+pub fn exit_time(d: DVec2, v: DVec2, s: f64) -> f64 {
+    let beta = d.dot(v);
+    let gamma = d.length_squared() - s * s;
+    let vv = v.length_squared();
+    let root = (beta * beta - vv * gamma).max(0.0).sqrt();
+    let t = if beta < 0.0 {
+        (root - beta) / vv
+    } else {
+        -gamma / (beta + root)
+    };
+    if gamma >= 0.0 {
+        0.0
+    } else if vv == 0.0 {
+        f64::INFINITY
+    } else {
+        t
+    }
+}
+
 /// Absolute angular tolerance (radians) of the seed form at its degenerate
 /// boundaries: 4π machine epsilons, a bound on the rounding of a difference of two
 /// `atan2` angles (each within an ulp of π) passed through `sin_cos`.
@@ -131,6 +159,33 @@ pub fn contact_time_seed(
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_disc_leaves_its_skin_where_its_line_crosses_the_circle() {
+        // From the centre at speed 2 along x: |t v| = 0.3 at t = 0.15.
+        assert_eq!(exit_time(DVec2::ZERO, DVec2::new(2.0, 0.0), 0.3), 0.15);
+        // Across a chord: from (0, 0.1) heading −x then +x, the circle x² + 0.01 = 0.09
+        // is reached at |x| = √0.08 either way.
+        for vx in [-1.0, 1.0] {
+            let t = exit_time(DVec2::new(0.0, 0.1), DVec2::new(vx, 0.0), 0.3);
+            assert!((t - 0.08f64.sqrt()).abs() < 1e-15, "{t}");
+        }
+        // Moving inward from near the edge (β < 0): through the centre to the far side.
+        let t = exit_time(DVec2::new(0.29, 0.0), DVec2::new(-1.0, 0.0), 0.3);
+        assert!((t - 0.59).abs() < 1e-15, "{t}");
+        // On or beyond the circle: now; at rest: never.
+        assert_eq!(exit_time(DVec2::new(0.3, 0.0), DVec2::new(-1.0, 0.0), 0.3), 0.0);
+        assert_eq!(exit_time(DVec2::new(0.0, 0.31), DVec2::new(1.0, 0.0), 0.3), 0.0);
+        assert_eq!(exit_time(DVec2::new(0.1, 0.0), DVec2::ZERO, 0.3), f64::INFINITY);
+        // The root lies on the circle, for random-looking directions and starts.
+        for k in 0..200 {
+            let a = k as f64 * 0.7;
+            let d = DVec2::new(0.2 * (1.3 * a).cos(), 0.2 * (0.9 * a).sin());
+            let v = DVec2::new(a.cos(), a.sin()) * (0.5 + k as f64 * 0.01);
+            let t = exit_time(d, v, 0.3);
+            assert!(t > 0.0 && ((d + v * t).length() - 0.3).abs() < 1e-15, "{k}: {t}");
+        }
+    }
 
     #[test]
     fn head_on_pair_meets_when_gap_closes() {

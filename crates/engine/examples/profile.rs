@@ -2,9 +2,11 @@
 //! Equilibrates 5 collisions per disc, then runs COLLISIONS more and prints event
 //! counts per collision (for use under `valgrind --tool=cachegrind` or `perf`).
 //! An optional fourth argument `on` or `off` forces fetching ahead on or off
-//! (default: the engine's own choice for N). Built with `--features counters`, it
+//! (default: the engine's own choice for N). The environment variable
+//! `CAROM_NEIGHBOURS=cells|lists` forces the neighbour search (default: the
+//! engine's choice, lists from η = 0.6). Built with `--features counters`, it
 //! also prints the operations per pair collision (carom_engine::counters).
-use carom_engine::{Engine, EngineParams, SystemSpec};
+use carom_engine::{Engine, EngineParams, Neighbours, SystemSpec};
 
 mod common;
 use common::{arg, cpu_seconds};
@@ -14,7 +16,15 @@ fn main() {
     let eta = arg(2, 0.5);
     let count = arg(3, 1e6) as u64;
     let spec = SystemSpec::periodic_fluid(n, eta, 42);
-    let mut e = Engine::new(spec.build().unwrap(), EngineParams::default()).unwrap();
+    let neighbours = std::env::var("CAROM_NEIGHBOURS")
+        .ok()
+        .map(|v| Neighbours::from_name(&v).expect("CAROM_NEIGHBOURS: auto, cells or lists"))
+        .unwrap_or_default();
+    let params = EngineParams {
+        neighbours,
+        ..EngineParams::default()
+    };
+    let mut e = Engine::new(spec.build().unwrap(), params).unwrap();
     match std::env::args().nth(4).as_deref() {
         Some("on") => e.set_look_ahead(true),
         Some("off") => e.set_look_ahead(false),

@@ -93,6 +93,18 @@ impl Grids {
         }
     }
 
+    /// One grid for all discs, of cells at least `min_width` wide (length), for
+    /// `discs` discs of largest radius `radius`: the grid of list centres
+    /// (engine::listed).
+    pub fn one(sim_box: &SimBox, species: usize, radius: f64, min_width: f64, discs: usize) -> Grids {
+        Grids {
+            first: CellGrid::new(sim_box, min_width, discs),
+            rest: Vec::new(),
+            class_of: vec![0; species],
+            radius: vec![radius],
+        }
+    }
+
     /// Whether there is a single grid (one class).
     #[inline(always)]
     pub fn single(&self) -> bool {

@@ -33,7 +33,7 @@ pub enum Count {
     StripPredictions,
     /// Predictions that filed a pair collision as the disc's event.
     FiledPair,
-    /// Predictions that filed a cell crossing.
+    /// Predictions that filed a cell crossing (or, on lists, a skin exit).
     FiledCell,
     /// Predictions that filed a wall collision (or nothing).
     FiledOther,
@@ -53,10 +53,12 @@ pub enum Count {
     QueuePouredDropped,
     /// Buckets the calendar moved on.
     QueueBuckets,
+    /// Neighbour-list renewals (skin exits; engine::listed).
+    ListUpdates,
 }
 
 /// Number of kinds counted.
-const KINDS: usize = Count::QueueBuckets as usize + 1;
+const KINDS: usize = Count::ListUpdates as usize + 1;
 
 /// Every kind with its name, in order (for printing).
 pub const ALL: [(Count, &str); KINDS] = [
@@ -68,7 +70,7 @@ pub const ALL: [(Count, &str); KINDS] = [
     (Count::FullPredictions, "full predictions (3 x 3)"),
     (Count::StripPredictions, "strip predictions (3 cells)"),
     (Count::FiledPair, "filed: pair"),
-    (Count::FiledCell, "filed: cell crossing"),
+    (Count::FiledCell, "filed: cell crossing / skin exit"),
     (Count::FiledOther, "filed: wall or none"),
     (Count::QueueIntoHeap, "queue: filed into heap"),
     (Count::QueueIntoSlot, "queue: filed into slot"),
@@ -77,6 +79,7 @@ pub const ALL: [(Count, &str); KINDS] = [
     (Count::QueuePouredKept, "queue: poured, kept"),
     (Count::QueuePouredDropped, "queue: poured, dropped"),
     (Count::QueueBuckets, "queue: buckets moved on"),
+    (Count::ListUpdates, "list updates (skin exits)"),
 ];
 
 thread_local! {

@@ -98,6 +98,10 @@ pub enum EngineError {
     /// support (physics.md §18).
     #[error("vibrating_floor: {0}")]
     BadFloor(String),
+    /// Neighbour lists were asked for (`neighbours: "lists"`) where the engine
+    /// cannot use them; the text says why.
+    #[error("neighbours: \"lists\" cannot be used {0} (allowed: \"auto\" or \"cells\")")]
+    ListsRefused(String),
 }
 
 /// What a runaway of [`EngineError::Stalled`] is and what cures it, for a run whose

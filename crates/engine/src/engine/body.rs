@@ -130,6 +130,8 @@ pub(super) enum Pending {
     /// Search again for a floor contact (engine::floor): the search stopped at its
     /// step limit without finding one.
     Recheck = 4,
+    /// Leaving the neighbour-list skin (engine::listed): renew the disc's list.
+    Skin = 5,
 }
 
 impl Pending {
@@ -141,6 +143,7 @@ impl Pending {
             Pending::Wall,
             Pending::Cell,
             Pending::Recheck,
+            Pending::Skin,
         ]
         .into_iter()
         .find(|&p| p as u32 == code)
@@ -187,6 +190,19 @@ impl Image {
     #[inline(always)]
     pub(super) fn new(sx: i32, sy: i32) -> Image {
         Image(((sx + 1) + 3 * (sy + 1)) as u8)
+    }
+
+    /// The image with code `code` = (s_x + 1) + 3 (s_y + 1) (as a neighbour list
+    /// stores it).
+    #[inline(always)]
+    pub(super) fn from_code(code: u8) -> Image {
+        Image(code)
+    }
+
+    /// Its code (s_x + 1) + 3 (s_y + 1).
+    #[inline(always)]
+    pub(super) fn code(self) -> u8 {
+        self.0
     }
 
     /// The shift (length) in a box of edges `size`.

@@ -15,9 +15,10 @@
 use super::body::{Aux, Body, Pending};
 use super::calendar::{Calendar, Whose};
 use super::clock::origin_limit;
-use super::{lookahead, thermostat, Engine};
+use super::{lookahead, thermostat, Engine, EngineParams};
+use crate::lists::Neighbours;
 use crate::cells::Link;
-use crate::checkpoint::Checkpoint;
+use crate::checkpoint::{Checkpoint, ListsCheckpoint};
 use crate::classes::Grids;
 use crate::error::EngineError;
 use crate::memory;
@@ -88,7 +89,10 @@ impl Engine {
                 .map(|r| r.state(self.calendar.thermostat_entry())),
             growth: self.growth,
             floor_origin: self.floor_origin,
-            lists: None,
+            lists: self.lists.as_ref().map(|l| ListsCheckpoint {
+                skin: l.skin,
+                centres: l.lines.iter().map(|line| line.centre).collect(),
+            }),
         }
     }
 
@@ -223,7 +227,11 @@ impl Engine {
         // crossings move the clock, so a resumed run must have the grids it was
         // written with to continue bit for bit): one per size class, or one for
         // all in a checkpoint written before carom had size classes.
-        let grids = if cp.params.growth.rate != 0.0 {
+        let grids = if cp.lists.is_some() {
+            // On lists the grid is that of the list centres, rebuilt from them
+            // below (engine::listed); this one is a placeholder.
+            Ok(Grids::new(&cp.sim_box, &cp.species, &cp.species_of, true))
+        } else if cp.params.growth.rate != 0.0 {
             // Growing discs: one grid for their final size (engine::growth).
             restore_grids(&cp, &bodies, false)
         } else {
@@ -269,7 +277,8 @@ impl Engine {
         if let Some((t, seq)) = cp.thermostat.and_then(|s| s.next) {
             calendar.insert(t, seq, Whose::Thermostat);
         }
-        Ok(Engine {
+        let lists = cp.lists.clone();
+        let mut engine = Engine {
             sim_box: cp.sim_box,
             species: cp.species,
             bodies,
@@ -296,7 +305,48 @@ impl Engine {
             floor_origin: cp.floor_origin,
             quiet_work: 0,
             lists: None,
-        })
+        };
+        if let Some(l) = lists {
+            engine.restore_lists(l).map_err(bad)?;
+        }
+        Ok(engine)
+    }
+
+    /// Put an engine rebuilt from a checkpoint back on its neighbour lists
+    /// (engine::listed): the lists and the grid of centres from the stored
+    /// centres, after checking that lists can be used and that every disc is
+    /// within its skin of its centre.
+    fn restore_lists(&mut self, l: ListsCheckpoint) -> Result<(), String> {
+        let n = self.len();
+        if l.centres.len() != n {
+            return Err(format!("lists: {} centres for {n} discs", l.centres.len()));
+        }
+        if !(l.skin.is_finite() && l.skin > 0.0) {
+            return Err(format!("lists: skin {} (allowed: finite, > 0)", l.skin));
+        }
+        let params = EngineParams {
+            neighbours: Neighbours::Lists,
+            ..self.params
+        };
+        super::listed::choose(
+            &params,
+            &self.sim_box,
+            &self.species,
+            &self.species_of,
+            &self.grids,
+        )
+        .map_err(|e| format!("lists: {e}"))?;
+        for (i, (b, c)) in self.bodies.iter().zip(&l.centres).enumerate() {
+            let d = (b.at(self.clock) - *c).length();
+            if !(d <= l.skin * (1.0 + 1e-9)) {
+                return Err(format!(
+                    "lists: disc {i} is {d} from its list centre {c}, beyond the skin {}",
+                    l.skin
+                ));
+            }
+        }
+        self.enter_lists(l.skin, &l.centres)
+            .map_err(|e| format!("lists: {e}"))
     }
 }
 

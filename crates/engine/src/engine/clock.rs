@@ -124,6 +124,13 @@ impl Engine {
         permute(&mut self.bodies, &perm);
         permute(&mut self.last_collision, &perm);
         permute(&mut self.label, &perm);
+        if let Some(lists) = self.lists.as_mut() {
+            // The lists move with their discs and name them by their new indices.
+            permute(&mut lists.lines, &perm);
+            for line in lists.lines.iter_mut() {
+                line.renumber(&inv);
+            }
+        }
         for b in self.bodies.iter_mut() {
             if b.partner != NO_DISC {
                 b.partner = inv[b.partner as usize];

@@ -19,6 +19,7 @@ mod clock;
 mod floor;
 mod gravity;
 mod growth;
+mod listed;
 mod lookahead;
 mod motion;
 mod pause;
@@ -191,7 +192,7 @@ pub struct Engine {
     quiet_work: u64,
     /// The neighbour lists, when the engine runs on them (engine::listed); `None`
     /// on the cell path.
-    lists: Option<Lists>,
+    lists: Option<Box<Lists>>,
 }
 
 #[inline]
@@ -291,6 +292,7 @@ impl Engine {
             quiet_work: 0,
             lists: None,
         };
+        engine.start_lists()?;
         engine.reorder();
         for i in 0..n {
             engine.predict_any(i);
@@ -496,6 +498,7 @@ impl Engine {
             + (self.label.capacity() + self.index_of.capacity()) * 4
             + self.queue.heap_bytes()
             + self.grids.heap_bytes()
+            + self.lists.as_ref().map_or(0, |l| l.heap_bytes())
     }
 }
 

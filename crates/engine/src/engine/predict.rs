@@ -21,7 +21,7 @@ use carom_core::boundary::wall_time;
 use carom_core::{Boundary, DVec2, Species, WallSide};
 
 #[inline]
-fn neighbour(c: u32, o: i32, n: u32, periodic: bool) -> Option<(u32, i32)> {
+pub(super) fn neighbour(c: u32, o: i32, n: u32, periodic: bool) -> Option<(u32, i32)> {
     let v = c as i32 + o;
     if v < 0 {
         periodic.then(|| ((v + n as i32) as u32, -1))
@@ -34,15 +34,15 @@ fn neighbour(c: u32, o: i32, n: u32, periodic: bool) -> Option<(u32, i32)> {
 
 /// The earliest pair event found so far by a prediction: time from now, partner
 /// and the image through which the partner is seen.
-struct Found {
-    best: f64,
-    partner: u32,
-    image: Image,
+pub(super) struct Found {
+    pub(super) best: f64,
+    pub(super) partner: u32,
+    pub(super) image: Image,
 }
 
 impl Found {
     /// Nothing found yet: no partner, time +∞.
-    const NOTHING: Found = Found {
+    pub(super) const NOTHING: Found = Found {
         best: f64::INFINITY,
         partner: NO_DISC,
         image: Image::UNSET,
@@ -51,10 +51,10 @@ impl Found {
 
 /// Disc `i` as a scan sees it: its record, its radius (length) and its position
 /// now (length), shifted to see the scanned cell through the right image.
-struct Scanner<'a> {
-    bi: &'a Body,
-    radius: f64,
-    ri: DVec2,
+pub(super) struct Scanner<'a> {
+    pub(super) bi: &'a Body,
+    pub(super) radius: f64,
+    pub(super) ri: DVec2,
 }
 
 /// Test disc `j` (record `bj`) against disc i and keep it in `found` if it meets
@@ -67,7 +67,7 @@ struct Scanner<'a> {
 /// ([`Block::scan_own_cell`]); elsewhere it is tested and never wins.
 #[inline(always)]
 #[allow(clippy::too_many_arguments)]
-fn test_pair<M: Motion>(
+pub(super) fn test_pair<M: Motion>(
     me: &Scanner,
     species: &[Species],
     j: u32,
@@ -152,6 +152,9 @@ impl Engine {
     /// cell crossing or wall collision, or its earliest pair collision with a disc
     /// of its 3 × 3 block of cells (which becomes its pair candidate).
     pub(super) fn predict<M: Motion>(&mut self, i: usize) {
+        if M::LISTS {
+            return self.predict_listed::<M>(i);
+        }
         count!(FullPredictions);
         let now = self.clock;
         let bi = self.bodies[i];
@@ -170,7 +173,7 @@ impl Engine {
     ///
     /// The record's resting flag (engine::resting) is kept as the law says.
     #[inline(always)]
-    fn file_event<M: Motion>(
+    pub(super) fn file_event<M: Motion>(
         &mut self,
         i: usize,
         found: &Found,
@@ -181,8 +184,8 @@ impl Engine {
         let partner_count = self.bodies[(found.partner as usize).min(self.bodies.len() - 1)].count;
         let pair = found.best < boundary;
         count!(FiledPair, pair);
-        count!(FiledCell, !pair && kind == Pending::Cell);
-        count!(FiledOther, !pair && kind != Pending::Cell);
+        count!(FiledCell, !pair && matches!(kind, Pending::Cell | Pending::Skin));
+        count!(FiledOther, !pair && !matches!(kind, Pending::Cell | Pending::Skin));
         let b = &mut self.bodies[i];
         b.partner = found.partner;
         b.partner_count =

@@ -13,7 +13,7 @@
 use super::body::Pending;
 use super::calendar::{Due, Whose};
 use super::clock::reorder_interval;
-use super::motion::{Falling, Growing, Motion, Straight};
+use super::motion::{Falling, Growing, Listed, Motion, Straight};
 use super::Engine;
 use crate::error::EngineError;
 use crate::event::Event;
@@ -72,10 +72,22 @@ impl Engine {
     pub fn next_event(&mut self) -> Result<Option<Event>, EngineError> {
         if self.params.gravity != 0.0 || self.params.floor.is_some() {
             self.next_event_falling()
-        } else if self.params.growth.rate != 0.0 {
-            self.next_event_growing()
+        } else if self.params.growth.rate != 0.0 || self.lists.is_some() {
+            self.next_event_other()
         } else {
             self.next_event_in::<Straight>()
+        }
+    }
+
+    /// [`Engine::next_event`] with growing discs or on neighbour lists
+    /// (engine::listed), each a copy of the loop of its own like
+    /// [`Engine::next_event_falling`].
+    #[inline(never)]
+    fn next_event_other(&mut self) -> Result<Option<Event>, EngineError> {
+        if self.lists.is_some() {
+            self.next_event_in::<Listed>()
+        } else {
+            self.next_event_growing()
         }
     }
 
@@ -118,6 +130,10 @@ impl Engine {
             };
             if let Step::Report(ev) = step {
                 return Ok(ev);
+            }
+            if M::LISTS && self.lists.is_none() {
+                // A list overflowed: on cells from here on (engine::listed).
+                return self.next_event();
             }
         }
     }
@@ -230,6 +246,13 @@ impl Engine {
                 // The floor search stopped short (engine::floor): search on.
                 self.move_clock(t);
                 self.predict::<M>(i);
+                Ok(Step::Continue)
+            }
+            Pending::Skin => {
+                // Only on lists (and compiled only into their loop).
+                assert!(M::LISTS, "a skin exit on the cell path");
+                self.move_clock(t);
+                self.renew_list(i);
                 Ok(Step::Continue)
             }
             Pending::None => unreachable!("a disc with no event has time +∞"),

@@ -13,6 +13,7 @@
 
 mod falling;
 mod growing;
+mod listed;
 mod straight;
 
 use super::body::{Aux, Body, Face, Pending};
@@ -22,6 +23,7 @@ use carom_core::collision::Resolution;
 use carom_core::DVec2;
 pub(super) use falling::Falling;
 pub(super) use growing::Growing;
+pub(super) use listed::Listed;
 pub(super) use straight::Straight;
 
 /// A law of motion between events (see the module documentation). Every method
@@ -31,6 +33,10 @@ pub(super) trait Motion {
     /// What a neighbour scan needs of the law at the current time (the field g,
     /// or the radii's scale and rate (s, γ)).
     type Scan: Copy;
+
+    /// Whether discs find their partners in neighbour lists (engine::listed)
+    /// rather than in the cell grid.
+    const LISTS: bool = false;
 
     /// The law's [`Motion::Scan`] now.
     fn scan(e: &Engine) -> Self::Scan;
@@ -140,6 +146,8 @@ impl Engine {
             self.predict::<Falling>(i);
         } else if self.params.growth.rate != 0.0 {
             self.predict::<Growing>(i);
+        } else if self.lists.is_some() {
+            self.predict::<Listed>(i);
         } else {
             self.predict::<Straight>(i);
         }
