@@ -97,6 +97,7 @@ impl Line {
     }
 
     /// Number of members.
+    #[cfg(test)]
     pub(crate) fn len(&self) -> usize {
         self.len as usize
     }

@@ -10,8 +10,8 @@
 mod engine_common;
 use carom_core::{Axis, Boundary, SimBox, Species, WallSide};
 use carom_engine::{
-    box_size_for, Engine, EngineError, EngineParams, Event, InvariantChecker, Placement,
-    SystemSpec, Velocities,
+    box_size_for, Engine, EngineError, EngineParams, Event, InvariantChecker, Neighbours,
+    Placement, SystemSpec, Velocities,
 };
 use engine_common::draw_dynamics;
 use rand::{RngExt, SeedableRng};
@@ -112,8 +112,12 @@ fn dissipative(spec: &SystemSpec, params: &EngineParams) -> bool {
 /// dissipative run without the TC model, which is how inelastic collapse must end.
 /// With the TC model a dissipative run must go on: before the TC model covered wall
 /// collisions, 13 of 600 such random systems with lossy walls stalled.
-fn run(case: u64) -> Result<bool, String> {
+fn run(case: u64, neighbours: Neighbours) -> Result<bool, String> {
     let (spec, params) = draw(case);
+    let params = EngineParams {
+        neighbours,
+        ..params
+    };
     let Ok(state) = spec.build() else {
         // Mixtures at densities the lattice cannot reach are refused with an
         // error (tested in tests/initial_states.rs); nothing to run.
@@ -192,7 +196,7 @@ fn random_systems_keep_every_invariant() {
     let mut failures = Vec::new();
     let mut collapsed = 0;
     for case in 0..CASES {
-        match run(case) {
+        match run(case, Neighbours::Auto) {
             Ok(true) => {}
             Ok(false) => collapsed += 1,
             Err(why) => {
@@ -215,20 +219,60 @@ fn random_systems_keep_every_invariant() {
     assert!(collapsed > 0, "no case collapsed");
 }
 
+/// The same [`CASES`] random systems on neighbour lists (engine::listed),
+/// where the engine can use them (one cell grid for all sizes, no box narrower
+/// than three list cells): every invariant of [`run`] holds there too.
+#[test]
+fn random_systems_on_lists_keep_every_invariant() {
+    let mut failures = Vec::new();
+    let mut on_lists = 0;
+    for case in 0..CASES {
+        let (spec, params) = draw(case);
+        let Ok(state) = spec.build() else { continue };
+        let p = EngineParams {
+            neighbours: Neighbours::Lists,
+            ..params
+        };
+        match Engine::new(state, p) {
+            Err(EngineError::ListsRefused(_)) => continue,
+            Err(e) => panic!("case {case}: {e}"),
+            Ok(_) => on_lists += 1,
+        }
+        if let Err(why) = run(case, Neighbours::Lists) {
+            failures.push(format!("case {case}: {why}"));
+        }
+    }
+    assert!(failures.is_empty(), "on lists:\n{}", failures.join("\n"));
+    eprintln!("{on_lists} of {CASES} random systems ran on lists");
+    assert!(on_lists >= CASES / 4, "only {on_lists} systems could use lists");
+}
+
 /// Cases run by [`random_systems_resume_bit_identically`].
 const RESUME_CASES: u64 = 150;
 
-/// A checkpoint taken anywhere holds the whole dynamical state: for random systems
+/// A checkpoint taken anywhere holds the whole dynamical state: for random systems,
+/// on cells and (where the engine can use them) on neighbour lists
 /// (as above), an engine restored from a checkpoint taken after 2000 events produces
 /// the same next 3000 events, bit for bit, as the engine it was taken from
 /// (including errors: a collapse is reported at the same event).
 #[test]
 fn random_systems_resume_bit_identically() {
     let mut compared = 0;
-    for case in 0..RESUME_CASES {
+    let mut on_lists = 0;
+    for (case, neighbours) in (0..RESUME_CASES)
+        .flat_map(|c| [(c, Neighbours::Auto), (c, Neighbours::Lists)])
+    {
         let (spec, params) = draw(case);
         let Ok(state) = spec.build() else { continue };
-        let mut a = Engine::new(state, params).expect("engine");
+        let params = EngineParams {
+            neighbours,
+            ..params
+        };
+        let mut a = match Engine::new(state, params) {
+            Err(EngineError::ListsRefused(_)) => continue,
+            made => made.expect("engine"),
+        };
+        on_lists += a.neighbour_lists() as usize;
         a.schedule(1e6, 0).expect("schedule");
         let mut ran = true;
         for _ in 0..2000 {
@@ -257,7 +301,7 @@ fn random_systems_resume_bit_identically() {
         compared += 1;
     }
     assert!(
-        compared > RESUME_CASES / 2,
-        "only {compared} cases compared"
+        compared > RESUME_CASES / 2 && on_lists > RESUME_CASES as usize / 4,
+        "only {compared} cases compared, {on_lists} on lists"
     );
 }

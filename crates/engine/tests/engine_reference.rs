@@ -17,7 +17,7 @@ use carom_core::collision::resolve;
 use carom_core::kinematics::contact_time;
 use carom_core::{Axis, DVec2, Restitution, Species};
 use carom_engine::{
-    box_size_for, Engine, EngineError, EngineParams, Event, Placement, State, SystemSpec,
+    box_size_for, Engine, EngineError, EngineParams, Event, Neighbours, Placement, State, SystemSpec,
     Velocities,
 };
 use engine_common::draw_dynamics;
@@ -473,6 +473,36 @@ fn run_oracle(systems: &[System]) {
         } else {
             assert_eq!(r.walls, 0);
         }
+    }
+}
+
+/// The oracle check of [`oracle_check`] with the engine on neighbour lists
+/// (engine::listed): dense and dilute, periodic, walled and channel boxes, and a
+/// mixture that one cell grid serves.
+#[test]
+fn oracle_on_neighbour_lists() {
+    let systems = [
+        sys("lists periodic mono N=100 η=0.7", mono(100), 0.7, 1.0, PERIODIC, 41),
+        sys("lists periodic mono N=40 η=0.35", mono(40), 0.35, 1.0, PERIODIC, 42),
+        sys("lists walled mono N=100 η=0.72", mono(100), 0.72, 1.0, WALLED, 43),
+        sys("lists channel mono N=60 η=0.45", mono(60), 0.45, 1.5, CHANNEL, 44),
+        sys("lists periodic mix 40+10 η=0.4", mixture(40, 10), 0.4, 1.0, PERIODIC, 45),
+    ];
+    let lists = EngineParams {
+        neighbours: Neighbours::Lists,
+        ..EngineParams::default()
+    };
+    for s in &systems {
+        let on = Engine::new(s.state(), lists).map(|e| e.neighbour_lists());
+        assert_eq!(on, Ok(true), "{}", s.name);
+        let r = oracle(s.state(), lists, s.name, 10_000);
+        println!(
+            "{}: {} pair + {} wall events to t = {:.3}, {} ties, max |Δt| = {:e}",
+            s.name, r.pairs, r.walls, r.end_time, r.ties, r.max_time_error
+        );
+        assert_eq!(r.pairs + r.walls, 10_000);
+        assert!(r.pairs > 0);
+        assert_eq!(r.walls > 0, s.walls.iter().any(|&w| w), "{}", s.name);
     }
 }
 
