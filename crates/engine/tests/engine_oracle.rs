@@ -16,7 +16,8 @@
 mod engine_common;
 use carom_core::{Boundary, DVec2, SimBox, Species, WallSide};
 use carom_engine::{
-    box_size_for, Engine, EngineParams, Event, Placement, State, SystemSpec, Velocities,
+    box_size_for, Engine, EngineParams, Event, Neighbours, Placement, State, SystemSpec,
+    Velocities,
 };
 use engine_common::oracle::{earliest, Key, Oracle};
 use engine_common::{mixture, mono};
@@ -113,7 +114,7 @@ impl Comparison {
 
 /// Run the engine and the oracle side by side from `state` and compare them event by
 /// event (see the file's doc).
-fn compare(name: &str, state: State) -> Comparison {
+fn compare(name: &str, state: State, neighbours: Neighbours) -> Comparison {
     let mut oracle = Oracle::new(&state);
     let periodic = oracle.periodic;
     let (e0, p0) = oracle.energy_momentum();
@@ -126,7 +127,12 @@ fn compare(name: &str, state: State) -> Comparison {
     let v_rms = (oracle.vel.iter().map(|v| v.length_squared()).sum::<f64>()
         / oracle.vel.len() as f64)
         .sqrt();
-    let mut engine = Engine::new(state, EngineParams::default()).expect("engine");
+    let params = EngineParams {
+        neighbours,
+        ..EngineParams::default()
+    };
+    let mut engine = Engine::new(state, params).expect("engine");
+    assert_eq!(engine.neighbour_lists(), neighbours == Neighbours::Lists);
     let mut c = Comparison::default();
     let mut delta: f64 = 0.0;
     let drift = |e: f64, p: DVec2| {
@@ -222,9 +228,9 @@ fn systems() -> [(&'static str, Vec<Species>, [Boundary; 2]); 5] {
 }
 
 /// Compare, print the measurements and assert the file's criteria.
-fn check(name: &str, state: State) -> Comparison {
+fn check(name: &str, state: State, neighbours: Neighbours) -> Comparison {
     let n = state.len() as f64;
-    let c = compare(name, state);
+    let c = compare(name, state, neighbours);
     println!(
         "{name}: {} events agreed (stop: {}); divergence ≤ {:.1e} over the first \
          {ROUNDING_EVENTS}; first above 1e-12 / 1e-9 / 1e-6 at event {:?} / {:?} / {:?}; \
@@ -274,6 +280,21 @@ fn engine_follows_the_seed_physics() {
         check(
             &format!("{name} seed {seed}"),
             system(species, boundary, seed),
+            Neighbours::Cells,
+        );
+    }
+}
+
+/// The same on neighbour lists (engine::listed), for every system one cell grid
+/// serves (the mixture's sizes, 1 and 1.4, share one).
+#[test]
+fn engine_on_lists_follows_the_seed_physics() {
+    for (k, (name, species, boundary)) in systems().into_iter().enumerate() {
+        let seed = k as u64 + 1;
+        check(
+            &format!("{name} seed {seed}, lists"),
+            system(species, boundary, seed),
+            Neighbours::Lists,
         );
     }
 }
@@ -288,6 +309,7 @@ fn survey_of_horizons() {
                 check(
                     &format!("{name} seed {seed}"),
                     system(species.clone(), boundary, seed),
+                    Neighbours::Cells,
                 )
             })
             .collect();
