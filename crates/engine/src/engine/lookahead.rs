@@ -15,6 +15,7 @@
 use super::body::{Body, Pending};
 use super::Engine;
 use crate::cells::CellGrid;
+use crate::lists::Lists;
 use crate::memory::prefetch_at;
 use crate::NO_DISC;
 
@@ -45,6 +46,9 @@ impl Engine {
     /// that profiles show its share (inlining it made no measurable difference).
     #[inline(never)]
     pub(super) fn look_ahead(&self) {
+        if let Some(lists) = self.lists.as_deref() {
+            return self.look_ahead_listed(lists);
+        }
         let grids = &self.grids;
         // Each disc's blocks lie in the grid of its size class (the only one for
         // equal discs); the scans of other classes' grids are not fetched ahead.
@@ -92,6 +96,41 @@ impl Engine {
                 let p = b.partner as usize;
                 let grid = grid_of(&self.bodies[p]);
                 for_block(grid, self.bodies[p].link.coords(), fetch_first);
+            }
+        }
+    }
+}
+
+impl Engine {
+    /// [`Engine::look_ahead`] on neighbour lists (engine::listed): two buckets
+    /// ahead the disc's list line and its partner's record, one ahead the records
+    /// of its list's members, which its prediction will test.
+    fn look_ahead_listed(&self, lists: &Lists) {
+        let bodies = self.bodies.as_slice();
+        for d in self.queue.filed_ahead(bodies, 3) {
+            prefetch_at(&self.label, d as usize);
+        }
+        for d in self.queue.filed_ahead(bodies, 2) {
+            let b = &self.bodies[d as usize];
+            prefetch_at(&lists.lines, d as usize);
+            if b.pending == Pending::Pair {
+                let p = b.partner as usize;
+                prefetch_at(&self.bodies, p);
+                prefetch_at(&self.label, p);
+                prefetch_at(&lists.lines, p);
+            }
+        }
+        for d in self.queue.filed_ahead(bodies, 1) {
+            for (j, _) in lists.lines[d as usize].members() {
+                prefetch_at(&self.bodies, j as usize);
+            }
+        }
+        for d in self.queue.in_current_bucket(bodies) {
+            let b = &self.bodies[d as usize];
+            if b.pending == Pending::Pair {
+                for (j, _) in lists.lines[b.partner as usize].members() {
+                    prefetch_at(&self.bodies, j as usize);
+                }
             }
         }
     }
