@@ -48,10 +48,10 @@ impl Neighbours {
     }
 }
 
-/// The packing fraction from which [`Neighbours::Auto`] chooses lists (where
-/// Smallenburg's counts and carom's measured rates cross; docs/performance.md,
-/// "neighbour lists").
-pub const LISTS_FROM_PACKING: f64 = 0.6;
+/// The packing fraction from which [`Neighbours::Auto`] chooses lists: where
+/// the two paths' instructions per collision cross (η ≈ 0.665 at N = 10⁴;
+/// docs/performance.md, "neighbour lists").
+pub const LISTS_FROM_PACKING: f64 = 0.66;
 
 /// The most members a list holds. A list that would hold more sends the engine
 /// back to the cell path for the rest of the run (deterministically).
@@ -178,11 +178,13 @@ impl Lists {
     }
 }
 
-/// The skin of discs of largest contact distance `sigma` (length): 0.3 σ, where
-/// Smallenburg's code measured its best rate at η = 0.7–0.72 (docs/performance.md,
-/// "where a dense collision's time goes").
+/// The skin of discs of largest contact distance `sigma` (length): 0.35 σ, a
+/// list radius of 1.7 σ. Larger skins need fewer updates but hold more members:
+/// 0.35 σ gave the fewest instructions per collision at η = 0.7–0.72 of the skins
+/// whose lists never overflowed up to η = 0.85 (docs/performance.md, "neighbour
+/// lists").
 pub(crate) fn skin_for(sigma: f64) -> f64 {
-    0.3 * sigma
+    0.35 * sigma
 }
 
 /// The list radius R = σ + 2 s + δ for contact distance `sigma` and skin `skin`;

@@ -18,7 +18,8 @@ use super::predict::{neighbour, test_pair, Found, Scanner};
 use super::Engine;
 use crate::classes::Grids;
 use crate::lists::{
-    list_radius, mirror, skin_for, Line, Lists, Neighbours, LISTS_FROM_PACKING, MAX_DISCS,
+    list_radius, mirror, skin_for, Line, Lists, Neighbours, CAPACITY, LISTS_FROM_PACKING,
+    MAX_DISCS,
 };
 use crate::{EngineError, EngineParams, NO_DISC};
 use carom_core::boundary::wall_time;
@@ -119,17 +120,11 @@ impl Engine {
             let c = grids.first.coords_of(centres[i]);
             grids.first.insert(&mut bodies, i as u32, c);
         }
-        let mut found = Vec::new();
         for i in 0..self.len() {
-            found.clear();
-            block_members(&grids, &bodies, &lists, i, &mut found);
-            for &(j, code) in &found {
-                if !lists.lines[i].insert(j, code) {
-                    return Err(format!(
-                        "the list of disc {i} would hold more than {} discs",
-                        crate::lists::CAPACITY
-                    ));
-                }
+            let full = || format!("the list of disc {i} would hold more than {CAPACITY} discs");
+            let found = block_members(&grids, &bodies, &lists, i).ok_or_else(full)?;
+            for &(j, code) in found.iter() {
+                lists.lines[i].insert(j, code);
             }
         }
         self.bodies = bodies;
@@ -247,13 +242,14 @@ impl Engine {
         grid.remove(&mut self.bodies, i as u32);
         let c = grid.coords_of(centre);
         grid.insert(&mut self.bodies, i as u32, c);
-        let mut found = Vec::with_capacity(16);
-        block_members(&self.grids, &self.bodies, lists, i, &mut found);
-        for &(j, code) in &found {
+        let Some(found) = block_members(&self.grids, &self.bodies, lists, i) else {
+            return self.leave_lists();
+        };
+        for &(j, code) in found.iter() {
             let lines = &mut lists.lines;
-            if !(lines[i].insert(j, code) && lines[j as usize].insert(i as u32, mirror(code))) {
-                self.leave_lists();
-                return;
+            lines[i].insert(j, code);
+            if !lines[j as usize].insert(i as u32, mirror(code)) {
+                return self.leave_lists();
             }
         }
         self.predict_listed::<Listed>(i);
@@ -294,21 +290,38 @@ impl Engine {
     }
 }
 
+/// The discs a list gets, each with the image code through which it is seen
+/// (at most [`CAPACITY`]).
+struct Members {
+    len: usize,
+    found: [(u32, u8); CAPACITY],
+}
+
+impl Members {
+    fn iter(&self) -> impl Iterator<Item = &(u32, u8)> {
+        self.found[..self.len].iter()
+    }
+}
+
 /// The discs whose centres lie within the list radius of disc `i`'s centre, each
 /// with the image code through which it is seen: the discs of the 3 × 3 block of
 /// cells around `i`'s cell in the grid of centres, tested with d = (c_j − c_i) +
-/// shift, which is exactly −d seen from j, so that the lists are symmetric.
+/// shift, which is exactly −d seen from j, so that the lists are symmetric;
+/// `None` if there are more than [`CAPACITY`].
 fn block_members(
     grids: &Grids,
     bodies: &[super::body::Body],
     lists: &Lists,
     i: usize,
-    out: &mut Vec<(u32, u8)>,
-) {
+) -> Option<Members> {
     let grid = &grids.first;
     let c = bodies[i].link.coords();
     let ci = lists.lines[i].centre;
     let r2 = lists.radius * lists.radius;
+    let mut out = Members {
+        len: 0,
+        found: [(0, 0); CAPACITY],
+    };
     for oy in -1..=1 {
         let Some((cy, sy)) = neighbour(c[1], oy, grid.n[1], grid.periodic[1]) else {
             continue;
@@ -324,11 +337,16 @@ fn block_members(
                 if j as usize != i {
                     let d = (lists.lines[j as usize].centre - ci) + shift;
                     if d.length_squared() < r2 {
-                        out.push((j, code.code()));
+                        if out.len == CAPACITY {
+                            return None;
+                        }
+                        out.found[out.len] = (j, code.code());
+                        out.len += 1;
                     }
                 }
                 j = bodies[j as usize].link.next;
             }
         }
     }
+    Some(out)
 }
