@@ -174,16 +174,28 @@ mod tests {
         let t = exit_time(DVec2::new(0.29, 0.0), DVec2::new(-1.0, 0.0), 0.3);
         assert!((t - 0.59).abs() < 1e-15, "{t}");
         // On or beyond the circle: now; at rest: never.
-        assert_eq!(exit_time(DVec2::new(0.3, 0.0), DVec2::new(-1.0, 0.0), 0.3), 0.0);
-        assert_eq!(exit_time(DVec2::new(0.0, 0.31), DVec2::new(1.0, 0.0), 0.3), 0.0);
-        assert_eq!(exit_time(DVec2::new(0.1, 0.0), DVec2::ZERO, 0.3), f64::INFINITY);
+        assert_eq!(
+            exit_time(DVec2::new(0.3, 0.0), DVec2::new(-1.0, 0.0), 0.3),
+            0.0
+        );
+        assert_eq!(
+            exit_time(DVec2::new(0.0, 0.31), DVec2::new(1.0, 0.0), 0.3),
+            0.0
+        );
+        assert_eq!(
+            exit_time(DVec2::new(0.1, 0.0), DVec2::ZERO, 0.3),
+            f64::INFINITY
+        );
         // The root lies on the circle, for random-looking directions and starts.
         for k in 0..200 {
             let a = k as f64 * 0.7;
             let d = DVec2::new(0.2 * (1.3 * a).cos(), 0.2 * (0.9 * a).sin());
             let v = DVec2::new(a.cos(), a.sin()) * (0.5 + k as f64 * 0.01);
             let t = exit_time(d, v, 0.3);
-            assert!(t > 0.0 && ((d + v * t).length() - 0.3).abs() < 1e-15, "{k}: {t}");
+            assert!(
+                t > 0.0 && ((d + v * t).length() - 0.3).abs() < 1e-15,
+                "{k}: {t}"
+            );
         }
     }
 

@@ -58,6 +58,10 @@ fn main() {
         e.heap_bytes() as f64 / n as f64
     );
     println!("final state hash {h:016x} at t = {}", state.time);
-    let search = if e.neighbour_lists() { "neighbour lists" } else { "cells" };
+    let search = if e.neighbour_lists() {
+        "neighbour lists"
+    } else {
+        "cells"
+    };
     println!("neighbour search at the end: {search}");
 }

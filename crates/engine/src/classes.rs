@@ -96,7 +96,13 @@ impl Grids {
     /// One grid for all discs, of cells at least `min_width` wide (length), for
     /// `discs` discs of largest radius `radius`: the grid of list centres
     /// (engine::listed).
-    pub fn one(sim_box: &SimBox, species: usize, radius: f64, min_width: f64, discs: usize) -> Grids {
+    pub fn one(
+        sim_box: &SimBox,
+        species: usize,
+        radius: f64,
+        min_width: f64,
+        discs: usize,
+    ) -> Grids {
         Grids {
             first: CellGrid::new(sim_box, min_width, discs),
             rest: Vec::new(),

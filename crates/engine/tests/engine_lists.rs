@@ -74,7 +74,11 @@ fn groups(e: &mut Engine, n: usize) -> Vec<(Vec<(u32, u32)>, f64)> {
 /// that only after many collisions per disc).
 #[test]
 fn lists_and_cells_give_the_same_events() {
-    for (boundary, name) in [(PERIODIC, "periodic"), (WALLED, "walled"), (CHANNEL, "channel")] {
+    for (boundary, name) in [
+        (PERIODIC, "periodic"),
+        (WALLED, "walled"),
+        (CHANNEL, "channel"),
+    ] {
         for eta in [0.5, 0.7] {
             let state = fluid(400, eta, 5, boundary);
             let mut cells = Engine::new(state.clone(), params(Neighbours::Cells)).unwrap();
@@ -126,7 +130,10 @@ fn a_long_dense_run_on_lists_keeps_every_invariant() {
     checker.check_overlaps(&e).unwrap();
     assert!(e.kinetic_energy() < 0.5 * k0 && e.kinetic_energy() > 0.0);
     let lost = k0 - e.kinetic_energy();
-    assert!((lost - e.stats().energy_lost).abs() < 1e-9 * k0, "the totals say what was lost");
+    assert!(
+        (lost - e.stats().energy_lost).abs() < 1e-9 * k0,
+        "the totals say what was lost"
+    );
 }
 
 /// A checkpoint on lists stores the centres; an engine restored from it is on
@@ -163,7 +170,10 @@ fn a_checkpoint_with_bad_centres_is_refused() {
     let mut cp = good.clone();
     cp.lists.as_mut().unwrap().centres[7].x += 0.5;
     let err = Engine::from_checkpoint(cp).unwrap_err().to_string();
-    assert!(err.contains("lists: disc 7") && err.contains("skin"), "{err}");
+    assert!(
+        err.contains("lists: disc 7") && err.contains("skin"),
+        "{err}"
+    );
     let mut cp = good.clone();
     cp.lists.as_mut().unwrap().centres.pop();
     let err = Engine::from_checkpoint(cp).unwrap_err().to_string();
@@ -178,10 +188,22 @@ fn a_checkpoint_with_bad_centres_is_refused() {
 #[test]
 fn the_path_is_chosen_from_the_configuration() {
     let on = |state: State, p: EngineParams| Engine::new(state, p).map(|e| e.neighbour_lists());
-    assert_eq!(on(fluid(400, 0.7, 1, PERIODIC), params(Neighbours::Auto)), Ok(true));
-    assert_eq!(on(fluid(400, 0.5, 1, PERIODIC), params(Neighbours::Auto)), Ok(false));
-    assert_eq!(on(fluid(400, 0.5, 1, PERIODIC), params(Neighbours::Lists)), Ok(true));
-    assert_eq!(on(fluid(400, 0.7, 1, PERIODIC), params(Neighbours::Cells)), Ok(false));
+    assert_eq!(
+        on(fluid(400, 0.7, 1, PERIODIC), params(Neighbours::Auto)),
+        Ok(true)
+    );
+    assert_eq!(
+        on(fluid(400, 0.5, 1, PERIODIC), params(Neighbours::Auto)),
+        Ok(false)
+    );
+    assert_eq!(
+        on(fluid(400, 0.5, 1, PERIODIC), params(Neighbours::Lists)),
+        Ok(true)
+    );
+    assert_eq!(
+        on(fluid(400, 0.7, 1, PERIODIC), params(Neighbours::Cells)),
+        Ok(false)
+    );
     // In a field: cells, and lists refused.
     let walled = fluid(400, 0.7, 1, WALLED);
     let g = |n| EngineParams {
@@ -194,8 +216,14 @@ fn the_path_is_chosen_from_the_configuration() {
     assert!(err.to_string().contains("gravity"), "{err}");
     // A box too narrow for three list cells (16 discs at η = 0.7: L ≈ 4.2).
     let err = Engine::new(fluid(16, 0.7, 1, PERIODIC), params(Neighbours::Lists)).unwrap_err();
-    assert!(err.to_string().contains("fewer than three list cells"), "{err}");
-    assert_eq!(on(fluid(16, 0.7, 1, PERIODIC), params(Neighbours::Auto)), Ok(false));
+    assert!(
+        err.to_string().contains("fewer than three list cells"),
+        "{err}"
+    );
+    assert_eq!(
+        on(fluid(16, 0.7, 1, PERIODIC), params(Neighbours::Auto)),
+        Ok(false)
+    );
     // A mixture whose sizes need a grid each.
     let species = vec![Species::new(2000, 0.5, 1.0), Species::new(10, 5.0, 100.0)];
     let spec = SystemSpec {

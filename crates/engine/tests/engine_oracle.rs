@@ -16,8 +16,7 @@
 mod engine_common;
 use carom_core::{Boundary, DVec2, SimBox, Species, WallSide};
 use carom_engine::{
-    box_size_for, Engine, EngineParams, Event, Neighbours, Placement, State, SystemSpec,
-    Velocities,
+    box_size_for, Engine, EngineParams, Event, Neighbours, Placement, State, SystemSpec, Velocities,
 };
 use engine_common::oracle::{earliest, Key, Oracle};
 use engine_common::{mixture, mono};

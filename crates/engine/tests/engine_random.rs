@@ -244,7 +244,10 @@ fn random_systems_on_lists_keep_every_invariant() {
     }
     assert!(failures.is_empty(), "on lists:\n{}", failures.join("\n"));
     eprintln!("{on_lists} of {CASES} random systems ran on lists");
-    assert!(on_lists >= CASES / 4, "only {on_lists} systems could use lists");
+    assert!(
+        on_lists >= CASES / 4,
+        "only {on_lists} systems could use lists"
+    );
 }
 
 /// Cases run by [`random_systems_resume_bit_identically`].
@@ -259,8 +262,8 @@ const RESUME_CASES: u64 = 150;
 fn random_systems_resume_bit_identically() {
     let mut compared = 0;
     let mut on_lists = 0;
-    for (case, neighbours) in (0..RESUME_CASES)
-        .flat_map(|c| [(c, Neighbours::Auto), (c, Neighbours::Lists)])
+    for (case, neighbours) in
+        (0..RESUME_CASES).flat_map(|c| [(c, Neighbours::Auto), (c, Neighbours::Lists)])
     {
         let (spec, params) = draw(case);
         let Ok(state) = spec.build() else { continue };

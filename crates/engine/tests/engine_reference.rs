@@ -17,8 +17,8 @@ use carom_core::collision::resolve;
 use carom_core::kinematics::contact_time;
 use carom_core::{Axis, DVec2, Restitution, Species};
 use carom_engine::{
-    box_size_for, Engine, EngineError, EngineParams, Event, Neighbours, Placement, State, SystemSpec,
-    Velocities,
+    box_size_for, Engine, EngineError, EngineParams, Event, Neighbours, Placement, State,
+    SystemSpec, Velocities,
 };
 use engine_common::draw_dynamics;
 
@@ -482,11 +482,46 @@ fn run_oracle(systems: &[System]) {
 #[test]
 fn oracle_on_neighbour_lists() {
     let systems = [
-        sys("lists periodic mono N=100 η=0.7", mono(100), 0.7, 1.0, PERIODIC, 41),
-        sys("lists periodic mono N=40 η=0.35", mono(40), 0.35, 1.0, PERIODIC, 42),
-        sys("lists walled mono N=100 η=0.72", mono(100), 0.72, 1.0, WALLED, 43),
-        sys("lists channel mono N=60 η=0.45", mono(60), 0.45, 1.5, CHANNEL, 44),
-        sys("lists periodic mix 40+10 η=0.4", mixture(40, 10), 0.4, 1.0, PERIODIC, 45),
+        sys(
+            "lists periodic mono N=100 η=0.7",
+            mono(100),
+            0.7,
+            1.0,
+            PERIODIC,
+            41,
+        ),
+        sys(
+            "lists periodic mono N=40 η=0.35",
+            mono(40),
+            0.35,
+            1.0,
+            PERIODIC,
+            42,
+        ),
+        sys(
+            "lists walled mono N=100 η=0.72",
+            mono(100),
+            0.72,
+            1.0,
+            WALLED,
+            43,
+        ),
+        sys(
+            "lists channel mono N=60 η=0.45",
+            mono(60),
+            0.45,
+            1.5,
+            CHANNEL,
+            44,
+        ),
+        sys(
+            "lists periodic mix 40+10 η=0.4",
+            mixture(40, 10),
+            0.4,
+            1.0,
+            PERIODIC,
+            45,
+        ),
     ];
     let lists = EngineParams {
         neighbours: Neighbours::Lists,

@@ -18,8 +18,7 @@ use super::predict::{neighbour, test_pair, Found, Scanner};
 use super::Engine;
 use crate::classes::Grids;
 use crate::lists::{
-    list_radius, mirror, skin_for, Line, Lists, Neighbours, CAPACITY, LISTS_FROM_PACKING,
-    MAX_DISCS,
+    list_radius, mirror, skin_for, Line, Lists, Neighbours, CAPACITY, LISTS_FROM_PACKING, MAX_DISCS,
 };
 use crate::{EngineError, EngineParams, NO_DISC};
 use carom_core::boundary::wall_time;
@@ -39,8 +38,7 @@ fn refusal(
     let sigma = 2.0 * grids.radius.iter().copied().fold(0.0, f64::max);
     let r = list_radius(sigma, skin_for(sigma));
     let narrow = (0..2).find(|&k| {
-        sim_box.boundary[k].is_periodic()
-            && crate::cells::CellGrid::shape(sim_box, r, n)[k] < 3
+        sim_box.boundary[k].is_periodic() && crate::cells::CellGrid::shape(sim_box, r, n)[k] < 3
     });
     if params.gravity != 0.0 {
         Some("with gravity (lists need straight flights)".into())
@@ -173,7 +171,16 @@ impl Engine {
                 ri: ri - lists.shifts[code as usize],
             };
             let bj = &self.bodies[j as usize];
-            test_pair::<M>(&me, &self.species, j, bj, now, law, Image::from_code(code), &mut found);
+            test_pair::<M>(
+                &me,
+                &self.species,
+                j,
+                bj,
+                now,
+                law,
+                Image::from_code(code),
+                &mut found,
+            );
         }
         let boundary = M::boundary_event(self, i, ri, bi.v);
         self.file_event::<M>(i, &found, boundary);

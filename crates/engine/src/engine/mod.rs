@@ -32,9 +32,9 @@ mod thermostat;
 use crate::cells::Link;
 use crate::classes::Grids;
 use crate::error::EngineError;
-use crate::lists::{Lists, Neighbours};
 #[allow(unused_imports)]
 use crate::lists::LISTS_FROM_PACKING;
+use crate::lists::{Lists, Neighbours};
 use crate::memory;
 use crate::queue::{EventQueue, Time};
 use crate::state::State;

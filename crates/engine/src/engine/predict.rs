@@ -184,8 +184,14 @@ impl Engine {
         let partner_count = self.bodies[(found.partner as usize).min(self.bodies.len() - 1)].count;
         let pair = found.best < boundary;
         count!(FiledPair, pair);
-        count!(FiledCell, !pair && matches!(kind, Pending::Cell | Pending::Skin));
-        count!(FiledOther, !pair && !matches!(kind, Pending::Cell | Pending::Skin));
+        count!(
+            FiledCell,
+            !pair && matches!(kind, Pending::Cell | Pending::Skin)
+        );
+        count!(
+            FiledOther,
+            !pair && !matches!(kind, Pending::Cell | Pending::Skin)
+        );
         let b = &mut self.bodies[i];
         b.partner = found.partner;
         b.partner_count =
