@@ -11,7 +11,7 @@ use std::sync::OnceLock;
 use std::time::{Duration, Instant};
 
 use carom_config::{load_config, ConfigError};
-use carom_engine::{Placement, PlacementProgress};
+use carom_engine::{Engine, Placement, PlacementProgress};
 use carom_log::{ReadProgress, Stop, StopReason};
 use carom_run::{Control, Observer, Progress, ResumeOptions, ResumePass, RunError, RunSummary};
 
@@ -217,8 +217,10 @@ pub fn run(args: RunArgs) -> Result<ExitCode, CliError> {
     }
     let mut progress = |p: &Progress| display.borrow_mut().update(p);
     let mut placing = |p: &PlacementProgress| display.borrow_mut().placing(p);
+    let mut started = |e: &Engine| display.borrow().started(e);
     let control = Control {
         placing: Some(&mut placing),
+        started: Some(&mut started),
         ignore_disk_estimate: args.ignore_disk_estimate,
         observer: live.as_mut().map(|l| l as &mut dyn Observer),
         ..Control::new(&STOP, &mut progress)
@@ -261,7 +263,7 @@ pub fn resume(args: ResumeArgs) -> Result<ExitCode, CliError> {
     }
     let mut live = args.live.start()?;
     install_ctrlc();
-    let mut display = Display::new(args.quiet, &out);
+    let display = Display::new(args.quiet, &out);
     // Reading the input (the whole log, then most of it again to copy it) comes
     // first, with a display of its own that ends when the run's begins.
     let reads = RefCell::new(Some(ReadDisplay::new(
@@ -283,9 +285,14 @@ pub fn resume(args: ResumeArgs) -> Result<ExitCode, CliError> {
             r.update(p);
         }
     };
+    let display = RefCell::new(display);
+    let mut started = |e: &Engine| {
+        end_reads();
+        display.borrow().started(e)
+    };
     let mut progress = |p: &Progress| {
         end_reads();
-        display.update(p)
+        display.borrow_mut().update(p)
     };
     let summary = carom_run::resume(
         &args.file,
@@ -293,6 +300,7 @@ pub fn resume(args: ResumeArgs) -> Result<ExitCode, CliError> {
         &ResumeOptions { stop },
         Control {
             reading: Some(&mut reading),
+            started: Some(&mut started),
             ignore_disk_estimate: args.ignore_disk_estimate,
             observer: live.as_mut().map(|l| l as &mut dyn Observer),
             ..Control::new(&STOP, &mut progress)
@@ -300,7 +308,7 @@ pub fn resume(args: ResumeArgs) -> Result<ExitCode, CliError> {
     );
     drop(live);
     end_reads();
-    display.finish();
+    display.borrow().finish();
     // A resume builds no initial state, from no configuration.
     Ok(report(&summary.map_err(|e| run_error(e, None))?))
 }

@@ -1,12 +1,14 @@
 //! The progress of `carom run` and `carom resume`: an indicatif bar on a
 //! terminal, a plain line every `PLAIN_EVERY` otherwise, nothing with `--quiet`;
-//! the placement spinner; and the warning when the log will outgrow its disk.
+//! the placement spinner; the line saying how the run is set up (the neighbour
+//! search in force) as its events begin; and the warning when the log will
+//! outgrow its disk.
 
 use std::io::IsTerminal;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
-use carom_engine::PlacementProgress;
+use carom_engine::{Engine, PlacementProgress};
 use carom_log::Stop;
 use carom_run::Bytes;
 use carom_run::Progress;
@@ -28,6 +30,20 @@ pub(super) struct Display {
     /// it will run out was given.
     log: PathBuf,
     warned_full: bool,
+}
+
+/// "N discs, neighbour search: neighbour lists" (or "cells, 64 × 64").
+fn setup_text(engine: &Engine) -> String {
+    let search = if engine.neighbour_lists() {
+        "neighbour lists".to_owned()
+    } else {
+        let [nx, ny] = engine.cells();
+        match engine.grid_count() {
+            1 => format!("cells, {nx} × {ny}"),
+            k => format!("cells, {k} grids, the first {nx} × {ny}"),
+        }
+    };
+    format!("{} discs, neighbour search: {search}", engine.len())
 }
 
 fn stop_text(s: &Stop) -> String {
@@ -134,6 +150,15 @@ impl Display {
     /// Whether nothing is shown (`--quiet`).
     pub(super) fn quiet(&self) -> bool {
         self.bar.is_none() && !self.plain
+    }
+
+    /// Say how the run is set up as its events begin: the discs and the
+    /// neighbour search in force (the configuration's `neighbours`, `"auto"`
+    /// decided by the engine).
+    pub(super) fn started(&self, engine: &Engine) {
+        if !self.quiet() {
+            self.say(&setup_text(engine));
+        }
     }
 
     /// Show how far relaxed placement has got; `p.close == 0` means it is done.

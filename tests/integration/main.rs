@@ -33,6 +33,7 @@ mod cli_figures;
 mod cli_floor;
 mod cli_gravity;
 mod cli_hardening;
+mod cli_neighbours;
 mod cli_one_writer;
 mod cli_render;
 mod cli_report_text;

@@ -83,6 +83,7 @@ fn wrong_types_name_the_field() {
         (r#"{"stop": {"duration": "long"}}"#, "stop.duration"),
         (r#"{"log": {"collisions": "yes"}}"#, "log.collisions"),
         (r#"{"log": {"compression": "gzip"}}"#, "log.compression"),
+        (r#"{"neighbours": "grid"}"#, "neighbours"),
     ];
     for (text, field) in cases {
         assert_eq!(field_of(text, &[]), field, "{text}");

@@ -19,6 +19,7 @@ mod floor;
 mod front;
 mod log_config;
 mod model;
+mod neighbours;
 mod old_log;
 mod resolve;
 mod schema;
@@ -33,6 +34,7 @@ pub use model::{
     GrowthConfig, PlacementConfig, SpeciesConfig, StopConfig, ThermostatConfig, VelocitiesConfig,
     DEFAULT_COUNT, DEFAULT_DURATION, DEFAULT_PACKING_FRACTION,
 };
+pub use neighbours::NeighboursConfig;
 pub use old_log::derive_facts_for_old_log;
 pub use schema::{config_schema, config_schema_json};
 
@@ -42,6 +44,8 @@ mod compression_tests;
 mod error_tests;
 #[cfg(test)]
 mod gravity_tests;
+#[cfg(test)]
+mod neighbours_tests;
 #[cfg(test)]
 mod schedule_tests;
 #[cfg(test)]

@@ -115,7 +115,7 @@ impl Config {
                 amplitude: fl.amplitude,
                 omega: std::f64::consts::TAU * fl.frequency,
             }),
-            neighbours: carom_engine::Neighbours::Auto,
+            neighbours: c.neighbours.neighbours(),
         };
         let mut log = c.log.options();
         if ((c.gravity > 0.0 || c.compression.is_some() || c.vibrating_floor.is_some())

@@ -26,6 +26,7 @@ impl Config {
         self.check_gravity()?;
         self.check_compression()?;
         self.check_floor()?;
+        self.check_neighbours()?;
         if self.log.collision_detail == Some(CollisionDetailConfig::Compact)
             && self.log.collision_every > 1
         {

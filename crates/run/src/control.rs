@@ -144,6 +144,10 @@ pub struct Control<'a> {
     pub ignore_disk_estimate: bool,
     /// Who watches the run while it runs (a live viewer), if anyone.
     pub observer: Option<&'a mut dyn Observer>,
+    /// Called once with the engine as the run's events begin (after placement,
+    /// or after a resume has read its input): for a front end to say how the
+    /// run is set up (`Engine::neighbour_lists`, the cells).
+    pub started: Option<&'a mut dyn FnMut(&Engine)>,
 }
 
 /// What [`resume`] is doing with its input before the run goes on.
@@ -177,6 +181,7 @@ impl Default for Control<'_> {
             progress_interval: Duration::from_millis(200),
             ignore_disk_estimate: false,
             observer: None,
+            started: None,
         }
     }
 }
@@ -193,6 +198,7 @@ impl<'a> Control<'a> {
             progress_interval: Duration::from_millis(200),
             ignore_disk_estimate: false,
             observer: None,
+            started: None,
         }
     }
 }
@@ -208,6 +214,7 @@ impl std::fmt::Debug for Control<'_> {
             .field("progress_interval", &self.progress_interval)
             .field("ignore_disk_estimate", &self.ignore_disk_estimate)
             .field("observer", &self.observer.is_some())
+            .field("started", &self.started.is_some())
             .finish()
     }
 }

@@ -444,6 +444,14 @@ impl Simulation {
         self.engine.stats().energy_lost
     }
 
+    /// Whether the engine finds partners on neighbour lists (`True`) or on the
+    /// cell grid (`False`): the configuration's `neighbours`, with `"auto"`
+    /// decided by the engine from the system alone (data/README.md).
+    #[getter]
+    fn neighbour_lists(&self) -> bool {
+        self.engine.neighbour_lists()
+    }
+
     /// Serve the simulation live at `live` (as `run`'s `live`: `True` for
     /// 127.0.0.1:8765, a port, 0 for any free one, or `"HOST:PORT"`), at most
     /// `rate` frames a second (default 10), from now on: later runs are served

@@ -158,6 +158,9 @@ impl<'a> Driver<'a> {
         let mut tick: u32 = 0;
         self.disk = DiskWatch::new(self.log_bytes());
         self.growth_seen = observe::growth_seen(&self.engine, self.run_start_time);
+        if let Some(started) = self.control.started.take() {
+            started(&self.engine);
+        }
         while reason.is_none() {
             if stop_flag.is_some_and(|f| f.load(Ordering::Relaxed)) {
                 reason = Some(StopReason::Interrupted);
