@@ -34,6 +34,27 @@ fn run_and_resume_say_which_neighbour_search_is_in_force() {
     );
     let stderr = run(&["run", "--quiet", "--out", "q.mcap"]);
     assert_eq!(setup_line(&stderr), None, "{stderr}");
+    // Lists where "auto" chooses them (η ≥ 0.66), and when asked for at η = 0.5.
+    let dense = ["--set", "box.packing_fraction=0.7"];
+    let stderr = run(&[&["run", "--out", "l.mcap"], &dense[..]].concat());
+    assert_eq!(
+        setup_line(&stderr),
+        Some("400 discs, neighbour search: neighbour lists"),
+        "{stderr}"
+    );
+    let out = carom(&dir, &["resume", "l.mcap", "--until", "2"]);
+    ok(&out);
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(
+        setup_line(&stderr),
+        Some("400 discs, neighbour search: neighbour lists"),
+        "a resume continues on the lists it left: {stderr}"
+    );
+    let stderr = run(&["run", "--out", "m.mcap", "--set", "neighbours=lists"]);
+    assert!(
+        setup_line(&stderr).is_some_and(|l| l.ends_with("neighbour lists")),
+        "{stderr}"
+    );
     // Cells when asked for, also where "auto" may choose lists.
     let stderr = run(&[
         "run",

@@ -114,11 +114,11 @@ pub struct Config {
     /// near it; fastest for dense fluids and crystals). Both give the same events
     /// up to rounding, and both are exact. `"auto"` chooses lists for dense equal
     /// discs flying straight (no gravity, compression or vibrating floor) from
-    /// packing fraction 0.6 (`carom_engine::LISTS_FROM_PACKING`), cells otherwise.
+    /// packing fraction 0.66 (`carom_engine::LISTS_FROM_PACKING`), cells otherwise.
     /// The choice never depends on timing, so a configuration and a seed give one
     /// trajectory. `"lists"` is refused with gravity, compression or a vibrating
     /// floor, and for a mixture that needs a cell grid per size class or a
-    /// periodic box less than about 4.8 largest diameters wide.
+    /// periodic box less than about 5.1 largest diameters wide.
     #[serde(default, skip_serializing_if = "NeighboursConfig::is_auto")]
     #[schemars(extend("default" = "auto"))]
     pub neighbours: NeighboursConfig,

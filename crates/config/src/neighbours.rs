@@ -19,7 +19,7 @@ use serde::{Deserialize, Serialize};
 pub enum NeighboursConfig {
     /// `"auto"`: neighbour lists for dense discs of equal size (or a mixture one
     /// cell grid serves) flying straight (no gravity, compression or vibrating
-    /// floor) from packing fraction `carom_engine::LISTS_FROM_PACKING` = 0.6,
+    /// floor) from packing fraction `carom_engine::LISTS_FROM_PACKING` = 0.66,
     /// cells otherwise.
     #[default]
     Auto,
@@ -29,7 +29,7 @@ pub enum NeighboursConfig {
     /// `"lists"`: neighbour lists with a skin; a disc looks at the discs listed
     /// near it, and leaving its skin is an event. Refused with gravity,
     /// compression or a vibrating floor, and by the engine for a mixture that
-    /// needs a grid per size class or a periodic box less than about 4.8 largest
+    /// needs a grid per size class or a periodic box less than about 5.1 largest
     /// diameters wide.
     Lists,
 }
