@@ -141,7 +141,8 @@ impl RunFacts {
             thermostat: self.thermostat.map(ThermostatJson::from),
             growth: self.growth.map(GrowthJson::from),
             floor: self.floor.map(FloorJson::from),
-            neighbours: (self.neighbours != Neighbours::Auto).then(|| self.neighbours.name().into()),
+            neighbours: (self.neighbours != Neighbours::Auto)
+                .then(|| self.neighbours.name().into()),
         };
         serde_json::to_value(wire).expect("the facts always serialise")
     }

@@ -31,7 +31,8 @@ pub(super) fn encode_neighbours(
 /// (for every record that stores the setting by name).
 pub(crate) fn neighbours_named(name: &str) -> Result<Neighbours, String> {
     Neighbours::from_name(name).ok_or_else(|| {
-        let allowed = [Neighbours::Auto, Neighbours::Cells, Neighbours::Lists].map(Neighbours::name);
+        let allowed =
+            [Neighbours::Auto, Neighbours::Cells, Neighbours::Lists].map(Neighbours::name);
         format!("unknown setting {name:?} (allowed: {})", allowed.join(", "))
     })
 }
@@ -94,6 +95,10 @@ pub(super) fn decode_neighbours(
             ));
         }
     }
-    let centres = x.into_iter().zip(y).map(|(a, b)| DVec2::new(a, b)).collect();
+    let centres = x
+        .into_iter()
+        .zip(y)
+        .map(|(a, b)| DVec2::new(a, b))
+        .collect();
     Ok((neighbours, Some(ListsCheckpoint { skin, centres })))
 }

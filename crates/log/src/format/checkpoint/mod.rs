@@ -19,12 +19,12 @@ mod schema;
 use super::cdr::CdrWriter;
 use super::snapshot::boundary_code;
 use calendar::encode_thermostat;
-use lists::encode_neighbours;
-pub(crate) use lists::neighbours_named;
 pub(crate) use calendar::scheduled_entries;
 use carom_core::vibrating_wall::Floor;
 use carom_core::{Boundary, Restitution};
 use carom_engine::Checkpoint;
+use lists::encode_neighbours;
+pub(crate) use lists::neighbours_named;
 pub use schema::{CHECKPOINT_FORMAT_VERSION, CHECKPOINT_MSG};
 
 /// The run driver's state at a checkpoint (what it needs, beyond the engine, to

@@ -215,7 +215,11 @@ fn on_lists() -> LogCheckpoint {
 /// length is that of the tail: the block starts 8-aligned in both).
 fn neighbour_block(lc: &LogCheckpoint) -> Vec<u8> {
     let mut w = CdrWriter::new();
-    encode_neighbours(&mut w, lc.engine.params.neighbours, lc.engine.lists.as_ref());
+    encode_neighbours(
+        &mut w,
+        lc.engine.params.neighbours,
+        lc.engine.lists.as_ref(),
+    );
     w.bytes()[4..].to_vec()
 }
 
@@ -272,13 +276,33 @@ fn a_format_5_checkpoint_reads_without_lists() {
 fn bad_neighbour_data_is_refused_naming_the_field() {
     type Spoil = fn(&mut ListsCheckpoint);
     let cases: [(Spoil, &str, &str); 7] = [
-        (|l| drop(l.centres.pop()), "lists_centre_x", "5 list centres for 6 discs"),
-        (|l| l.centres.push(DVec2::ZERO), "lists_centre_x", "7 list centres for 6 discs"),
-        (|l| l.skin = f64::NAN, "lists_skin", "skin NaN (allowed: 0 on the cell grid"),
+        (
+            |l| l.centres.truncate(5),
+            "lists_centre_x",
+            "5 list centres for 6 discs",
+        ),
+        (
+            |l| l.centres.push(DVec2::ZERO),
+            "lists_centre_x",
+            "7 list centres for 6 discs",
+        ),
+        (
+            |l| l.skin = f64::NAN,
+            "lists_skin",
+            "skin NaN (allowed: 0 on the cell grid",
+        ),
         (|l| l.skin = f64::INFINITY, "lists_skin", "skin inf"),
         (|l| l.skin = -0.25, "lists_skin", "skin -0.25"),
-        (|l| l.centres[3].x = f64::NEG_INFINITY, "lists_centre_x", "slot 3 is -inf"),
-        (|l| l.centres[4].y = f64::NAN, "lists_centre_y", "slot 4 is NaN"),
+        (
+            |l| l.centres[3].x = f64::NEG_INFINITY,
+            "lists_centre_x",
+            "slot 3 is -inf",
+        ),
+        (
+            |l| l.centres[4].y = f64::NAN,
+            "lists_centre_y",
+            "slot 4 is NaN",
+        ),
     ];
     let refused = |lc: &LogCheckpoint| {
         let mut w = CdrWriter::new();
@@ -300,7 +324,10 @@ fn bad_neighbour_data_is_refused_naming_the_field() {
     lc.engine.lists.as_mut().unwrap().skin = 0.0;
     let (f, problem) = refused(&lc);
     assert_eq!(f, "lists_centre_x");
-    assert!(problem.contains("6 list centres, but `lists_skin` is 0"), "{problem}");
+    assert!(
+        problem.contains("6 list centres, but `lists_skin` is 0"),
+        "{problem}"
+    );
     // An unknown setting: "lists" spelt "lisps" in the bytes.
     let lc = on_lists();
     let mut w = CdrWriter::new();
