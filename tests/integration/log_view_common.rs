@@ -201,7 +201,6 @@ pub fn checkpoint(cp: &LogCheckpoint) -> Value {
     } = cp;
     // Alphabetical: the order does not matter, only that every field is named.
     let carom_engine::Checkpoint {
-        lists: _,
         cell,
         cell_head,
         cell_next,
@@ -215,6 +214,7 @@ pub fn checkpoint(cp: &LogCheckpoint) -> Value {
         images,
         labels,
         last_collision,
+        lists,
         next_reorder,
         next_seq,
         now,
@@ -239,7 +239,7 @@ pub fn checkpoint(cp: &LogCheckpoint) -> Value {
         gravity,
         growth: gp,
         floor,
-        neighbours: _,
+        neighbours,
     } = params;
     let carom_engine::Stats {
         pair_collisions,
@@ -255,6 +255,11 @@ pub fn checkpoint(cp: &LogCheckpoint) -> Value {
         Restitution::Elastic => (0, 1.0),
         Restitution::CentreOfMass(r) => (1, r),
         Restitution::Normal(e) => (2, e),
+    };
+    // On the cell grid: skin 0 and no list centres.
+    let (skin, centres): (f64, &[DVec2]) = match lists {
+        None => (0.0, &[]),
+        Some(carom_engine::ListsCheckpoint { skin, centres }) => (*skin, centres),
     };
     let [(bx, ex), (by, ey)] = sim_box.boundary.map(|b| boundary(&b));
     let sp = |g: fn(&Species) -> f64| fs(species.iter().map(g));
@@ -330,6 +335,8 @@ pub fn checkpoint(cp: &LogCheckpoint) -> Value {
         "floor_amplitude": f(floor.map_or(0.0, |fl| fl.amplitude)),
         "floor_omega": f(floor.map_or(0.0, |fl| fl.omega)),
         "floor_origin": f(*floor_origin), "floor_work": f(*floor_work),
+        "neighbours": neighbours.name(), "lists_skin": f(skin),
+        "lists_centre_x": xs(centres), "lists_centre_y": ys(centres),
     });
     let mut all = state;
     all.as_object_mut()

@@ -254,9 +254,7 @@ impl<'a> CdrReader<'a> {
         self.array_into(field, n, out)
     }
 
-    /// Read a `string` (length with its terminating NUL, bytes, NUL). Only the
-    /// tests read strings: carom's readers skip `/scene`, the one channel with any.
-    #[cfg(test)]
+    /// Read a `string` (length with its terminating NUL, bytes, NUL).
     pub fn string(&mut self, field: &'static str) -> Result<String, CdrError> {
         let n = self.get::<u32>(field)? as usize;
         let raw = self.take(field, n)?;

@@ -7,15 +7,17 @@
 //! `n_discs`, `collision_every` (null when collisions are not logged) and
 //! `accessible_area`, the area disc centres can reach (physics.md §5); then
 //! `gravity` (only when not 0), `thermostat`, `growth` and `floor` (each only when
-//! the run had it; format 2.4 on, [`RunFacts::hold_dynamics`]). Every number is in
+//! the run had it; format 2.4 on, [`RunFacts::hold_dynamics`]), and `neighbours`
+//! (the setting's name, only when not auto; format 2.6 on). Every number is in
 //! shortest round-trip form. Logs of format ≤ 1.1 have no facts.
 
+use super::checkpoint::neighbours_named;
 use super::facts_dynamics::{FloorJson, GrowthJson, ThermostatJson};
 use crate::options::LogOptions;
 use carom_core::observables::{accessible_area, disc_count};
 use carom_core::vibrating_wall::Floor;
 use carom_core::{Boundary, DVec2, Restitution, SimBox, Species};
-use carom_engine::{EngineParams, Growth, Thermostat};
+use carom_engine::{EngineParams, Growth, Neighbours, Thermostat};
 use serde::{Deserialize, Serialize};
 use serde_json::Value;
 
@@ -47,6 +49,11 @@ pub struct RunFacts {
     pub growth: Option<Growth>,
     /// The vibrating floor (physics.md §18), if the run had one.
     pub floor: Option<Floor>,
+    /// How the engine was told to find the discs a disc may meet (auto, cells or
+    /// lists; docs/performance.md, "neighbour lists"). In the JSON only when not
+    /// auto (`"neighbours"`, the setting's name), so facts without it, those of
+    /// logs before format 2.6 too, read auto.
+    pub neighbours: Neighbours,
 }
 
 /// The first log format whose facts hold the thermostat, growth and floor.
@@ -73,6 +80,7 @@ impl RunFacts {
             thermostat: None,
             growth: (params.growth.rate != 0.0).then_some(params.growth),
             floor: params.floor,
+            neighbours: params.neighbours,
         }
     }
 
@@ -133,6 +141,8 @@ impl RunFacts {
             thermostat: self.thermostat.map(ThermostatJson::from),
             growth: self.growth.map(GrowthJson::from),
             floor: self.floor.map(FloorJson::from),
+            neighbours: (self.neighbours != Neighbours::Auto)
+                .then(|| self.neighbours.name().into()),
         };
         serde_json::to_value(wire).expect("the facts always serialise")
     }
@@ -176,6 +186,10 @@ impl RunFacts {
             thermostat: w.thermostat.map(Thermostat::from),
             growth: w.growth.map(Growth::from),
             floor: w.floor.map(Floor::from),
+            neighbours: match &w.neighbours {
+                None => Neighbours::Auto,
+                Some(name) => neighbours_named(name).map_err(|e| format!("neighbours: {e}"))?,
+            },
         })
     }
 }
@@ -203,6 +217,8 @@ struct FactsJson {
     growth: Option<GrowthJson>,
     #[serde(default, skip_serializing_if = "Option::is_none")]
     floor: Option<FloorJson>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    neighbours: Option<String>,
 }
 
 /// Whether `x` is 0 (gravity left out of the JSON).
@@ -336,13 +352,13 @@ mod tests {
             &LogOptions::default(),
         );
         let v = plain.to_json();
-        for key in ["gravity", "thermostat", "growth", "floor"] {
+        for key in ["gravity", "thermostat", "growth", "floor", "neighbours"] {
             assert!(v.get(key).is_none(), "{key} in {v}");
         }
         let back = RunFacts::from_json(&v).unwrap();
         assert_eq!(
-            (back.thermostat, back.growth, back.floor),
-            (None, None, None)
+            (back.thermostat, back.growth, back.floor, back.neighbours),
+            (None, None, None, Neighbours::Auto)
         );
         assert_eq!(back.to_json().to_string(), v.to_string());
         let growth = Growth {
@@ -395,6 +411,42 @@ mod tests {
         let mut bad = v.clone();
         bad["thermostat"]["xi2"] = serde_json::json!(1.0);
         assert!(RunFacts::from_json(&bad).is_err());
+    }
+
+    /// The neighbour setting round-trips by name (auto left out), and an unknown
+    /// name is refused, saying what is allowed.
+    #[test]
+    fn the_neighbour_setting_round_trips_by_name() {
+        let species = [Species::new(40, 0.5, 1.0)];
+        let sim_box = SimBox::walled(10.0, 30.0, 1.0);
+        for (neighbours, json) in [
+            (Neighbours::Auto, None),
+            (Neighbours::Cells, Some("cells")),
+            (Neighbours::Lists, Some("lists")),
+        ] {
+            let params = EngineParams {
+                neighbours,
+                ..EngineParams::default()
+            };
+            let f = RunFacts::new(&species, &sim_box, &params, &LogOptions::default());
+            let v = f.to_json();
+            assert_eq!(v.get("neighbours").and_then(Value::as_str), json);
+            let back = RunFacts::from_json(&v).unwrap();
+            assert_eq!(back.neighbours, neighbours);
+            assert_eq!(back, f);
+        }
+        let mut bad = RunFacts::new(
+            &species,
+            &sim_box,
+            &EngineParams::default(),
+            &LogOptions::default(),
+        )
+        .to_json();
+        bad["neighbours"] = serde_json::json!("grid");
+        assert_eq!(
+            RunFacts::from_json(&bad).unwrap_err(),
+            "neighbours: unknown setting \"grid\" (allowed: auto, cells, lists)"
+        );
     }
 
     #[test]

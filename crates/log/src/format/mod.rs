@@ -89,9 +89,12 @@ pub const METADATA_SUMMARY: &str = "carom.summary";
 /// run had it; older facts read without them. 2.5: every scheduled-event tag is
 /// the caller's; a `/checkpoint` with a thermostat stores its next event as the
 /// last scheduled entry of tag u64::MAX − 1 (layout unchanged; older checkpoints
-/// read by the same rule, see `checkpoint::calendar`). Readers accept 1.x (full
+/// read by the same rule, see `checkpoint::calendar`). 2.6: `/checkpoint`
+/// (`format_version` 6) stores the neighbour setting and, on neighbour lists,
+/// their skin and centres, and `run_facts` the setting when not auto; older
+/// checkpoints and facts read auto, without lists. Readers accept 1.x (full
 /// records) and 2.x.
-pub const LOG_FORMAT_VERSION: &str = "2.5";
+pub const LOG_FORMAT_VERSION: &str = "2.6";
 
 /// Major versions of the log format this carom reads.
 pub const READABLE_MAJOR_VERSIONS: [&str; 2] = ["1", "2"];

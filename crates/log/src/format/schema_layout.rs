@@ -6,7 +6,8 @@
 //! directions: carom's encoder against this decoder, this encoder against carom's
 //! decoder. A field written in the wrong place or type, or two fields swapped
 //! consistently in carom's writer and reader (which a round trip cannot see),
-//! fails here. Every value in the samples is distinct, so a swap shows.
+//! fails here. Every value in the samples is distinct, so a swap shows. A
+//! `string` is its bytes with the terminating NUL, as CDR stores it (a `uint8[]`).
 //! (A unit test: carom's `CdrWriter` is crate-private.)
 
 use super::cdr::{CdrError, CdrWriter};
@@ -44,6 +45,7 @@ fn parse_schema(schema: &str) -> Vec<Field> {
         .map(|l| {
             let (ty, name) = l.split_once(char::is_whitespace).unwrap();
             let (ty, shape) = match ty.split_once('[') {
+                None if ty == "string" => ("uint8", Some(None)),
                 None => (ty, None),
                 Some((t, "]")) => (t, Some(None)),
                 Some((t, n)) => (t, Some(Some(n.trim_end_matches(']').parse().unwrap()))),
@@ -350,7 +352,7 @@ fn checkpoint_fields(c: &LogCheckpoint) -> Values {
     let sched = super::checkpoint::scheduled_entries(e);
     named(
         vec![
-            ("format_version", vec![5]),
+            ("format_version", vec![6]),
             ("run_start_time", f([d.run_start_time])),
             ("logged_collisions", vec![d.logged_collisions]),
             ("next_sequence", u(d.next_sequence)),
@@ -416,6 +418,7 @@ fn checkpoint_fields(c: &LogCheckpoint) -> Values {
         .chain(thermostat_fields(e.thermostat))
         .chain(growth_fields(&e.params.growth, &e.growth))
         .chain(floor_fields(e))
+        .chain(neighbour_fields(e))
         .collect::<Vec<_>>(),
     )
 }
@@ -487,6 +490,22 @@ fn floor_fields(e: &carom_engine::Checkpoint) -> Vec<(&'static str, Vec<u64>)> {
     ]
 }
 
+/// The neighbour search's fields by schema name (format 6 on): the setting's
+/// name as a CDR string, and the lists (skin 0, no centres on the cell grid).
+fn neighbour_fields(e: &carom_engine::Checkpoint) -> Vec<(&'static str, Vec<u64>)> {
+    let name = e.params.neighbours.name().bytes().chain([0]);
+    let (skin, centres) = e
+        .lists
+        .as_ref()
+        .map_or((0.0, &[][..]), |l| (l.skin, &l.centres[..]));
+    vec![
+        ("neighbours", u(name)),
+        ("lists_skin", f([skin])),
+        ("lists_centre_x", f(centres.iter().map(|c| c.x))),
+        ("lists_centre_y", f(centres.iter().map(|c| c.y))),
+    ]
+}
+
 /// A checkpoint after 300 collisions of a binary mixture, walled in x, with one
 /// scheduled event.
 fn sample_checkpoint() -> LogCheckpoint {
@@ -526,6 +545,15 @@ fn sample_checkpoint() -> LogCheckpoint {
     for (k, m) in engine.images.iter_mut().enumerate() {
         *m = [-1 - k as i32, 1000 + k as i32];
     }
+    // Made-up neighbour lists, centres all distinct (the reader does not ask the
+    // engine whether it could be on them).
+    engine.params.neighbours = carom_engine::Neighbours::Lists;
+    engine.lists = Some(carom_engine::ListsCheckpoint {
+        skin: 0.1875,
+        centres: (0..engine.positions.len())
+            .map(|k| DVec2::new(0.5 + k as f64, -0.25 - k as f64))
+            .collect(),
+    });
     LogCheckpoint {
         driver: DriverState {
             run_start_time: 0.5,
@@ -551,7 +579,8 @@ fn checkpoints_follow_their_schema() {
 
 /// A checkpoint whose paired arrays differ in length is refused, naming the
 /// array the reader checks: any one array of a group (the species' radii and
-/// masses, the pending events, the scheduled events, the cells) one entry short.
+/// masses, the pending events, the scheduled events, the cells, the list
+/// centres) one entry short.
 /// (Found missing by mutation testing, docs/testing.md: carom's writer cannot
 /// produce such a file, so only bytes from this codec reach these checks.)
 #[test]
@@ -569,6 +598,8 @@ fn a_checkpoint_with_unequal_paired_arrays_is_refused() {
         ("scheduled_tag", "scheduled_tag"),
         ("image_x", "image_y"),
         ("image_y", "image_y"),
+        ("lists_centre_x", "lists_centre_y"),
+        ("lists_centre_y", "lists_centre_y"),
     ] {
         let mut cut = fields.clone();
         let values = &mut cut.iter_mut().find(|(n, _)| n == short).unwrap().1;
@@ -581,8 +612,9 @@ fn a_checkpoint_with_unequal_paired_arrays_is_refused() {
 }
 
 /// A checkpoint of format 2 is format 4 without the images, gravity and the
-/// thermostat at the end: it reads with no images (the engine then counts them
-/// from 0), g = 0 and no thermostat.
+/// thermostat at the end (and all that later formats append after them): it
+/// reads with no images (the engine then counts them from 0), g = 0, no
+/// thermostat, no growth or floor, the setting auto and no lists.
 #[test]
 fn a_format_2_checkpoint_reads_without_images() {
     let c = sample_checkpoint();
@@ -612,6 +644,8 @@ fn a_format_2_checkpoint_reads_without_images() {
     // thermostat entry too).
     want.engine.scheduled = super::checkpoint::scheduled_entries(&want.engine);
     want.engine.thermostat = None;
+    want.engine.params.neighbours = carom_engine::Neighbours::Auto;
+    want.engine.lists = None;
     assert_eq!(read, want);
     fields
         .iter_mut()

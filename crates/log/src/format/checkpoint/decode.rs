@@ -2,6 +2,7 @@
 //! ([`super::CHECKPOINT_MSG`]), reading older format versions too.
 
 use super::calendar::{decode_thermostat, split_scheduled};
+use super::lists::decode_neighbours;
 use super::{DriverState, LogCheckpoint, CHECKPOINT_FORMAT_VERSION};
 use crate::format::cdr::{CdrError, CdrReader};
 use carom_core::vibrating_wall::Floor;
@@ -14,8 +15,9 @@ impl LogCheckpoint {
     pub fn decode(data: &[u8]) -> Result<Self, CdrError> {
         let mut r = CdrReader::new(data)?;
         let version: u32 = r.get("format_version")?;
-        // Version 4 is version 5 without growth, 3 also without gravity and the
-        // thermostat, 2 also without the images.
+        // Version 5 is version 6 without the neighbour search, 4 also without
+        // growth, 3 also without gravity and the thermostat, 2 also without the
+        // images.
         if !(2..=CHECKPOINT_FORMAT_VERSION).contains(&version) {
             return Err(CdrError::Invalid {
                 field: "format_version",
@@ -224,6 +226,10 @@ impl LogCheckpoint {
             floor_origin = r.get("floor_origin")?;
             stats.floor_work = r.get("floor_work")?;
         }
+        let mut lists = None;
+        if version >= 6 {
+            (params.neighbours, lists) = decode_neighbours(&mut r, species_of.len())?;
+        }
         Ok(LogCheckpoint {
             driver,
             engine: Checkpoint {
@@ -256,7 +262,7 @@ impl LogCheckpoint {
                 thermostat,
                 growth,
                 floor_origin,
-                lists: None,
+                lists,
             },
         })
     }

@@ -13,6 +13,7 @@
 
 mod calendar;
 mod decode;
+mod lists;
 mod schema;
 
 use super::cdr::CdrWriter;
@@ -22,6 +23,8 @@ pub(crate) use calendar::scheduled_entries;
 use carom_core::vibrating_wall::Floor;
 use carom_core::{Boundary, Restitution};
 use carom_engine::Checkpoint;
+use lists::encode_neighbours;
+pub(crate) use lists::neighbours_named;
 pub use schema::{CHECKPOINT_FORMAT_VERSION, CHECKPOINT_MSG};
 
 /// The run driver's state at a checkpoint (what it needs, beyond the engine, to
@@ -65,7 +68,7 @@ impl LogCheckpoint {
         let d = &self.driver;
         let n = c.species_of.len();
         w.reset();
-        w.reserve(512 + n * 124 + c.cell_head.len() * 4 + scheduled.len() * 24);
+        w.reserve(512 + n * 140 + c.cell_head.len() * 4 + scheduled.len() * 24);
         w.put(CHECKPOINT_FORMAT_VERSION);
         w.put(d.run_start_time);
         w.put(d.logged_collisions);
@@ -158,6 +161,7 @@ impl LogCheckpoint {
         w.put(fl.omega);
         w.put(c.floor_origin);
         w.put(s.floor_work);
+        encode_neighbours(w, c.params.neighbours, c.lists.as_ref());
     }
 }
 

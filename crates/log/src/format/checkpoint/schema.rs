@@ -5,7 +5,7 @@
 pub const CHECKPOINT_MSG: &str = "\
 # The complete state of a carom run, from which it resumes bit-identically.
 # Per-disc arrays have one entry per disc; units are the run's.
-uint32 format_version             # 5 (4: without growth at the end; 3: nor gravity and the thermostat; 2: nor the images)
+uint32 format_version             # 6 (5: without the neighbour search at the end; 4: nor growth; 3: nor gravity and the thermostat; 2: nor the images)
 # --- run driver ---
 float64 run_start_time            # simulated time at which the run started (time)
 uint64 logged_collisions          # collisions written to /collisions so far
@@ -97,7 +97,12 @@ float64 floor_amplitude           # A (length; 0: no floor): the floor is at A (
 float64 floor_omega               # angular frequency omega = 2 pi f (1/time; 0: no floor)
 float64 floor_origin              # time the floor was set, its phase origin (time)
 float64 floor_work                # kinetic energy the floor gave the discs so far (energy)
+# --- neighbour search (format_version 6 on; performance.md: neighbour lists) ---
+string neighbours                 # the setting: auto, cells or lists (the engine chooses, or is told)
+float64 lists_skin                # on neighbour lists: their skin s (length, > 0); 0: on the cell grid
+float64[] lists_centre_x          # on lists, per disc in internal order: the list centre, the disc's position
+float64[] lists_centre_y          #   (in the box) at its last list update (length); empty on the cell grid
 ";
 
 /// Format version written in `format_version`.
-pub const CHECKPOINT_FORMAT_VERSION: u32 = 5;
+pub const CHECKPOINT_FORMAT_VERSION: u32 = 6;
