@@ -131,6 +131,51 @@ fn a_cut_log_resumes_to_the_same_bytes() {
     std::fs::remove_file(&full).unwrap();
 }
 
+/// A dense run on neighbour lists (η = 0.72, a channel, so with walls and
+/// periodic images) cut in the middle resumes on lists from its last
+/// checkpoint to the same bytes as the uninterrupted run.
+#[test]
+fn a_cut_log_on_lists_resumes_to_the_same_bytes() {
+    let system = system(400, 0.72, true, false, 5);
+    let on = carom_engine::Engine::new(system.build().unwrap(), Default::default());
+    assert!(
+        on.unwrap().neighbour_lists(),
+        "auto chooses lists at η = 0.72"
+    );
+    let full = tmp("lists-full.mcap");
+    run(
+        &spec(system, Stop::Time(6.0), log_opts()),
+        &full,
+        Control::default(),
+    )
+    .unwrap();
+    let expected = raw_messages(&full);
+    let bytes = std::fs::read(&full).unwrap();
+    let cut = tmp("lists-cut.mcap");
+    std::fs::write(&cut, &bytes[..bytes.len() * 3 / 5]).unwrap();
+    let out = tmp("lists-resumed.mcap");
+    let s = resume(&cut, &out, &ResumeOptions::default(), Control::default()).unwrap();
+    assert!(s.collisions_this_process > 0);
+    let got = raw_messages(&out);
+    let differ: Vec<(usize, usize)> = got
+        .iter()
+        .zip(&expected)
+        .enumerate()
+        .filter(|(_, (a, b))| a != b)
+        .map(|(k, (a, _))| (k, a.0))
+        .collect();
+    assert!(
+        got.len() == expected.len() && differ.is_empty(),
+        "the resumed log differs: {} and {} messages, differing (index, channel): {:?}",
+        got.len(),
+        expected.len(),
+        &differ[..differ.len().min(12)]
+    );
+    for p in [&cut, &out, &full] {
+        std::fs::remove_file(p).unwrap();
+    }
+}
+
 fn events(path: &Path) -> Vec<LogEvent> {
     let mut r = LogReader::open(path).unwrap();
     r.events().collect::<Result<_, _>>().unwrap()

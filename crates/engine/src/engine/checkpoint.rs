@@ -15,6 +15,7 @@
 use super::body::{Aux, Body, Pending};
 use super::calendar::{Calendar, Whose};
 use super::clock::origin_limit;
+use super::listed::{centre_grid, lists_from};
 use super::{lookahead, thermostat, Engine, EngineParams};
 use crate::cells::Link;
 use crate::checkpoint::{Checkpoint, ListsCheckpoint};
@@ -227,16 +228,20 @@ impl Engine {
         // crossings move the clock, so a resumed run must have the grids it was
         // written with to continue bit for bit): one per size class, or one for
         // all in a checkpoint written before carom had size classes.
-        let grids = if cp.lists.is_some() {
-            // On lists the grid is that of the list centres, rebuilt from them
-            // below (engine::listed); this one is a placeholder.
-            Ok(Grids::new(&cp.sim_box, &cp.species, &cp.species_of, true))
+        let grid_species = super::growth::grid_species(&cp.species, &cp.params.growth);
+        let cell_grids = |split| Grids::new(&cp.sim_box, &grid_species, &cp.species_of, split);
+        let grids = if let Some(l) = &cp.lists {
+            // On lists, the grid of the list centres (engine::listed).
+            let radius = cell_grids(true).radius.iter().copied().fold(0.0, f64::max);
+            centre_grid(&cp.sim_box, cp.species.len(), radius, l.skin, n)
+                .map_err(|e| format!("lists: {e}"))
+                .and_then(|centres| restore_grids(&cp, &bodies, centres))
         } else if cp.params.growth.rate != 0.0 {
             // Growing discs: one grid for their final size (engine::growth).
-            restore_grids(&cp, &bodies, false)
+            restore_grids(&cp, &bodies, cell_grids(false))
         } else {
-            restore_grids(&cp, &bodies, true)
-                .or_else(|e| restore_grids(&cp, &bodies, false).map_err(|_| e))
+            restore_grids(&cp, &bodies, cell_grids(true))
+                .or_else(|e| restore_grids(&cp, &bodies, cell_grids(false)).map_err(|_| e))
         }
         .map_err(bad)?;
         for (i, (&t, p)) in cp.event_times.iter().zip(&cp.pending).enumerate() {
@@ -321,9 +326,6 @@ impl Engine {
         if l.centres.len() != n {
             return Err(format!("lists: {} centres for {n} discs", l.centres.len()));
         }
-        if !(l.skin.is_finite() && l.skin > 0.0) {
-            return Err(format!("lists: skin {} (allowed: finite, > 0)", l.skin));
-        }
         let params = EngineParams {
             neighbours: Neighbours::Lists,
             ..self.params
@@ -338,15 +340,26 @@ impl Engine {
         .map_err(|e| format!("lists: {e}"))?;
         for (i, (b, c)) in self.bodies.iter().zip(&l.centres).enumerate() {
             let d = (b.at(self.clock) - *c).length();
-            if !(d <= l.skin * (1.0 + 1e-9)) {
+            // (A NaN distance is beyond it too.)
+            if d.is_nan() || d > l.skin * (1.0 + 1e-9) {
                 return Err(format!(
                     "lists: disc {i} is {d} from its list centre {c}, beyond the skin {}",
                     l.skin
                 ));
             }
+            if b.link.coords() != self.grids.first.coords_of(*c) {
+                return Err(format!(
+                    "lists: disc {i} is listed in cell {:?}, its centre {c} lies in {:?}",
+                    b.link.coords(),
+                    self.grids.first.coords_of(*c)
+                ));
+            }
         }
-        self.enter_lists(l.skin, &l.centres)
-            .map_err(|e| format!("lists: {e}"))
+        let grids = self.grids.clone();
+        let lists = lists_from(&grids, &self.bodies, &l.centres, l.skin, self.sim_box.size)
+            .map_err(|e| format!("lists: {e}"))?;
+        self.take_lists(grids, lists);
+        Ok(())
     }
 }
 
@@ -371,11 +384,9 @@ fn check_resting(cp: &Checkpoint, i: usize, bodies: &[Body]) -> Result<(), Strin
     }
 }
 
-/// The cell grids of checkpoint `cp` (one per size class if `split`, else one for
-/// all), with the stored cell lists threaded through `bodies`, or what is wrong.
-fn restore_grids(cp: &Checkpoint, bodies: &[Body], split: bool) -> Result<Grids, String> {
-    let grid_species = super::growth::grid_species(&cp.species, &cp.params.growth);
-    let mut grids = Grids::new(&cp.sim_box, &grid_species, &cp.species_of, split);
+/// The cell grids `grids` (empty) of checkpoint `cp`, with the stored cell lists
+/// threaded through `bodies`, or what is wrong.
+fn restore_grids(cp: &Checkpoint, bodies: &[Body], mut grids: Grids) -> Result<Grids, String> {
     let cells: usize = grids.iter().map(|g| g.head.len()).sum();
     if cp.cell_head.len() != cells {
         return Err(format!(

@@ -52,14 +52,14 @@ fn refusal(
         Some(format!("for {n} discs (at most {MAX_DISCS})"))
     } else if species.is_empty() || sigma <= 0.0 {
         Some("without discs".into())
-    } else if let Some(k) = narrow {
-        Some(format!(
-            "in a periodic box {} = {} wide: fewer than three list cells of {r} (σ + 2 skin)",
-            ["Lx", "Ly"][k],
-            sim_box.size[k]
-        ))
     } else {
-        None
+        narrow.map(|k| {
+            format!(
+                "in a periodic box {} = {} wide: fewer than three list cells of {r} (σ + 2 skin)",
+                ["Lx", "Ly"][k],
+                sim_box.size[k]
+            )
+        })
     }
 }
 
@@ -104,32 +104,24 @@ impl Engine {
     /// every disc in the cell of its centre, and every list from the centres.
     /// `Err` (the engine unchanged) if a list would overflow.
     pub(super) fn enter_lists(&mut self, skin: f64, centres: &[DVec2]) -> Result<(), String> {
-        let sigma = self.largest_sigma();
-        let mut lists = Lists::new(centres, sigma, skin, self.sim_box.size);
-        let mut grids = Grids::one(
-            &self.sim_box,
-            self.species.len(),
-            sigma / 2.0,
-            lists.radius,
-            self.len(),
-        );
+        let radius = self.largest_sigma() / 2.0;
+        let mut grids = centre_grid(&self.sim_box, self.species.len(), radius, skin, self.len())?;
         let mut bodies = self.bodies.clone();
         for i in (0..self.len()).rev() {
             let c = grids.first.coords_of(centres[i]);
             grids.first.insert(&mut bodies, i as u32, c);
         }
-        for i in 0..self.len() {
-            let full = || format!("the list of disc {i} would hold more than {CAPACITY} discs");
-            let found = block_members(&grids, &bodies, &lists, i).ok_or_else(full)?;
-            for &(j, code) in found.iter() {
-                lists.lines[i].insert(j, code);
-            }
-        }
+        let lists = lists_from(&grids, &bodies, centres, skin, self.sim_box.size)?;
         self.bodies = bodies;
+        self.take_lists(grids, lists);
+        Ok(())
+    }
+
+    /// Put the engine on `lists`, its discs in the grid of centres `grids`.
+    pub(super) fn take_lists(&mut self, grids: Grids, lists: Lists) {
         self.grids = grids;
         self.lists = Some(Box::new(lists));
         self.origin_limit = super::clock::origin_limit(self.sim_box.size, self.grids.first.width);
-        Ok(())
     }
 
     /// Put a new engine on lists if `choose` says so, centred where the discs are.
@@ -295,6 +287,44 @@ impl Engine {
         }
         self.queue.retune(self.bodies.as_slice(), self.clock);
     }
+}
+
+/// The empty grid of list centres for discs of largest radius `radius` with skin
+/// `skin` (cells at least the list radius wide), or why there is none.
+pub(super) fn centre_grid(
+    sim_box: &SimBox,
+    species: usize,
+    radius: f64,
+    skin: f64,
+    n: usize,
+) -> Result<Grids, String> {
+    if !(skin.is_finite() && skin > 0.0) {
+        return Err(format!("skin {skin} (allowed: finite, > 0)"));
+    }
+    let width = list_radius(2.0 * radius, skin);
+    Ok(Grids::one(sim_box, species, radius, width, n))
+}
+
+/// Every disc's list from the centres `centres` (internal order), the discs
+/// threaded through the grid of centres `grids` by their records `bodies`;
+/// `Err` if a list would hold more than [`CAPACITY`].
+pub(super) fn lists_from(
+    grids: &Grids,
+    bodies: &[super::body::Body],
+    centres: &[DVec2],
+    skin: f64,
+    size: DVec2,
+) -> Result<Lists, String> {
+    let sigma = 2.0 * grids.radius.iter().copied().fold(0.0, f64::max);
+    let mut lists = Lists::new(centres, sigma, skin, size);
+    for i in 0..centres.len() {
+        let full = || format!("the list of disc {i} would hold more than {CAPACITY} discs");
+        let found = block_members(grids, bodies, &lists, i).ok_or_else(full)?;
+        for &(j, code) in found.iter() {
+            lists.lines[i].insert(j, code);
+        }
+    }
+    Ok(lists)
 }
 
 /// The discs a list gets, each with the image code through which it is seen
