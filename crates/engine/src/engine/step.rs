@@ -63,7 +63,8 @@ impl Engine {
     /// nothing will ever happen again (all discs at rest and nothing scheduled).
     /// After long unobservable work (thermostat events, growth rescales) it returns
     /// an [`Event::Pause`], so that the caller can stop or report progress
-    /// (`engine::pause`); just call again.
+    /// (`engine::pause`), and once when an overflowing neighbour list sends the run
+    /// back to cells (engine::listed); just call again.
     ///
     /// Cell crossings are not observable, so in a system whose discs move but never
     /// collide again (a lone disc in a periodic box) this call returns only at the
@@ -130,10 +131,6 @@ impl Engine {
             };
             if let Step::Report(ev) = step {
                 return Ok(ev);
-            }
-            if M::LISTS && self.lists.is_none() {
-                // A list overflowed: on cells from here on (engine::listed).
-                return self.next_event();
             }
         }
     }
@@ -253,7 +250,13 @@ impl Engine {
                 assert!(M::LISTS, "a skin exit on the cell path");
                 self.move_clock(t);
                 self.renew_list(i);
-                Ok(Step::Continue)
+                // A list that overflowed put the run on cells (engine::listed):
+                // hand back a pause, so that the next call runs the cells' loop.
+                Ok(if self.lists.is_none() {
+                    Step::Report(self.pause())
+                } else {
+                    Step::Continue
+                })
             }
             Pending::None => unreachable!("a disc with no event has time +∞"),
         }
