@@ -2,7 +2,7 @@
 //!
 //! Each disc i has a list centre c_i, its position at its last list update, and
 //! a skin s: until it has moved s from c_i it is not updated again. Disc j is in
-//! i's list iff |c_j + image·L − c_i| < R = σ_max + 2s + δ (physics.md §2.4),
+//! i's list iff |c_j + image·L − c_i| < R = σ_max + 2s + δ (physics.md (2.8)),
 //! decided from both current centres, so the lists are symmetric and a function
 //! of the centres alone. Two discs not listed are more than σ_max + δ apart as
 //! long as neither has left its skin, so they cannot touch before one of them

@@ -2,11 +2,13 @@
 //!
 //! Each disc keeps its state as of its own last update (physics.md §1), a path
 //! r(t) = r0 + v t on an internal clock, and owns one pending event, the earliest of
-//! its pair collision (|Δr + Δv t| = σ, §2), wall hit and cell crossing. A pair
+//! its pair collision (|Δr + Δv t| = σ, §2), wall hit and cell crossing (on
+//! neighbour lists, `listed`, its skin exit (2.7) instead). A pair
 //! prediction remembers the partner's collision counter, so an obsolete one is
 //! recomputed at the head of the queue; the earliest true event is always queued, as
 //! of any pair the disc updated last scanned the other with both current paths.
-//! Files by phase: `step` (the loop, dispatch only), `predict`, `resolve`, `clock`,
+//! Files by phase: `step` (the loop, dispatch only), `predict`, `listed` (the
+//! neighbour-list path), `resolve`, `clock`,
 //! `lookahead`, `checkpoint`; `calendar`, the one calendar of internal events (the
 //! caller's scheduled events and the thermostat's); `motion`, the law of motion,
 //! chosen once and compiled into the loop (straight; falling: `gravity`, `floor`,
@@ -32,8 +34,6 @@ mod thermostat;
 use crate::cells::Link;
 use crate::classes::Grids;
 use crate::error::EngineError;
-#[allow(unused_imports)]
-use crate::lists::LISTS_FROM_PACKING;
 use crate::lists::{Lists, Neighbours};
 use crate::memory;
 use crate::queue::{EventQueue, Time};
@@ -96,7 +96,8 @@ pub struct Stats {
     pub pair_collisions: u64,
     /// Wall collisions resolved.
     pub wall_collisions: u64,
-    /// Cell crossings processed (internal events).
+    /// Cell crossings processed (internal events); on neighbour lists, list
+    /// renewals (a disc leaving its skin, physics.md (2.7)).
     pub cell_crossings: u64,
     /// Predictions found obsolete at the head of the queue and recomputed.
     pub stale_events: u64,
@@ -367,7 +368,7 @@ impl Engine {
     /// rather than on the cell grid. [`Neighbours::Auto`] chooses lists for equal
     /// discs (or a mixture one grid serves) flying straight, without a field,
     /// growth or vibrating floor, at packing fractions from
-    /// [`LISTS_FROM_PACKING`] in a box at least three list cells wide on each periodic
+    /// [`LISTS_FROM_PACKING`](crate::LISTS_FROM_PACKING) in a box at least three list cells wide on each periodic
     /// axis; the choice is made once, from the configuration, never by timing. A
     /// list that overflows sends the run back to cells for good.
     pub fn neighbour_lists(&self) -> bool {
