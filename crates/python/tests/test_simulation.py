@@ -116,7 +116,11 @@ def test_ctrl_c_raises_keyboard_interrupt_and_the_run_goes_on_unchanged():
     assert sim.collisions == straight.collisions
 
 
-@pytest.mark.parametrize("cfg", [FLUID, WALLED], ids=["fluid", "walled"])
+#: A dense fluid, which the engine runs on neighbour lists (η ≥ 0.66).
+DENSE = {**FLUID, "species": [{"count": 400}], "box": {"packing_fraction": 0.7}}
+
+
+@pytest.mark.parametrize("cfg", [FLUID, WALLED, DENSE], ids=["fluid", "walled", "dense"])
 def test_a_python_run_ends_in_the_commands_final_state_bit_for_bit(cfg, carom_run):
     log = carom.open_log(carom_run(cfg))
     last = list(log.snapshots())[-1]
@@ -127,3 +131,13 @@ def test_a_python_run_ends_in_the_commands_final_state_bit_for_bit(cfg, carom_ru
     for k in ("x", "y", "vx", "vy", "image", "species"):
         assert np.array_equal(s[k], last[k]), k
     assert sim.collisions == log.summary["pair_collisions"] + log.summary["wall_collisions"]
+
+
+def test_the_neighbour_search_is_the_configurations():
+    """Auto: lists for the dense fluid, cells at η = 0.4; `neighbours` forces either."""
+    assert carom.Simulation(DENSE).neighbour_lists
+    assert not carom.Simulation(FLUID).neighbour_lists
+    assert not carom.Simulation({**DENSE, "neighbours": "cells"}).neighbour_lists
+    assert carom.Simulation({**FLUID, "neighbours": "lists"}).neighbour_lists
+    with pytest.raises(ValueError, match="neighbours"):
+        carom.Simulation({**FLUID, "neighbours": "grid"})
