@@ -24,7 +24,8 @@ fn run(n: usize, eta: f64, seed: u64, t_end: f64, dt: f64, equilibrate: f64) -> 
 
 /// A crystal at η = 0.75 (lattice start): |Ψ6| and ψ_T large, the largest S(k) at
 /// |G| = 4π/(√3 a) with a the lattice spacing at that density, and g6 decaying
-/// no faster than the hexatic bound r^(−1/4).
+/// no faster than the hexatic bound r^(−1/4). (At η = 0.75 the engine runs on
+/// neighbour lists.)
 #[test]
 fn a_crystal_keeps_bond_and_translational_order() {
     let n = 900;
@@ -57,9 +58,27 @@ fn a_crystal_keeps_bond_and_translational_order() {
     assert!(f.translational > 0.6, "{}", f.translational);
     // A Bragg peak holds N ψ_T² of the sum over its shell.
     assert!(f.peak_s.unwrap() > 10.0, "{:?}", f.peak_s);
+    // g6 decays no faster than r^(−1/4): its envelope (largest value in windows
+    // σ wide) in the last window is at least (r_far/r_near)^(−1/4) of the first's.
+    // (The power-law fit itself is often absent in a crystal: g6 dips to zero
+    // between its first shells, where the fit stops as "lost in noise".)
     let g6 = r.orientational_correlation.as_ref().expect("g6");
-    let [eta6, _] = g6.eta6.expect("a decay fit");
-    assert!(eta6 < 0.25, "η6 = {eta6}");
+    let envelope = |lo: f64| {
+        g6.r.iter()
+            .zip(&g6.g6)
+            .filter(|(&x, g)| (lo..lo + 1.0).contains(&x) && g.is_finite())
+            .map(|(_, &g)| g)
+            .fold(f64::NAN, f64::max)
+    };
+    let far = g6.r.iter().copied().fold(0.0, f64::max).floor() - 1.0;
+    let (near_g, far_g) = (envelope(1.0), envelope(far));
+    assert!(
+        far_g >= near_g * (far / 1.0).powf(-0.25),
+        "g6 envelope {near_g} at r = 1 and {far_g} at r = {far}"
+    );
+    if let Some([eta6, _]) = g6.eta6 {
+        assert!(eta6 < 0.25, "η6 = {eta6}");
+    }
 }
 
 /// In a fluid at η = 0.5, Ψ6 is a sum of N terms with a finite correlation

@@ -17,9 +17,8 @@ use serde::{Deserialize, Serialize};
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize, JsonSchema)]
 #[serde(rename_all = "lowercase")]
 pub enum NeighboursConfig {
-    /// `"auto"`: neighbour lists for dense discs of equal size (or a mixture one
-    /// cell grid serves) flying straight (no gravity, compression or vibrating
-    /// floor) from packing fraction `carom_engine::LISTS_FROM_PACKING` = 0.66,
+    /// `"auto"`: neighbour lists for dense discs of equal size flying straight
+    /// (no gravity, compression or vibrating floor) from packing fraction `carom_engine::LISTS_FROM_PACKING` = 0.66,
     /// cells otherwise.
     #[default]
     Auto,

@@ -63,10 +63,10 @@ fn refusal(
     }
 }
 
-/// Whether an engine for `params` runs on lists: [`Neighbours::Auto`] where lists
-/// can be used and the packing fraction η = Σ π a²/(L_x L_y) is at least
-/// [`LISTS_FROM_PACKING`]; an error where [`Neighbours::Lists`] was asked for
-/// and cannot be used.
+/// Whether an engine for `params` runs on lists: [`Neighbours::Auto`] for equal
+/// discs where lists can be used and the packing fraction η = Σ π a²/(L_x L_y)
+/// is at least [`LISTS_FROM_PACKING`]; an error where [`Neighbours::Lists`] was
+/// asked for and cannot be used.
 pub(super) fn choose(
     params: &EngineParams,
     sim_box: &SimBox,
@@ -88,7 +88,12 @@ pub(super) fn choose(
                 .map(|&s| std::f64::consts::PI * species[s as usize].radius.powi(2))
                 .sum();
             let eta = area / (sim_box.size.x * sim_box.size.y);
-            Ok(refused.is_none() && eta >= LISTS_FROM_PACKING)
+            // Equal discs only: in a mixture the lists are sized for the largest
+            // contact distance, and small discs crowd them past their capacity.
+            let mut radii = species_of.iter().map(|&s| species[s as usize].radius);
+            let first = radii.next();
+            let equal = radii.all(|r| Some(r) == first);
+            Ok(refused.is_none() && equal && eta >= LISTS_FROM_PACKING)
         }
     }
 }

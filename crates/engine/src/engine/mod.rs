@@ -366,11 +366,11 @@ impl Engine {
 
     /// Whether the engine runs on neighbour lists (with a skin, physics.md §2)
     /// rather than on the cell grid. [`Neighbours::Auto`] chooses lists for equal
-    /// discs (or a mixture one grid serves) flying straight, without a field,
-    /// growth or vibrating floor, at packing fractions from
-    /// [`LISTS_FROM_PACKING`](crate::LISTS_FROM_PACKING) in a box at least three list cells wide on each periodic
-    /// axis; the choice is made once, from the configuration, never by timing. A
-    /// list that overflows sends the run back to cells for good.
+    /// discs flying straight, without a field, growth or vibrating floor, at
+    /// packing fractions from [`LISTS_FROM_PACKING`](crate::LISTS_FROM_PACKING),
+    /// in a box at least three list cells wide on each periodic axis; the choice
+    /// is made once, from the configuration, never by timing. A list that
+    /// overflows sends the run back to cells for good.
     pub fn neighbour_lists(&self) -> bool {
         self.lists.is_some()
     }
