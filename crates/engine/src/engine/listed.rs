@@ -21,9 +21,8 @@ use crate::lists::{
     list_radius, mirror, skin_for, Line, Lists, Neighbours, CAPACITY, LISTS_FROM_PACKING, MAX_DISCS,
 };
 use crate::{EngineError, EngineParams, NO_DISC};
-use carom_core::boundary::wall_time;
 use carom_core::kinematics::exit_time;
-use carom_core::{Boundary, DVec2, SimBox, Species, WallSide};
+use carom_core::{DVec2, SimBox, Species};
 
 /// Why the engine cannot run `params` on lists for discs of `species` (the
 /// discs' species `species_of`) in `sim_box`, with the grids `grids` the cell
@@ -196,16 +195,7 @@ impl Engine {
         let mut best = exit_time(p - lists.lines[i].centre, v, lists.skin);
         let (mut kind, mut face) = (Pending::Skin, Face::new(0, false));
         for k in 0..2 {
-            if let Boundary::Walls { .. } = self.sim_box.boundary[k] {
-                let radius = self.species[self.bodies[i].species as usize].radius;
-                if let Some((dt, side)) = wall_time(p[k], v[k], radius, self.sim_box.size[k]) {
-                    if dt < best {
-                        best = dt;
-                        kind = Pending::Wall;
-                        face = Face::new(k, side == WallSide::High);
-                    }
-                }
-            }
+            self.earlier_wall(i, k, p[k], v[k], (&mut best, &mut kind, &mut face));
         }
         (best, kind, face)
     }

@@ -414,17 +414,32 @@ impl Engine {
             best = std::hint::select_unpredictable(hit, dt, best);
             kind = std::hint::select_unpredictable(hit, Pending::Cell, kind);
             face = std::hint::select_unpredictable(hit, Face::new(k, up), face);
-            if let Boundary::Walls { .. } = self.sim_box.boundary[k] {
-                let radius = self.species[self.bodies[i].species as usize].radius;
-                if let Some((dt, side)) = wall_time(ri[k], v[k], radius, self.sim_box.size[k]) {
-                    if dt < best {
-                        best = dt;
-                        kind = Pending::Wall;
-                        face = Face::new(k, side == WallSide::High);
-                    }
+            self.earlier_wall(i, k, ri[k], v[k], (&mut best, &mut kind, &mut face));
+        }
+        (best, kind, face)
+    }
+
+    /// Make disc `i`'s hit of a wall normal to axis `k` (coordinate `x` now,
+    /// velocity `v` along it) the boundary event `(best, kind, face)` if the axis
+    /// is walled and the hit comes first (2.6).
+    #[inline(always)]
+    pub(super) fn earlier_wall(
+        &self,
+        i: usize,
+        k: usize,
+        x: f64,
+        v: f64,
+        (best, kind, face): (&mut f64, &mut Pending, &mut Face),
+    ) {
+        if let Boundary::Walls { .. } = self.sim_box.boundary[k] {
+            let radius = self.species[self.bodies[i].species as usize].radius;
+            if let Some((dt, side)) = wall_time(x, v, radius, self.sim_box.size[k]) {
+                if dt < *best {
+                    *best = dt;
+                    *kind = Pending::Wall;
+                    *face = Face::new(k, side == WallSide::High);
                 }
             }
         }
-        (best, kind, face)
     }
 }

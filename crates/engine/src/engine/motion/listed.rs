@@ -2,10 +2,9 @@
 //! partners found in each disc's list and a skin exit in place of cell
 //! crossings (engine::listed, physics.md (2.7)).
 
-use super::Motion;
+use super::{Motion, Straight};
 use crate::engine::body::{Body, Face, Pending};
 use crate::engine::Engine;
-use carom_core::kinematics::contact_time_or_inf;
 use carom_core::DVec2;
 
 /// Discs flying straight, on neighbour lists.
@@ -21,8 +20,8 @@ impl Motion for Listed {
     fn scan(_e: &Engine) {}
 
     #[inline(always)]
-    fn pair_time(bi: &Body, _ri: DVec2, bj: &Body, dr: DVec2, sigma: f64, _now: f64, _: ()) -> f64 {
-        contact_time_or_inf(dr, bj.v - bi.v, sigma)
+    fn pair_time(bi: &Body, ri: DVec2, bj: &Body, dr: DVec2, sigma: f64, now: f64, _: ()) -> f64 {
+        Straight::pair_time(bi, ri, bj, dr, sigma, now, ())
     }
 
     #[inline(always)]
