@@ -54,7 +54,8 @@ pub struct Checkpoint {
     /// Pair candidate and pending event of each disc: [candidate's partner
     /// ([`NO_DISC`](crate::NO_DISC) for none), partner's counter when found,
     /// pending kind | aux << 8]. Kinds: 0
-    /// none, 1 the pair candidate, 2 wall, 3 cell crossing. aux bits 0–1: wall 2·axis +
+    /// none, 1 the pair candidate, 2 wall, 3 cell crossing, 4 a floor search to
+    /// resume, 5 a skin exit (on neighbour lists). aux bits 0–1: wall 2·axis +
     /// side (1 = high) or crossing 2·axis + (1 if upwards); bits 2–5: the candidate's
     /// image shift code (sx+1) + 3 (sy+1). Bit 16: the disc rests on the floor in a
     /// field (physics.md (15.9); its path is then straight, not falling).
