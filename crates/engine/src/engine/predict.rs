@@ -9,8 +9,8 @@
 //! and the candidate (its time recomputed from the unchanged paths) stands for the
 //! six seen before unless its partner changed velocity since. Hot comparisons are
 //! branch-free (which neighbour wins is a coin toss); contact and boundary times
-//! are the law of motion's (engine::motion). See docs/performance.md,
-//! "neighbour scan".
+//! are the law of motion's (engine::motion); on neighbour lists `predict` hands
+//! over to engine::listed. See docs/performance.md, "neighbour scan".
 
 use super::body::{Aux, Body, Face, Image, Pending};
 use super::motion::Motion;

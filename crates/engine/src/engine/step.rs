@@ -5,8 +5,9 @@
 //! events in the queue, handled by one function each. The caller's scheduled events
 //! and the thermostat's events (§16) share one calendar (engine/calendar.rs), which
 //! also weighs the growth's rescales and end (§17). A disc's event is a pair
-//! collision (§2–§4), a wall hit, a cell crossing, or a prediction found obsolete or
-//! a floor search resumed, recomputed; crossings and recomputations are not
+//! collision (§2–§4), a wall hit, a cell crossing (on neighbour lists a skin exit,
+//! engine::listed), or a prediction found obsolete or a floor search resumed,
+//! recomputed; crossings, skin exits and recomputations are not
 //! reported, and the loop turns until something observable happens. Compiled once
 //! per law of motion (engine::motion).
 
