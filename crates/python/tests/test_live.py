@@ -164,6 +164,18 @@ def refused(url: str) -> bool:
         return s.connect_ex((host, int(port))) != 0
 
 
+def closes(url: str, within: float = 5.0) -> bool:
+    """Whether `url` stops listening within `within` seconds: the server's tasks
+    have ended when `stop_live` returns, but on a loaded machine its runtime drops
+    the listening socket a moment later (seen once in a full test run)."""
+    end = time.monotonic() + within
+    while not refused(url):
+        if time.monotonic() > end:
+            return False
+        time.sleep(0.01)
+    return True
+
+
 def test_the_server_stays_up_across_runs_and_closes_with_the_simulation():
     sim = carom.Simulation(FLUID)
     assert sim.live_url is None
@@ -176,14 +188,14 @@ def test_the_server_stays_up_across_runs_and_closes_with_the_simulation():
     sim.run(until=4.0, live=int(url.rsplit(":", 1)[1]))
     assert sim.live_url == url
     sim.stop_live()
-    assert sim.live_url is None and refused(url)
+    assert sim.live_url is None and closes(url)
     sim.stop_live()  # nothing to stop
 
     other = carom.Simulation(FLUID)
     url = other.start_live(0)
     del other
     gc.collect()
-    assert refused(url)
+    assert closes(url)
 
 
 def test_ctrl_c_during_a_served_run_keeps_the_server_and_the_state():
@@ -199,7 +211,7 @@ def test_ctrl_c_during_a_served_run_keeps_the_server_and_the_state():
     assert sim.time == t + 1.0
     assert sim.kinetic_energy == pytest.approx(energy, rel=1e-12)
     sim.stop_live()
-    assert refused(url)
+    assert closes(url)
 
 
 def test_a_served_run_and_live_false_leave_the_trajectory_alone():
