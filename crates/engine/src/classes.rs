@@ -111,6 +111,11 @@ impl Grids {
         }
     }
 
+    /// The largest contact distance 2 a_max of all classes (length).
+    pub fn largest_sigma(&self) -> f64 {
+        2.0 * self.radius.iter().copied().fold(0.0, f64::max)
+    }
+
     /// Whether there is a single grid (one class).
     #[inline(always)]
     pub fn single(&self) -> bool {

@@ -232,8 +232,8 @@ impl Engine {
         let cell_grids = |split| Grids::new(&cp.sim_box, &grid_species, &cp.species_of, split);
         let grids = if let Some(l) = &cp.lists {
             // On lists, the grid of the list centres (engine::listed).
-            let radius = cell_grids(true).radius.iter().copied().fold(0.0, f64::max);
-            centre_grid(&cp.sim_box, cp.species.len(), radius, l.skin, n)
+            let sigma = cell_grids(true).largest_sigma();
+            centre_grid(&cp.sim_box, cp.species.len(), sigma, l.skin, n)
                 .map_err(|e| format!("lists: {e}"))
                 .and_then(|centres| restore_grids(&cp, &bodies, centres))
         } else if cp.params.growth.rate != 0.0 {

@@ -24,9 +24,8 @@ use crate::{EngineError, EngineParams, NO_DISC};
 use carom_core::kinematics::exit_time;
 use carom_core::{DVec2, SimBox, Species};
 
-/// Why the engine cannot run `params` on lists for discs of `species` (the
-/// discs' species `species_of`) in `sim_box`, with the grids `grids` the cell
-/// path would build; `None` if it can.
+/// Why the engine cannot run `params` on lists for `n` discs of `species` in
+/// `sim_box`, with the grids `grids` the cell path would build; `None` if it can.
 fn refusal(
     params: &EngineParams,
     sim_box: &SimBox,
@@ -34,7 +33,7 @@ fn refusal(
     grids: &Grids,
     n: usize,
 ) -> Option<String> {
-    let sigma = 2.0 * grids.radius.iter().copied().fold(0.0, f64::max);
+    let sigma = grids.largest_sigma();
     let r = list_radius(sigma, skin_for(sigma));
     let narrow = (0..2).find(|&k| {
         sim_box.boundary[k].is_periodic() && crate::cells::CellGrid::shape(sim_box, r, n)[k] < 3
@@ -98,18 +97,13 @@ pub(super) fn choose(
 }
 
 impl Engine {
-    /// The largest contact distance (length).
-    fn largest_sigma(&self) -> f64 {
-        2.0 * self.grids.radius.iter().copied().fold(0.0, f64::max)
-    }
-
     /// Put the engine on lists with skin `skin` and centres `centres` (internal
     /// order; the discs' positions at their last update): the grid of centres,
     /// every disc in the cell of its centre, and every list from the centres.
     /// `Err` (the engine unchanged) if a list would overflow.
     pub(super) fn enter_lists(&mut self, skin: f64, centres: &[DVec2]) -> Result<(), String> {
-        let radius = self.largest_sigma() / 2.0;
-        let mut grids = centre_grid(&self.sim_box, self.species.len(), radius, skin, self.len())?;
+        let sigma = self.grids.largest_sigma();
+        let mut grids = centre_grid(&self.sim_box, self.species.len(), sigma, skin, self.len())?;
         let mut bodies = self.bodies.clone();
         for i in (0..self.len()).rev() {
             let c = grids.first.coords_of(centres[i]);
@@ -139,7 +133,7 @@ impl Engine {
         )?;
         if on {
             let centres: Vec<DVec2> = self.bodies.iter().map(|b| b.at(self.clock)).collect();
-            let skin = skin_for(self.largest_sigma());
+            let skin = skin_for(self.grids.largest_sigma());
             // Lists too full to start (a crystal squeezed past their capacity) keep
             // the run on cells.
             let _ = self.enter_lists(skin, &centres);
@@ -207,23 +201,8 @@ impl Engine {
         count!(ListUpdates);
         self.stats.cell_crossings += 1;
         let now = self.clock;
-        let size = self.sim_box.size;
-        // Back into the box through a periodic edge it crossed since its last
-        // update: the position moves by whole box lengths.
-        let p = self.bodies[i].at(now);
-        let mut moved = false;
-        for k in 0..2 {
-            let w = (p[k] / size[k]).floor();
-            if self.sim_box.boundary[k].is_periodic() && w != 0.0 {
-                self.bodies[i].r0[k] -= w * size[k];
-                self.images[self.label[i] as usize][k] += w as i32;
-                moved = true;
-            }
-        }
-        if moved {
+        if self.wrap_into_box(i) {
             self.keep_origin_near([i]);
-            // Partners saw it through other images: their candidates are obsolete.
-            self.bodies[i].count = self.bodies[i].count.wrapping_add(1);
         }
         let centre = self.bodies[i].at(now);
         let lists = self.lists.as_mut().expect("on lists");
@@ -249,6 +228,28 @@ impl Engine {
         self.predict_listed::<Listed>(i);
     }
 
+    /// Bring disc `i`'s path back into the box if it left through periodic edges
+    /// since its last renewal: its position moves by whole box lengths, its images
+    /// count them, and its counter is bumped (its partners saw it through other
+    /// images, so their candidates are obsolete). Whether it moved.
+    fn wrap_into_box(&mut self, i: usize) -> bool {
+        let p = self.bodies[i].at(self.clock);
+        let size = self.sim_box.size;
+        let mut moved = false;
+        for k in 0..2 {
+            let w = (p[k] / size[k]).floor();
+            if self.sim_box.boundary[k].is_periodic() && w != 0.0 {
+                self.bodies[i].r0[k] -= w * size[k];
+                self.images[self.label[i] as usize][k] += w as i32;
+                moved = true;
+            }
+        }
+        if moved {
+            self.bodies[i].count = self.bodies[i].count.wrapping_add(1);
+        }
+        moved
+    }
+
     /// Go back to the cell path for the rest of the run: every disc into the box
     /// and into the grids the cell path builds, and every event predicted again.
     /// Deterministic, so a run that overflows a list is still reproducible.
@@ -259,15 +260,7 @@ impl Engine {
         let now = self.clock;
         let size = self.sim_box.size;
         for i in 0..self.len() {
-            let p = self.bodies[i].at(now);
-            for k in 0..2 {
-                let w = (p[k] / size[k]).floor();
-                if self.sim_box.boundary[k].is_periodic() && w != 0.0 {
-                    self.bodies[i].r0[k] -= w * size[k];
-                    self.images[self.label[i] as usize][k] += w as i32;
-                    self.bodies[i].count = self.bodies[i].count.wrapping_add(1);
-                }
-            }
+            self.wrap_into_box(i);
         }
         let internal: Vec<u16> = self.bodies.iter().map(|b| b.species).collect();
         self.grids = Grids::new(&self.sim_box, &self.species, &internal, true);
@@ -284,20 +277,21 @@ impl Engine {
     }
 }
 
-/// The empty grid of list centres for discs of largest radius `radius` with skin
-/// `skin` (cells at least the list radius wide), or why there is none.
+/// The empty grid of list centres for `n` discs of `species` species and
+/// largest contact distance `sigma` with skin `skin` (cells at least the list
+/// radius wide), or why there is none.
 pub(super) fn centre_grid(
     sim_box: &SimBox,
     species: usize,
-    radius: f64,
+    sigma: f64,
     skin: f64,
     n: usize,
 ) -> Result<Grids, String> {
     if !(skin.is_finite() && skin > 0.0) {
         return Err(format!("skin {skin} (allowed: finite, > 0)"));
     }
-    let width = list_radius(2.0 * radius, skin);
-    Ok(Grids::one(sim_box, species, radius, width, n))
+    let width = list_radius(sigma, skin);
+    Ok(Grids::one(sim_box, species, sigma / 2.0, width, n))
 }
 
 /// Every disc's list from the centres `centres` (internal order), the discs
@@ -310,8 +304,7 @@ pub(super) fn lists_from(
     skin: f64,
     size: DVec2,
 ) -> Result<Lists, String> {
-    let sigma = 2.0 * grids.radius.iter().copied().fold(0.0, f64::max);
-    let mut lists = Lists::new(centres, sigma, skin, size);
+    let mut lists = Lists::new(centres, grids.largest_sigma(), skin, size);
     for i in 0..centres.len() {
         let full = || format!("the list of disc {i} would hold more than {CAPACITY} discs");
         let found = block_members(grids, bodies, &lists, i).ok_or_else(full)?;
